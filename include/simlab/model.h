@@ -1,0 +1,336 @@
+// simlab::Model: the compiled, immutable description of a simulated system.
+//
+// Field names, shapes and enum values follow MuJoCo's mjModel on purpose, so that
+// `model.body_mass[i]` or `model.actuator_gainprm[10*i]` mean the same thing here, in
+// the Python bindings and in the browser lab. Arrays are flat and row-major: a field
+// listed as (nbody x 3) stores body i's three numbers at [3*i, 3*i+3).
+//
+// One table (SIMLAB_MODEL_FIELDS) lists every array with its element type, row count
+// (the name of a size member) and column count; allocation, name lookup, copying and
+// dumping are all generated from it.
+#ifndef SIMLAB_MODEL_H_
+#define SIMLAB_MODEL_H_
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace simlab {
+
+// ---------------------------------------------------------------- enums (MuJoCo values)
+
+enum JointType : int { kJointFree = 0, kJointBall = 1, kJointSlide = 2, kJointHinge = 3 };
+
+enum GeomType : int {
+  kGeomPlane = 0, kGeomHfield = 1, kGeomSphere = 2, kGeomCapsule = 3, kGeomEllipsoid = 4,
+  kGeomCylinder = 5, kGeomBox = 6, kGeomMesh = 7, kGeomSdf = 8
+};
+
+enum Integrator : int {
+  kIntegratorEuler = 0, kIntegratorRK4 = 1, kIntegratorImplicit = 2,
+  kIntegratorImplicitFast = 3
+};
+
+enum ConeType : int { kConePyramidal = 0, kConeElliptic = 1 };
+enum JacobianType : int { kJacobianDense = 0, kJacobianSparse = 1, kJacobianAuto = 2 };
+enum SolverType : int { kSolverPGS = 0, kSolverCG = 1, kSolverNewton = 2 };
+
+// Bits of Option::disableflags (MuJoCo's mjtDisableBit).
+enum DisableBit : int {
+  kDisableConstraint = 1 << 0, kDisableEquality = 1 << 1, kDisableFrictionloss = 1 << 2,
+  kDisableLimit = 1 << 3, kDisableContact = 1 << 4, kDisableSpring = 1 << 5,
+  kDisableDamper = 1 << 6, kDisableGravity = 1 << 7, kDisableClampctrl = 1 << 8,
+  kDisableWarmstart = 1 << 9, kDisableFilterparent = 1 << 10, kDisableActuation = 1 << 11,
+  kDisableRefsafe = 1 << 12, kDisableSensor = 1 << 13, kDisableMidphase = 1 << 14,
+  kDisableEulerdamp = 1 << 15, kDisableAutoreset = 1 << 16, kDisableNativeccd = 1 << 17,
+  kDisableIsland = 1 << 18
+};
+
+// Bits of Option::enableflags (MuJoCo's mjtEnableBit).
+enum EnableBit : int {
+  kEnableOverride = 1 << 0, kEnableEnergy = 1 << 1, kEnableFwdinv = 1 << 2,
+  kEnableInvdiscrete = 1 << 3, kEnableMulticcd = 1 << 4, kEnableSleep = 1 << 5
+};
+
+// Actuator transmission, dynamics, gain and bias types (mjtTrn, mjtDyn, mjtGain, mjtBias).
+enum TrnType : int {
+  kTrnJoint = 0, kTrnJointInParent = 1, kTrnSliderCrank = 2, kTrnTendon = 3, kTrnSite = 4,
+  kTrnBody = 5, kTrnUndefined = 1000
+};
+enum DynType : int {
+  kDynNone = 0, kDynIntegrator = 1, kDynFilter = 2, kDynFilterExact = 3, kDynMuscle = 4,
+  kDynUser = 5
+};
+enum GainType : int { kGainFixed = 0, kGainAffine = 1, kGainMuscle = 2, kGainUser = 3 };
+enum BiasType : int { kBiasNone = 0, kBiasAffine = 1, kBiasMuscle = 2, kBiasUser = 3 };
+
+// Object types (mjtObj), used by name lookup.
+enum ObjType : int {
+  kObjUnknown = 0, kObjBody = 1, kObjXBody = 2, kObjJoint = 3, kObjDof = 4, kObjGeom = 5,
+  kObjSite = 6, kObjCamera = 7, kObjLight = 8, kObjFlex = 9, kObjMesh = 10, kObjSkin = 11,
+  kObjHfield = 12, kObjTexture = 13, kObjMaterial = 14, kObjPair = 15, kObjExclude = 16,
+  kObjEquality = 17, kObjTendon = 18, kObjActuator = 19, kObjSensor = 20, kObjNumeric = 21,
+  kObjText = 22, kObjTuple = 23, kObjKey = 24, kObjPlugin = 25
+};
+
+// Numbers per solref, solimp, gain/bias/dyn parameter rows (mjNREF, mjNIMP, mjNGAIN...).
+inline constexpr int kNRef = 2;
+inline constexpr int kNImp = 5;
+inline constexpr int kNDyn = 10;
+inline constexpr int kNGain = 10;
+inline constexpr int kNBias = 10;
+
+// Smallest value treated as nonzero (mjMINVAL) and the largest acceptable value in
+// state and accelerations before a simulation is declared divergent (mjMAXVAL).
+inline constexpr double kMinVal = 1e-15;
+inline constexpr double kMaxVal = 1e10;
+
+// ---------------------------------------------------------------- options
+
+// Physics options: MuJoCo's mjOption, with its defaults.
+struct Option {
+  double timestep = 0.002;
+  double impratio = 1;
+  double tolerance = 1e-8;
+  double ls_tolerance = 0.01;
+  double noslip_tolerance = 1e-6;
+  double ccd_tolerance = 1e-6;
+  std::array<double, 3> gravity = {0, 0, -9.81};
+  std::array<double, 3> wind = {0, 0, 0};
+  std::array<double, 3> magnetic = {0, -0.5, 0};
+  double density = 0;
+  double viscosity = 0;
+  double o_margin = 0;
+  std::array<double, kNRef> o_solref = {0.02, 1};
+  std::array<double, kNImp> o_solimp = {0.9, 0.95, 0.001, 0.5, 2};
+  std::array<double, 5> o_friction = {1, 1, 0.005, 0.0001, 0.0001};
+  int integrator = kIntegratorEuler;
+  int cone = kConePyramidal;
+  int jacobian = kJacobianAuto;
+  int solver = kSolverNewton;
+  int iterations = 100;
+  int ls_iterations = 50;
+  int noslip_iterations = 0;
+  int ccd_iterations = 35;
+  int disableflags = 0;
+  int enableflags = 0;
+  int disableactuator = 0;
+};
+
+// ---------------------------------------------------------------- the field table
+//
+// X(type, name, rows, cols): an array of rows*cols elements, rows being a size member.
+
+#define SIMLAB_MODEL_FIELDS(X)                     \
+  /* state layout */                               \
+  X(double, qpos0, nq, 1)                          \
+  X(double, qpos_spring, nq, 1)                    \
+  /* bodies */                                     \
+  X(int, body_parentid, nbody, 1)                  \
+  X(int, body_rootid, nbody, 1)                    \
+  X(int, body_weldid, nbody, 1)                    \
+  X(int, body_mocapid, nbody, 1)                   \
+  X(int, body_jntnum, nbody, 1)                    \
+  X(int, body_jntadr, nbody, 1)                    \
+  X(int, body_dofnum, nbody, 1)                    \
+  X(int, body_dofadr, nbody, 1)                    \
+  X(int, body_treeid, nbody, 1)                    \
+  X(int, body_geomnum, nbody, 1)                   \
+  X(int, body_geomadr, nbody, 1)                   \
+  X(int, body_sameframe, nbody, 1)                 \
+  X(double, body_pos, nbody, 3)                    \
+  X(double, body_quat, nbody, 4)                   \
+  X(double, body_ipos, nbody, 3)                   \
+  X(double, body_iquat, nbody, 4)                  \
+  X(double, body_mass, nbody, 1)                   \
+  X(double, body_subtreemass, nbody, 1)            \
+  X(double, body_inertia, nbody, 3)                \
+  X(double, body_gravcomp, nbody, 1)               \
+  /* joints */                                     \
+  X(int, jnt_type, njnt, 1)                        \
+  X(int, jnt_qposadr, njnt, 1)                     \
+  X(int, jnt_dofadr, njnt, 1)                      \
+  X(int, jnt_bodyid, njnt, 1)                      \
+  X(int, jnt_group, njnt, 1)                       \
+  X(int, jnt_limited, njnt, 1)                     \
+  X(int, jnt_actfrclimited, njnt, 1)               \
+  X(int, jnt_actgravcomp, njnt, 1)                 \
+  X(double, jnt_solref, njnt, kNRef)               \
+  X(double, jnt_solimp, njnt, kNImp)               \
+  X(double, jnt_pos, njnt, 3)                      \
+  X(double, jnt_axis, njnt, 3)                     \
+  X(double, jnt_stiffness, njnt, 1)                \
+  X(double, jnt_range, njnt, 2)                    \
+  X(double, jnt_actfrcrange, njnt, 2)              \
+  X(double, jnt_margin, njnt, 1)                   \
+  /* degrees of freedom */                         \
+  X(int, dof_bodyid, nv, 1)                        \
+  X(int, dof_jntid, nv, 1)                         \
+  X(int, dof_parentid, nv, 1)                      \
+  X(int, dof_treeid, nv, 1)                        \
+  X(int, dof_Madr, nv, 1)                          \
+  X(double, dof_solref, nv, kNRef)                 \
+  X(double, dof_solimp, nv, kNImp)                 \
+  X(double, dof_frictionloss, nv, 1)               \
+  X(double, dof_armature, nv, 1)                   \
+  X(double, dof_damping, nv, 1)                    \
+  /* geoms */                                      \
+  X(int, geom_type, ngeom, 1)                      \
+  X(int, geom_contype, ngeom, 1)                   \
+  X(int, geom_conaffinity, ngeom, 1)               \
+  X(int, geom_condim, ngeom, 1)                    \
+  X(int, geom_bodyid, ngeom, 1)                    \
+  X(int, geom_group, ngeom, 1)                     \
+  X(int, geom_priority, ngeom, 1)                  \
+  X(int, geom_sameframe, ngeom, 1)                 \
+  X(double, geom_solmix, ngeom, 1)                 \
+  X(double, geom_solref, ngeom, kNRef)             \
+  X(double, geom_solimp, ngeom, kNImp)             \
+  X(double, geom_size, ngeom, 3)                   \
+  X(double, geom_rbound, ngeom, 1)                 \
+  X(double, geom_pos, ngeom, 3)                    \
+  X(double, geom_quat, ngeom, 4)                   \
+  X(double, geom_friction, ngeom, 3)               \
+  X(double, geom_margin, ngeom, 1)                 \
+  X(double, geom_gap, ngeom, 1)                    \
+  X(double, geom_rgba, ngeom, 4)                   \
+  /* sites */                                      \
+  X(int, site_type, nsite, 1)                      \
+  X(int, site_bodyid, nsite, 1)                    \
+  X(int, site_group, nsite, 1)                     \
+  X(int, site_sameframe, nsite, 1)                 \
+  X(double, site_size, nsite, 3)                   \
+  X(double, site_pos, nsite, 3)                    \
+  X(double, site_quat, nsite, 4)                   \
+  X(double, site_rgba, nsite, 4)                   \
+  /* fixed and spatial tendons */                  \
+  X(int, tendon_adr, ntendon, 1)                   \
+  X(int, tendon_num, ntendon, 1)                   \
+  X(int, tendon_limited, ntendon, 1)               \
+  X(int, tendon_actfrclimited, ntendon, 1)         \
+  X(double, tendon_solref_lim, ntendon, kNRef)     \
+  X(double, tendon_solimp_lim, ntendon, kNImp)     \
+  X(double, tendon_solref_fri, ntendon, kNRef)     \
+  X(double, tendon_solimp_fri, ntendon, kNImp)     \
+  X(double, tendon_range, ntendon, 2)              \
+  X(double, tendon_actfrcrange, ntendon, 2)        \
+  X(double, tendon_margin, ntendon, 1)             \
+  X(double, tendon_stiffness, ntendon, 1)          \
+  X(double, tendon_damping, ntendon, 1)            \
+  X(double, tendon_armature, ntendon, 1)           \
+  X(double, tendon_frictionloss, ntendon, 1)       \
+  X(double, tendon_lengthspring, ntendon, 2)       \
+  X(double, tendon_length0, ntendon, 1)            \
+  X(int, wrap_type, nwrap, 1)                      \
+  X(int, wrap_objid, nwrap, 1)                     \
+  X(double, wrap_prm, nwrap, 1)                    \
+  /* actuators */                                  \
+  X(int, actuator_trntype, nu, 1)                  \
+  X(int, actuator_dyntype, nu, 1)                  \
+  X(int, actuator_gaintype, nu, 1)                 \
+  X(int, actuator_biastype, nu, 1)                 \
+  X(int, actuator_trnid, nu, 2)                    \
+  X(int, actuator_actadr, nu, 1)                   \
+  X(int, actuator_actnum, nu, 1)                   \
+  X(int, actuator_group, nu, 1)                    \
+  X(int, actuator_ctrllimited, nu, 1)              \
+  X(int, actuator_forcelimited, nu, 1)             \
+  X(int, actuator_actlimited, nu, 1)               \
+  X(int, actuator_actearly, nu, 1)                 \
+  X(double, actuator_dynprm, nu, kNDyn)            \
+  X(double, actuator_gainprm, nu, kNGain)          \
+  X(double, actuator_biasprm, nu, kNBias)          \
+  X(double, actuator_ctrlrange, nu, 2)             \
+  X(double, actuator_forcerange, nu, 2)            \
+  X(double, actuator_actrange, nu, 2)              \
+  X(double, actuator_gear, nu, 6)                  \
+  X(double, actuator_cranklength, nu, 1)           \
+  X(double, actuator_acc0, nu, 1)                  \
+  X(double, actuator_length0, nu, 1)               \
+  X(double, actuator_lengthrange, nu, 2)           \
+  /* keyframes */                                  \
+  X(double, key_time, nkey, 1)                     \
+  X(double, key_qpos, nkey, nq)                    \
+  X(double, key_qvel, nkey, nv)                    \
+  X(double, key_act, nkey, na)                     \
+  X(double, key_mpos, nkey, nmocap3)               \
+  X(double, key_mquat, nkey, nmocap4)              \
+  X(double, key_ctrl, nkey, nu)
+
+// The names of the object kinds that carry names, with their count member.
+#define SIMLAB_MODEL_NAMED(X) \
+  X(body, nbody)              \
+  X(jnt, njnt)                \
+  X(geom, ngeom)              \
+  X(site, nsite)              \
+  X(tendon, ntendon)          \
+  X(actuator, nu)             \
+  X(sensor, nsensor)          \
+  X(key, nkey)
+
+// The size members, which give the array shapes in the field tables.
+#define SIMLAB_MODEL_SIZES(X)                                              \
+  X(nq)          /* generalized coordinates */                             \
+  X(nv)          /* degrees of freedom */                                  \
+  X(nu)          /* actuators (controls) */                                \
+  X(na)          /* activation states */                                   \
+  X(nbody)       /* bodies, including the world body 0 */                  \
+  X(njnt)        /* joints */                                              \
+  X(ngeom)       /* geoms */                                               \
+  X(nsite)       /* sites */                                               \
+  X(ntendon)     /* tendons */                                             \
+  X(nwrap)       /* tendon path elements */                                \
+  X(nsensor)     /* sensors */                                             \
+  X(nsensordata) /* numbers of sensor output */                            \
+  X(nkey)        /* keyframes */                                           \
+  X(nmocap)      /* mocap bodies */                                        \
+  X(nmocap3)     /* 3 * nmocap (row width of key_mpos) */                  \
+  X(nmocap4)     /* 4 * nmocap (row width of key_mquat) */                 \
+  X(nM)          /* nonzeros of the inertia matrix in tree layout */
+
+// A view of one array of a Model or Data by its MuJoCo name (for bindings and the lab).
+struct FieldView {
+  const char* name = nullptr;
+  bool is_int = false;
+  double* doubles = nullptr;
+  int* ints = nullptr;
+  int rows = 0;
+  int cols = 0;
+};
+
+// ---------------------------------------------------------------- Model
+
+struct Model {
+#define SIMLAB_X(size) int size = 0;
+  SIMLAB_MODEL_SIZES(SIMLAB_X)
+#undef SIMLAB_X
+
+  Option opt;
+  std::string model_name;
+
+  // arrays, from the table
+#define SIMLAB_X(type, name, rows, cols) std::vector<type> name;
+  SIMLAB_MODEL_FIELDS(SIMLAB_X)
+#undef SIMLAB_X
+
+  // names of objects, one vector per named kind (body_names[i] is body i's name, or "")
+#define SIMLAB_X(kind, count) std::vector<std::string> kind##_names;
+  SIMLAB_MODEL_NAMED(SIMLAB_X)
+#undef SIMLAB_X
+
+  // Resizes every array to the sizes above (values are zero-filled).
+  void Allocate();
+
+  // Id of the named object of the given kind, or -1.
+  int NameToId(ObjType type, const std::string& name) const;
+
+  // Every array of the model, in table order.
+  std::vector<FieldView> Fields();
+};
+
+
+}  // namespace simlab
+
+#endif  // SIMLAB_MODEL_H_

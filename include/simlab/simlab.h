@@ -1,0 +1,55 @@
+// simlab: load an MJCF model, then simulate it exactly as MuJoCo does.
+//
+//   simlab::Model m = simlab::LoadXml("models/actuator_bench.xml");
+//   simlab::Data d = simlab::MakeData(m);
+//   simlab::Forward(m, d);          // all derived quantities for the current state
+//   simlab::Step(m, d);             // advance by m.opt.timestep
+//
+// Loading throws simlab::Error (file, line, element, what is wrong). Stepping never
+// throws: a diverging state is reported in d.warning and the data is reset.
+#ifndef SIMLAB_SIMLAB_H_
+#define SIMLAB_SIMLAB_H_
+
+#include <stdexcept>
+#include <string>
+
+#include "simlab/data.h"
+#include "simlab/model.h"
+
+namespace simlab {
+
+// A model that cannot be read or compiled. what() reads like
+// "gantry.xml:42: <position name=\"grip\">: kp must be positive".
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Compile an MJCF file; included and attached files resolve relative to its folder.
+Model LoadXml(const std::string& path);
+
+// Compile MJCF text; `filename` names it in error messages and is the base folder
+// for included files.
+Model LoadXmlString(const std::string& xml, const std::string& filename = "<string>");
+
+// Default state: qpos = qpos0, everything else zero, mocap poses from the model.
+void ResetData(const Model& m, Data& d);
+
+// Reset to keyframe `key` (as mj_resetDataKeyframe). Throws Error for a bad index.
+void ResetDataKeyframe(const Model& m, Data& d, int key);
+
+// The whole pipeline for the current state: positions, velocities, forces, qacc.
+void Forward(const Model& m, Data& d);
+
+// One step of the model's integrator (as mj_step).
+void Step(const Model& m, Data& d);
+
+// Id of a named object, or -1 (as mj_name2id).
+int NameToId(const Model& m, ObjType type, const std::string& name);
+
+// The MuJoCo version whose semantics this engine follows.
+const char* ReferenceVersion();
+
+}  // namespace simlab
+
+#endif  // SIMLAB_SIMLAB_H_

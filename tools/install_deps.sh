@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs what simlab needs to build and test, from Debian's packages only.
+# Safe to run again: packages already present are skipped.
+set -euo pipefail
+
+packages=(
+  g++ cmake make
+  libeigen3-dev libpugixml-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev
+
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
