@@ -59,6 +59,7 @@ struct WarningStat {
   X(double, actuator_length, nu, 1)             \
   X(double, actuator_moment, nu, nv)            \
   X(double, crb, nbody, 10)                     \
+  X(double, M, nM, 1)                           \
   X(double, qM, nM, 1)                          \
   X(double, qLD, nM, 1)                         \
   X(double, qLDiagInv, nv, 1)                   \
@@ -84,7 +85,9 @@ struct WarningStat {
   X(double, sensordata, nsensordata, 1)         \
   /* implicit integration */                    \
   X(double, qDeriv, nv, nv)                     \
-  X(double, qLU, nv, nv)
+  X(double, qLU, nv, nv)                        \
+  X(double, qH, nM, 1)                          \
+  X(double, qHDiagInv, nv, 1)
 
 struct Data {
   double time = 0;

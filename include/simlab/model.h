@@ -176,6 +176,11 @@ struct Option {
   X(double, dof_frictionloss, nv, 1)               \
   X(double, dof_armature, nv, 1)                   \
   X(double, dof_damping, nv, 1)                    \
+  /* inertia matrix sparsity: row i of the lower     \
+     triangle holds i's ancestor dofs, then i */     \
+  X(int, M_rownnz, nv, 1)                          \
+  X(int, M_rowadr, nv, 1)                          \
+  X(int, M_colind, nM, 1)                          \
   /* geoms */                                      \
   X(int, geom_type, ngeom, 1)                      \
   X(int, geom_contype, ngeom, 1)                   \
