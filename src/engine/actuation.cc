@@ -1,0 +1,127 @@
+// Actuation (MuJoCo mj_fwdActuation): activation dynamics and the one force law
+//
+//   p = gain * (ctrl or act) + bias,   gain = a0 + a1 l + a2 l',  bias = b0 + b1 l + b2 l'
+//
+// with ctrl clamped to ctrlrange (in a copy: data.ctrl is never rewritten), act_dot from
+// the dynamics type, p clamped to forcerange, then qfrc_actuator = moment^T p clamped
+// to each joint's actuatorfrcrange.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "engine/engine.h"
+#include "engine/stack.h"
+
+namespace simlab {
+
+namespace {
+
+bool ActuatorDisabled(const Model& m, int i) {
+  int group = m.actuator_group[i];
+  return group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group));
+}
+
+// The controls as the force law sees them: clamped, or all zero if any is bad.
+void EffectiveControls(const Model& m, Data& d, double* ctrl) {
+  for (int i = 0; i < m.nu; i++) {
+    ctrl[i] = d.ctrl[i];
+    if (!(m.opt.disableflags & kDisableClampctrl) && m.actuator_ctrllimited[i]) {
+      ctrl[i] = std::clamp(ctrl[i], m.actuator_ctrlrange[2 * i], m.actuator_ctrlrange[2 * i + 1]);
+    }
+  }
+  for (int i = 0; i < m.nu; i++) {
+    if (std::isnan(ctrl[i]) || std::abs(ctrl[i]) > kMaxVal) {
+      RaiseWarning(d, kWarnBadCtrl, i);
+      std::fill(ctrl, ctrl + m.nu, 0.0);
+      return;
+    }
+  }
+}
+
+// act_dot of actuator i from its dynamics type.
+void ActivationRate(const Model& m, Data& d, int i, double ctrl) {
+  int adr = m.actuator_actadr[i] + m.actuator_actnum[i] - 1;
+  const double* prm = &m.actuator_dynprm[kNDyn * i];
+  switch (m.actuator_dyntype[i]) {
+    case kDynIntegrator: d.act_dot[adr] = ctrl; break;
+    case kDynFilter:
+    case kDynFilterExact: d.act_dot[adr] = (ctrl - d.act[adr]) / std::max(kMinVal, prm[0]); break;
+    default: d.act_dot[adr] = 0;  // muscle dynamics are rejected by the loader for now
+  }
+}
+
+// Gain or bias of the affine form prm[0] + prm[1] l + prm[2] l'.
+double Affine(const double* prm, double length, double velocity) {
+  return prm[0] + prm[1] * length + prm[2] * velocity;
+}
+
+// Scalar force of actuator i before clamping.
+double ActuatorForce(const Model& m, const Data& d, int i, double ctrl) {
+  double l = d.actuator_length[i], ldot = d.actuator_velocity[i];
+  const double* gainprm = &m.actuator_gainprm[kNGain * i];
+  double gain = m.actuator_gaintype[i] == kGainAffine ? Affine(gainprm, l, ldot) : gainprm[0];
+  double input = ctrl;
+  if (m.actuator_actadr[i] >= 0) {
+    int adr = m.actuator_actadr[i] + m.actuator_actnum[i] - 1;
+    input = m.actuator_actearly[i] ? NextActivation(m, d, i, adr, d.act_dot[adr]) : d.act[adr];
+  }
+  double bias = 0;
+  if (m.actuator_biastype[i] == kBiasAffine) bias = Affine(&m.actuator_biasprm[kNBias * i], l, ldot);
+  return gain * input + bias;
+}
+
+}  // namespace
+
+double NextActivation(const Model& m, const Data& d, int i, int act_adr, double act_dot) {
+  double act = d.act[act_adr];
+  // Exact filter: act moves toward ctrl by 1 - exp(-h/tau) of the gap; else Euler.
+  if (m.actuator_dyntype[i] == kDynFilterExact) {
+    double tau = std::max(kMinVal, m.actuator_dynprm[kNDyn * i]);
+    act += act_dot * tau * (1 - std::exp(-m.opt.timestep / tau));
+  } else {
+    act += act_dot * m.opt.timestep;
+  }
+  if (m.actuator_actlimited[i]) {
+    act = std::clamp(act, m.actuator_actrange[2 * i], m.actuator_actrange[2 * i + 1]);
+  }
+  return act;
+}
+
+void Actuation(const Model& m, Data& d) {
+  std::fill(d.actuator_force.begin(), d.actuator_force.end(), 0.0);
+  std::fill(d.qfrc_actuator.begin(), d.qfrc_actuator.end(), 0.0);
+  if (m.nu == 0 || (m.opt.disableflags & kDisableActuation)) return;
+
+  StackFrame frame(d);
+  double* ctrl = frame.Alloc(m.nu);
+  EffectiveControls(m, d, ctrl);
+
+  // Activation dynamics, then forces, clamped to forcerange.
+  for (int i = 0; i < m.nu; i++) {
+    if (m.actuator_actadr[i] >= 0) ActivationRate(m, d, i, ctrl[i]);
+  }
+  for (int i = 0; i < m.nu; i++) {
+    if (ActuatorDisabled(m, i)) continue;
+    double f = ActuatorForce(m, d, i, ctrl[i]);
+    if (m.actuator_forcelimited[i]) {
+      f = std::clamp(f, m.actuator_forcerange[2 * i], m.actuator_forcerange[2 * i + 1]);
+    }
+    d.actuator_force[i] = f;
+  }
+
+  // Joint space, clamped per joint to actuatorfrcrange.
+  for (int i = 0; i < m.nu; i++) {
+    const double* moment = &d.actuator_moment[static_cast<size_t>(i) * m.nv];
+    for (int v = 0; v < m.nv; v++) d.qfrc_actuator[v] += moment[v] * d.actuator_force[i];
+  }
+  for (int j = 0; j < m.njnt; j++) {
+    if (!m.jnt_actfrclimited[j]) continue;
+    int n = m.jnt_type[j] == kJointFree ? 6 : m.jnt_type[j] == kJointBall ? 3 : 1;
+    for (int t = 0; t < n; t++) {
+      double& q = d.qfrc_actuator[m.jnt_dofadr[j] + t];
+      q = std::clamp(q, m.jnt_actfrcrange[2 * j], m.jnt_actfrcrange[2 * j + 1]);
+    }
+  }
+}
+
+}  // namespace simlab

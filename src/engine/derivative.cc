@@ -1,0 +1,214 @@
+// Analytic derivative of the smooth forces with respect to velocity, for the implicit
+// integrators (MuJoCo mjd_smooth_vel):
+//
+//   qDeriv = d(qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel     (nv x nv, dense)
+//
+// Actuators: moment^T (d p / d l') moment where p is affine in l' (bias b2, gain a2 times
+// the input). Passive: -diag(dof damping) - J^T b J for tendon damping. Bias: the
+// velocity derivative of RNE, propagated body by body (Dcvel, Dcdofdot, Dcacc, Dcfrc:
+// 6 x nv blocks per body or dof).
+#include <algorithm>
+
+#include "engine/engine.h"
+#include "engine/stack.h"
+#include "math/math.h"
+
+namespace simlab {
+
+using namespace math;
+
+namespace {
+
+// qDeriv += J^T b J for a row J (length nv).
+void AddJtBJ(const Model& m, Data& d, const double* jac, double b) {
+  for (int r = 0; r < m.nv; r++) {
+    if (jac[r] == 0) continue;
+    for (int c = 0; c < m.nv; c++) d.qDeriv[r * m.nv + c] += jac[r] * b * jac[c];
+  }
+}
+
+void ActuatorDerivative(const Model& m, Data& d) {
+  if (m.opt.disableflags & kDisableActuation) return;
+  for (int i = 0; i < m.nu; i++) {
+    int group = m.actuator_group[i];
+    if (group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group))) continue;
+    // A force held at its clamp does not change with velocity.
+    if (m.actuator_forcelimited[i]) {
+      double f = d.actuator_force[i];
+      if (f <= m.actuator_forcerange[2 * i] || f >= m.actuator_forcerange[2 * i + 1]) continue;
+    }
+    double b = m.actuator_biastype[i] == kBiasAffine ? m.actuator_biasprm[kNBias * i + 2] : 0;
+    double gain_vel = m.actuator_gaintype[i] == kGainAffine ? m.actuator_gainprm[kNGain * i + 2] : 0;
+    if (gain_vel != 0) {
+      if (m.actuator_dyntype[i] == kDynNone) {
+        b += gain_vel * d.ctrl[i];
+      } else {
+        int adr = m.actuator_actadr[i] + m.actuator_actnum[i] - 1;
+        double act = m.actuator_actearly[i] ? NextActivation(m, d, i, adr, d.act_dot[adr]) : d.act[adr];
+        b += gain_vel * act;
+      }
+    }
+    if (b != 0) AddJtBJ(m, d, &d.actuator_moment[static_cast<size_t>(i) * m.nv], b);
+  }
+}
+
+void PassiveDerivative(const Model& m, Data& d) {
+  if (m.opt.disableflags & kDisableDamper) return;
+  for (int v = 0; v < m.nv; v++) d.qDeriv[v * m.nv + v] -= m.dof_damping[v];
+  for (int i = 0; i < m.ntendon; i++) {
+    if (m.tendon_damping[i] != 0) {
+      AddJtBJ(m, d, &d.ten_J[static_cast<size_t>(i) * m.nv], -m.tendon_damping[i]);
+    }
+  }
+}
+
+// D(v x m)/Dv for motion cross product with fixed m: a 6x6 row-major matrix.
+void CrossMotionVelDerivative(double* D, const double* v) {
+  std::fill(D, D + 36, 0.0);
+  D[2] = -v[1]; D[1] = v[2];
+  D[8] = v[0]; D[6] = -v[2];
+  D[13] = -v[0]; D[12] = v[1];
+  D[20] = -v[4]; D[19] = v[5]; D[23] = -v[1]; D[22] = v[2];
+  D[26] = v[3]; D[24] = -v[5]; D[29] = v[0]; D[27] = -v[2];
+  D[31] = -v[3]; D[30] = v[4]; D[34] = -v[0]; D[33] = v[1];
+}
+
+// D(v x* f)/Dv with f fixed.
+void CrossForceVelDerivative(double* D, const double* f) {
+  std::fill(D, D + 36, 0.0);
+  D[2] = -f[1]; D[1] = f[2]; D[5] = -f[4]; D[4] = f[5];
+  D[8] = f[0]; D[6] = -f[2]; D[11] = f[3]; D[9] = -f[5];
+  D[13] = -f[0]; D[12] = f[1]; D[16] = -f[3]; D[15] = f[4];
+  D[20] = -f[4]; D[19] = f[5];
+  D[26] = f[3]; D[24] = -f[5];
+  D[31] = -f[3]; D[30] = f[4];
+}
+
+// D(v x* f)/Df with v fixed.
+void CrossForceFrcDerivative(double* D, const double* v) {
+  std::fill(D, D + 36, 0.0);
+  D[1] = -v[2]; D[2] = v[1]; D[4] = -v[5]; D[5] = v[4];
+  D[6] = v[2]; D[8] = -v[0]; D[9] = v[5]; D[11] = -v[3];
+  D[12] = -v[1]; D[13] = v[0]; D[15] = -v[4]; D[16] = v[3];
+  D[22] = -v[2]; D[23] = v[1];
+  D[27] = v[2]; D[29] = -v[0];
+  D[33] = -v[1]; D[34] = v[0];
+}
+
+// The 6x6 matrix of the cinert product I v.
+void InertiaMatrix(double* D, const double* i) {
+  const double rows[36] = {i[0], i[3], i[4], 0, -i[8], i[7],
+                           i[3], i[1], i[5], i[8], 0, -i[6],
+                           i[4], i[5], i[2], -i[7], i[6], 0,
+                           0, i[8], -i[7], i[9], 0, 0,
+                           -i[8], 0, i[6], 0, i[9], 0,
+                           i[7], -i[6], 0, 0, 0, i[9]};
+  std::copy(rows, rows + 36, D);
+}
+
+// R (6 x nv) = A (6x6) B (6 x nv)
+void Mul6(double* R, const double* A, const double* B, int nv) {
+  for (int r = 0; r < 6; r++) {
+    for (int c = 0; c < nv; c++) {
+      double s = 0;
+      for (int k = 0; k < 6; k++) s += A[6 * r + k] * B[k * nv + c];
+      R[r * nv + c] = s;
+    }
+  }
+}
+
+// Velocity derivatives of cvel (per body) and cdof_dot (per dof), 6 x nv each.
+void ComVelDerivative(const Model& m, Data& d, double* dcvel, double* dcdofdot) {
+  int nv = m.nv;
+  double mat[36];
+  for (int i = 1; i < m.nbody; i++) {
+    double* dv = dcvel + static_cast<size_t>(i) * 6 * nv;
+    std::copy_n(dcvel + static_cast<size_t>(m.body_parentid[i]) * 6 * nv, 6 * nv, dv);
+    int end = m.body_dofadr[i] + m.body_dofnum[i];
+    for (int j = m.body_dofadr[i]; j < end;) {
+      int type = m.jnt_type[m.dof_jntid[j]];
+      int ntran = type == kJointFree ? 3 : 0;
+      int nrot = (type == kJointFree || type == kJointBall) ? 3 : 1;
+      // Translations of a free joint: cdof_dot = 0, velocity adds directly.
+      for (int t = 0; t < ntran; t++) {
+        for (int k = 0; k < 6; k++) dv[k * nv + j + t] += d.cdof[6 * (j + t) + k];
+      }
+      j += ntran;
+      // Rotations (or a hinge/slide): D cdof_dot = Dcross * Dcvel, then velocity.
+      for (int t = 0; t < nrot; t++) {
+        CrossMotionVelDerivative(mat, &d.cdof[6 * (j + t)]);
+        Mul6(dcdofdot + static_cast<size_t>(j + t) * 6 * nv, mat, dv, nv);
+      }
+      for (int t = 0; t < nrot; t++) {
+        for (int k = 0; k < 6; k++) dv[k * nv + j + t] += d.cdof[6 * (j + t) + k];
+      }
+      j += nrot;
+    }
+  }
+}
+
+// qDeriv -= d qfrc_bias / d qvel.
+void RneDerivative(const Model& m, Data& d) {
+  int nv = m.nv;
+  size_t block = static_cast<size_t>(6) * nv;
+  StackFrame frame(d);
+  double* dcvel = frame.Alloc(m.nbody * block);
+  double* dcdofdot = frame.Alloc(nv * block);
+  double* dcacc = frame.Alloc(m.nbody * block);
+  double* dcfrc = frame.Alloc(m.nbody * block);
+  double* tmp = frame.Alloc(block);
+  ComVelDerivative(m, d, dcvel, dcdofdot);
+
+  // Forward pass: Dcacc, then Dcfrc = I Dcacc + (Dcross_v + Dcross_f I) Dcvel.
+  double dmul[36], mat[36], mat1[36], mat2[36], momentum[6];
+  for (int i = 1; i < m.nbody; i++) {
+    double* da = dcacc + i * block;
+    std::copy_n(dcacc + m.body_parentid[i] * block, block, da);
+    for (int j = m.body_dofadr[i]; j < m.body_dofadr[i] + m.body_dofnum[i]; j++) {
+      for (int k = 0; k < 6; k++) da[k * nv + j] += d.cdof_dot[6 * j + k];
+      const double* dd = dcdofdot + j * block;
+      for (size_t t = 0; t < block; t++) da[t] += dd[t] * d.qvel[j];
+    }
+    InertiaMatrix(dmul, &d.cinert[10 * i]);
+    Mul6(dcfrc + i * block, dmul, da, nv);
+    MulInertVec(momentum, &d.cinert[10 * i], &d.cvel[6 * i]);
+    CrossForceVelDerivative(mat, momentum);
+    CrossForceFrcDerivative(mat1, &d.cvel[6 * i]);
+    for (int r = 0; r < 6; r++) {
+      for (int c = 0; c < 6; c++) {
+        double s = 0;
+        for (int k = 0; k < 6; k++) s += mat1[6 * r + k] * dmul[6 * k + c];
+        mat2[6 * r + c] = s;
+      }
+    }
+    for (int k = 0; k < 36; k++) mat[k] += mat2[k];
+    Mul6(tmp, mat, dcvel + i * block, nv);
+    for (size_t t = 0; t < block; t++) dcfrc[i * block + t] += tmp[t];
+  }
+
+  // Backward pass, then project onto the dofs.
+  for (int i = m.nbody - 1; i > 0; i--) {
+    int parent = m.body_parentid[i];
+    if (parent > 0) {
+      for (size_t t = 0; t < block; t++) dcfrc[parent * block + t] += dcfrc[i * block + t];
+    }
+  }
+  for (int v = 0; v < nv; v++) {
+    const double* df = dcfrc + m.dof_bodyid[v] * block;
+    for (int k = 0; k < 6; k++) {
+      double c = d.cdof[6 * v + k];
+      for (int col = 0; col < nv; col++) d.qDeriv[v * nv + col] -= c * df[k * nv + col];
+    }
+  }
+}
+
+}  // namespace
+
+void SmoothVelocityDerivative(const Model& m, Data& d, bool with_bias) {
+  std::fill(d.qDeriv.begin(), d.qDeriv.end(), 0.0);
+  ActuatorDerivative(m, d);
+  PassiveDerivative(m, d);
+  if (with_bias) RneDerivative(m, d);
+}
+
+}  // namespace simlab

@@ -1,0 +1,84 @@
+// The stages of the simulation pipeline, in the order they run (see forward.cc).
+//
+// Every stage takes (const Model&, Data&), reads what earlier stages wrote and writes
+// its own outputs into Data, under MuJoCo's names. No stage keeps hidden state.
+#ifndef SIMLAB_ENGINE_ENGINE_H_
+#define SIMLAB_ENGINE_ENGINE_H_
+
+#include "simlab/data.h"
+#include "simlab/model.h"
+
+namespace simlab {
+
+// ------------------------------------------------------------ model constants (setconst.cc)
+
+// Fills the model arrays derived from the tree (inertia-matrix sparsity).
+void SetConst(Model& m);
+
+// ------------------------------------------------------------ position stage
+
+// xpos, xquat, xmat, xipos, ximat, xanchor, xaxis, geom and site poses (kinematics.cc).
+void Kinematics(const Model& m, Data& d);
+// subtree_com, cinert, cdof (kinematics.cc).
+void ComPos(const Model& m, Data& d);
+// ten_length, ten_J (tendon.cc).
+void Tendon(const Model& m, Data& d);
+// crb and the joint-space inertia M (CSR lower triangle) and qM (inertia.cc).
+void MakeInertia(const Model& m, Data& d);
+// qLD, qLDiagInv: the L^T D L factorization of M (inertia.cc).
+void FactorInertia(const Model& m, Data& d);
+// actuator_length, actuator_moment (transmission.cc).
+void Transmission(const Model& m, Data& d);
+
+// ------------------------------------------------------------ velocity stage
+
+// cvel, cdof_dot (rne.cc).
+void ComVel(const Model& m, Data& d);
+// qfrc_spring, qfrc_damper, qfrc_passive (passive.cc).
+void Passive(const Model& m, Data& d);
+// result = inverse dynamics without (flg_acc false) or with qacc (rne.cc).
+void Rne(const Model& m, Data& d, bool flg_acc, double* result);
+
+// ------------------------------------------------------------ acceleration stage
+
+// act_dot, actuator_force, qfrc_actuator (actuation.cc).
+void Actuation(const Model& m, Data& d);
+// The activation after one step of its dynamics, clamped to actrange (actuation.cc).
+double NextActivation(const Model& m, const Data& d, int actuator, int act_adr,
+                      double act_dot);
+// qfrc_smooth, qacc_smooth (forward.cc).
+void SmoothAcceleration(const Model& m, Data& d);
+// qfrc_constraint, qacc (constraint.cc).
+void Constraint(const Model& m, Data& d);
+
+// ------------------------------------------------------------ sparse inertia algebra
+
+// In-place L^T D L factorization of a matrix with M's sparsity (inertia.cc).
+void FactorSparse(const Model& m, double* mat, double* diag_inv);
+// x <- (L^T D L)^-1 x with a factorization from FactorSparse (inertia.cc).
+void SolveSparse(const Model& m, const double* ld, const double* diag_inv, double* x);
+
+// ------------------------------------------------------------ integration (integrator.cc)
+
+// qpos <- qpos (+) qvel * dt, on the configuration manifold (quaternions rotate).
+void IntegratePos(const Model& m, double* qpos, const double* qvel, double dt);
+// Normalizes the quaternions of ball and free joints in qpos.
+void NormalizeQuat(const Model& m, double* qpos);
+void Euler(const Model& m, Data& d);
+void RungeKutta4(const Model& m, Data& d);
+void ImplicitIntegrate(const Model& m, Data& d);
+
+// qDeriv = d(qfrc_actuator + qfrc_passive [- qfrc_bias]) / d qvel (derivative.cc).
+void SmoothVelocityDerivative(const Model& m, Data& d, bool with_bias);
+
+// ------------------------------------------------------------ forward (forward.cc)
+
+// The pipeline; `skip_position` reuses the position stage (as mjSTAGE_POS).
+void ForwardSkip(const Model& m, Data& d, bool skip_position, bool skip_sensor);
+
+// Raises warning `w` with `info` (counts it; prints the first occurrence).
+void RaiseWarning(Data& d, Warning w, int info);
+
+}  // namespace simlab
+
+#endif  // SIMLAB_ENGINE_ENGINE_H_

@@ -1,0 +1,103 @@
+// Position stage, part 2: the joint-space inertia matrix M and its factorization.
+//
+// Composite rigid body algorithm (Featherstone; MuJoCo mj_crb): crb = the inertia of
+// each body's subtree, accumulated leaves to root; then for every dof i and each
+// ancestor dof j, M(i,j) = cdof_j . (crb_body(i) cdof_i). Armature adds to the diagonal.
+//
+// M is stored as its lower triangle in compressed rows (M_rowadr, M_rownnz,
+// M_colind): row i holds i's ancestor dofs, diagonal last. Because rows of ancestors
+// are prefixes of their descendants' rows, the L^T D L factorization (eliminating the
+// last dof first) creates no fill-in.
+#include "engine/engine.h"
+#include "math/math.h"
+
+namespace simlab {
+
+using namespace math;
+
+void MakeInertia(const Model& m, Data& d) {
+  // crb = cinert, accumulated from children to parents.
+  d.crb = d.cinert;
+  for (int i = m.nbody - 1; i > 0; i--) {
+    int parent = m.body_parentid[i];
+    if (parent > 0) {
+      for (int k = 0; k < 10; k++) d.crb[10 * parent + k] += d.crb[10 * i + k];
+    }
+  }
+
+  // Row i: armature on the diagonal, then cdof_j . (crb cdof_i) over ancestors j.
+  for (int i = 0; i < m.nv; i++) {
+    int adr = m.M_rowadr[i] + m.M_rownnz[i] - 1;
+    for (int k = m.M_rowadr[i]; k < adr; k++) d.M[k] = 0;
+    d.M[adr] = m.dof_armature[i];
+    double f[6];
+    MulInertVec(f, &d.crb[10 * m.dof_bodyid[i]], &d.cdof[6 * i]);
+    for (int j = i; j >= 0; j = m.dof_parentid[j]) {
+      const double* c = &d.cdof[6 * j];
+      d.M[adr--] += c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3] + c[4] * f[4] +
+                    c[5] * f[5];
+    }
+  }
+
+  // qM: the same numbers in MuJoCo's legacy layout (diagonal first, then ancestors).
+  for (int i = 0; i < m.nv; i++) {
+    int n = m.M_rownnz[i];
+    for (int k = 0; k < n; k++) d.qM[m.dof_Madr[i] + k] = d.M[m.M_rowadr[i] + n - 1 - k];
+  }
+}
+
+void FactorSparse(const Model& m, double* mat, double* diag_inv) {
+  // Eliminate rows from the last dof to the first.
+  for (int k = m.nv - 1; k >= 0; k--) {
+    int start = m.M_rowadr[k];
+    int diag = m.M_rownnz[k] - 1;
+    int end = start + diag;
+    double inv_d = 1 / mat[end];
+    if (diag_inv) diag_inv[k] = inv_d;
+
+    // Update the rows of k's ancestors: row i -= row k * L(k,i) / D(k).
+    for (int adr = end - 1; adr >= start; adr--) {
+      int i = m.M_colind[adr];
+      double scale = -mat[adr] * inv_d;
+      double* row_i = mat + m.M_rowadr[i];
+      for (int t = 0; t < m.M_rownnz[i]; t++) row_i[t] += mat[start + t] * scale;
+    }
+
+    // Row k becomes L(k, ancestors) = M(k, ancestors) / D(k).
+    for (int t = start; t < end; t++) mat[t] *= inv_d;
+  }
+}
+
+void SolveSparse(const Model& m, const double* ld, const double* diag_inv, double* x) {
+  // x <- L^-T x
+  for (int i = m.nv - 1; i >= 0; i--) {
+    double xi = x[i];
+    if (xi == 0) continue;
+    int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
+    for (int adr = m.M_rowadr[i]; adr < end; adr++) x[m.M_colind[adr]] -= ld[adr] * xi;
+  }
+  // x <- D^-1 x
+  for (int i = 0; i < m.nv; i++) x[i] *= diag_inv[i];
+  // x <- L^-1 x
+  for (int i = 0; i < m.nv; i++) {
+    int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
+    double sum = 0;
+    for (int adr = m.M_rowadr[i]; adr < end; adr++) sum += ld[adr] * x[m.M_colind[adr]];
+    x[i] -= sum;
+  }
+}
+
+void FactorInertia(const Model& m, Data& d) {
+  d.qLD = d.M;
+  // A non-positive pivot means a degenerate inertia: warn and keep it tiny but positive.
+  for (int k = 0; k < m.nv; k++) {
+    int diag = m.M_rowadr[k] + m.M_rownnz[k] - 1;
+    if (d.qLD[diag] < kMinVal) {
+      RaiseWarning(d, kWarnInertia, k);
+      d.qLD[diag] = kMinVal;
+    }
+  }
+  FactorSparse(m, d.qLD.data(), d.qLDiagInv.data());
+}
+
+}  // namespace simlab

@@ -1,0 +1,205 @@
+// Time integration (MuJoCo engine_forward.c: mj_Euler, mj_RungeKutta, mj_implicit).
+//
+// All integrators end in Advance: act <- next activation, qvel += h qacc,
+// qpos <- qpos (+) h qvel on the configuration manifold, time += h.
+//   Euler:        qacc from forward; if any dof has damping it is treated implicitly,
+//                 qacc = (M + h diag(damping))^-1 (qfrc_smooth + qfrc_constraint).
+//   RK4:          classic 4-stage Runge-Kutta on (qpos, qvel, act).
+//   implicit:     qacc = (M - h qDeriv)^-1 (qfrc_smooth + qfrc_constraint), full
+//                 derivative including the Coriolis terms (LU).
+//   implicitfast: the same without the RNE term, qDeriv restricted to M's sparsity
+//                 (symmetric, so L^T D L).
+#include <algorithm>
+
+#include "engine/engine.h"
+#include "engine/stack.h"
+#include "math/math.h"
+
+namespace simlab {
+
+void IntegratePos(const Model& m, double* qpos, const double* qvel, double dt) {
+  for (int j = 0; j < m.njnt; j++) {
+    int padr = m.jnt_qposadr[j], vadr = m.jnt_dofadr[j];
+    switch (m.jnt_type[j]) {
+      case kJointFree:
+        for (int t = 0; t < 3; t++) qpos[padr + t] += dt * qvel[vadr + t];
+        math::QuatIntegrate(qpos + padr + 3, qvel + vadr + 3, dt);
+        break;
+      case kJointBall: math::QuatIntegrate(qpos + padr, qvel + vadr, dt); break;
+      default: qpos[padr] += dt * qvel[vadr];
+    }
+  }
+}
+
+void NormalizeQuat(const Model& m, double* qpos) {
+  for (int j = 0; j < m.njnt; j++) {
+    int padr = m.jnt_qposadr[j];
+    if (m.jnt_type[j] == kJointFree) math::NormalizeQuat(qpos + padr + 3);
+    if (m.jnt_type[j] == kJointBall) math::NormalizeQuat(qpos + padr);
+  }
+}
+
+namespace {
+
+// Advances activations, velocities (by qacc), positions (by qvel_for_pos, or the new
+// qvel if null) and time by one step.
+void Advance(const Model& m, Data& d, const double* act_dot, const double* qacc,
+             const double* qvel_for_pos) {
+  double h = m.opt.timestep;
+  if (m.na && !(m.opt.disableflags & kDisableActuation)) {
+    for (int i = 0; i < m.nu; i++) {
+      int group = m.actuator_group[i];
+      bool off = group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group));
+      for (int a = m.actuator_actadr[i]; a >= 0 && a < m.actuator_actadr[i] + m.actuator_actnum[i]; a++) {
+        d.act[a] = NextActivation(m, d, i, a, off ? 0 : act_dot[a]);
+      }
+    }
+  }
+  for (int v = 0; v < m.nv; v++) d.qvel[v] += qacc[v] * h;
+  IntegratePos(m, d.qpos.data(), qvel_for_pos ? qvel_for_pos : d.qvel.data(), h);
+  d.time += h;
+  d.qacc_warmstart = d.qacc;
+}
+
+}  // namespace
+
+void Euler(const Model& m, Data& d) {
+  StackFrame frame(d);
+  double* qacc = frame.Alloc(m.nv);
+  bool damping = false;
+  if (!(m.opt.disableflags & (kDisableEulerdamp | kDisableDamper))) {
+    damping = std::any_of(m.dof_damping.begin(), m.dof_damping.end(), [](double b) { return b > 0; });
+  }
+
+  if (!damping) {
+    std::copy(d.qacc.begin(), d.qacc.end(), qacc);
+  } else {
+    // qH = M + h diag(damping), factor, solve with the total force.
+    d.qH = d.M;
+    for (int v = 0; v < m.nv; v++) {
+      d.qH[m.M_rowadr[v] + m.M_rownnz[v] - 1] += m.opt.timestep * m.dof_damping[v];
+    }
+    FactorSparse(m, d.qH.data(), d.qHDiagInv.data());
+    for (int v = 0; v < m.nv; v++) qacc[v] = d.qfrc_smooth[v] + d.qfrc_constraint[v];
+    SolveSparse(m, d.qH.data(), d.qHDiagInv.data(), qacc);
+  }
+  Advance(m, d, d.act_dot.data(), qacc, nullptr);
+}
+
+void RungeKutta4(const Model& m, Data& d) {
+  constexpr int kStages = 4;
+  const double a[kStages - 1] = {0.5, 0.5, 1.0};  // diagonal Butcher tableau (= c)
+  const double b[kStages] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+  int nq = m.nq, nv = m.nv, na = m.na;
+  double h = m.opt.timestep, time0 = d.time;
+
+  // X[i] = (qpos, qvel, act) at stage i; F[i] = (qacc, act_dot) there.
+  StackFrame frame(d);
+  double* X[kStages];
+  double* F[kStages];
+  for (int i = 0; i < kStages; i++) {
+    X[i] = frame.Alloc(nq + nv + na);
+    F[i] = frame.Alloc(nv + na);
+  }
+  double* dx = frame.Alloc(2 * nv + na);  // (velocity, acceleration, act_dot)
+  std::copy(d.qpos.begin(), d.qpos.end(), X[0]);
+  std::copy(d.qvel.begin(), d.qvel.end(), X[0] + nq);
+  std::copy(d.act.begin(), d.act.end(), X[0] + nq + nv);
+  std::copy(d.qacc.begin(), d.qacc.end(), F[0]);
+  std::copy(d.act_dot.begin(), d.act_dot.end(), F[0] + nv);
+
+  // Stages 1..3: X[i] = X[0] + h a_i (X[i-1] velocity, F[i-1]); evaluate F[i] there.
+  for (int i = 1; i < kStages; i++) {
+    for (int k = 0; k < nv; k++) dx[k] = a[i - 1] * X[i - 1][nq + k];
+    for (int k = 0; k < nv + na; k++) dx[nv + k] = a[i - 1] * F[i - 1][k];
+    std::copy(X[0], X[0] + nq + nv + na, X[i]);
+    IntegratePos(m, X[i], dx, h);
+    for (int k = 0; k < nv + na; k++) X[i][nq + k] += h * dx[nv + k];
+    std::copy(X[i], X[i] + nq, d.qpos.begin());
+    std::copy(X[i] + nq, X[i] + nq + nv, d.qvel.begin());
+    std::copy(X[i] + nq + nv, X[i] + nq + nv + na, d.act.begin());
+    d.time = time0 + a[i - 1] * h;
+    ForwardSkip(m, d, false, true);
+    std::copy(d.qacc.begin(), d.qacc.end(), F[i]);
+    std::copy(d.act_dot.begin(), d.act_dot.end(), F[i] + nv);
+  }
+
+  // Weighted average of the stage derivatives, applied from the initial state.
+  std::fill(dx, dx + 2 * nv + na, 0.0);
+  for (int j = 0; j < kStages; j++) {
+    for (int k = 0; k < nv; k++) dx[k] += b[j] * X[j][nq + k];
+    for (int k = 0; k < nv + na; k++) dx[nv + k] += b[j] * F[j][k];
+  }
+  d.time = time0;
+  std::copy(X[0], X[0] + nq, d.qpos.begin());
+  std::copy(X[0] + nq, X[0] + nq + nv, d.qvel.begin());
+  std::copy(X[0] + nq + nv, X[0] + nq + nv + na, d.act.begin());
+  Advance(m, d, dx + 2 * nv, dx + nv, dx);
+}
+
+namespace {
+
+// qacc = (M - h qDeriv)^-1 qfrc, dense LU without pivoting (M - h qDeriv is
+// dominated by the positive definite M for any sensible step).
+void SolveImplicitFull(const Model& m, Data& d, const double* qfrc, double* qacc) {
+  int nv = m.nv;
+  double h = m.opt.timestep;
+  // qLU = M (full symmetric) - h qDeriv.
+  for (int k = 0; k < nv * nv; k++) d.qLU[k] = -h * d.qDeriv[k];
+  for (int i = 0; i < nv; i++) {
+    for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {
+      int j = m.M_colind[adr];
+      d.qLU[i * nv + j] += d.M[adr];
+      if (j != i) d.qLU[j * nv + i] += d.M[adr];
+    }
+  }
+  // Factor in place (Doolittle), then forward and back substitution.
+  double* a = d.qLU.data();
+  for (int k = 0; k < nv; k++) {
+    for (int i = k + 1; i < nv; i++) {
+      double l = a[i * nv + k] / a[k * nv + k];
+      a[i * nv + k] = l;
+      for (int j = k + 1; j < nv; j++) a[i * nv + j] -= l * a[k * nv + j];
+    }
+  }
+  std::copy(qfrc, qfrc + nv, qacc);
+  for (int i = 0; i < nv; i++) {
+    for (int k = 0; k < i; k++) qacc[i] -= a[i * nv + k] * qacc[k];
+  }
+  for (int i = nv - 1; i >= 0; i--) {
+    for (int k = i + 1; k < nv; k++) qacc[i] -= a[i * nv + k] * qacc[k];
+    qacc[i] /= a[i * nv + i];
+  }
+}
+
+// qacc = (M - h qDeriv restricted to M's sparsity)^-1 qfrc, by L^T D L.
+void SolveImplicitFast(const Model& m, Data& d, const double* qfrc, double* qacc) {
+  double h = m.opt.timestep;
+  for (int i = 0; i < m.nv; i++) {
+    for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {
+      d.qH[adr] = d.M[adr] - h * d.qDeriv[i * m.nv + m.M_colind[adr]];
+    }
+  }
+  FactorSparse(m, d.qH.data(), d.qHDiagInv.data());
+  std::copy(qfrc, qfrc + m.nv, qacc);
+  SolveSparse(m, d.qH.data(), d.qHDiagInv.data(), qacc);
+}
+
+}  // namespace
+
+void ImplicitIntegrate(const Model& m, Data& d) {
+  StackFrame frame(d);
+  double* qfrc = frame.Alloc(m.nv);
+  double* qacc = frame.Alloc(m.nv);
+  for (int v = 0; v < m.nv; v++) qfrc[v] = d.qfrc_smooth[v] + d.qfrc_constraint[v];
+  if (m.opt.integrator == kIntegratorImplicit) {
+    SmoothVelocityDerivative(m, d, true);
+    SolveImplicitFull(m, d, qfrc, qacc);
+  } else {
+    SmoothVelocityDerivative(m, d, false);
+    SolveImplicitFast(m, d, qfrc, qacc);
+  }
+  Advance(m, d, d.act_dot.data(), qacc, nullptr);
+}
+
+}  // namespace simlab

@@ -1,0 +1,109 @@
+// Conformance with MuJoCo: each case of tests/conformance/cases.txt is rolled out by
+// `simlab rollout` (in process) and compared field by field with the golden that the
+// real MuJoCo wrote (tools/make_goldens.sh), as ../shared/oracle/compare.mjs does:
+// a value agrees when |ref - ours| <= tol * max(1, |ref|).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rollout.h"
+#include "simlab/simlab.h"
+
+namespace simlab {
+namespace {
+
+using Json = nlohmann::json;
+
+struct Case {
+  std::string model, golden, state;
+  int steps = 0;
+};
+
+std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE_DIR) + "/" + relative; }
+
+std::vector<Case> ReadCases() {
+  std::vector<Case> cases;
+  std::ifstream in(Path("tests/conformance/cases.txt"));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    Case c;
+    fields >> c.model >> c.golden >> c.steps >> c.state;
+    if (c.state == "-") c.state.clear();
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+std::vector<Json> ParseLines(std::istream& in) {
+  std::vector<Json> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!line.empty()) rows.push_back(Json::parse(line));
+  }
+  return rows;
+}
+
+class Conformance : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Conformance, MatchesMuJoCo) {
+  const Case& c = GetParam();
+  std::ifstream golden_file(Path(c.golden));
+  ASSERT_TRUE(golden_file) << c.golden;
+  std::vector<Json> golden = ParseLines(golden_file);
+
+  // Our rollout, with the options the golden was made with.
+  apps::RolloutOptions options;
+  options.model = Path(c.model);
+  if (!c.state.empty()) options.state = Path(c.state);
+  options.steps = c.steps;
+  options.every = 10;
+  std::stringstream ours_text;
+  ASSERT_EQ(apps::RunRollout(options, ours_text), 0);
+  std::vector<Json> ours = ParseLines(ours_text);
+  ASSERT_EQ(ours.size(), golden.size());
+
+  // Sizes in the header, then every recorded field at every recorded step.
+  for (const char* size : {"nq", "nv", "nu", "na", "ntendon", "nsensordata"}) {
+    EXPECT_EQ(ours[0][size], golden[0][size]) << size;
+  }
+  const double tol = 1e-9;
+  std::map<std::string, double> worst;
+  for (size_t r = 1; r < golden.size(); r++) {
+    for (auto& [name, ref] : golden[r].items()) {
+      if (!ref.is_array()) continue;
+      const Json& cand = ours[r][name];
+      ASSERT_EQ(cand.size(), ref.size()) << name;
+      for (size_t i = 0; i < ref.size(); i++) {
+        double a = ref[i].get<double>(), b = cand[i].get<double>();
+        double err = std::abs(a - b) / std::max(1.0, std::abs(a));
+        if (!(err <= worst[name])) worst[name] = std::isnan(err) ? INFINITY : err;
+      }
+    }
+  }
+  for (auto& [name, err] : worst) {
+    EXPECT_LE(err, tol) << c.model << ": " << name;
+  }
+  RecordProperty("worst_qacc", std::to_string(worst["qacc"]));
+}
+
+std::string CaseName(const ::testing::TestParamInfo<Case>& info) {
+  std::string name = info.param.model.substr(info.param.model.rfind('/') + 1);
+  name = name.substr(0, name.find('.'));
+  for (char& ch : name) {
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Goldens, Conformance, ::testing::ValuesIn(ReadCases()), CaseName);
+
+}  // namespace
+}  // namespace simlab

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds (Release, build/), and runs the main job: a short
+# rollout of a model from models/, printed as a table.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/install_deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j2 --target simlab
+model=${1:-models/double_pendulum.xml}
+./build/simlab rollout "$model" --steps 500 --every 50 --table

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds (Release, build/), and runs every test.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/install_deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j2
+cd build && ctest --output-on-failure -j2
