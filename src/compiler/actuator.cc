@@ -1,0 +1,168 @@
+// Actuators: transmission targets, inherited ranges, limits and the activation layout.
+// The force law itself (gain, bias, dynamics parameters) was set by the reader.
+#include <string>
+
+#include "compiler/compiler.h"
+#include "mjcf/error.h"
+
+namespace simlab::compiler {
+
+using mjcf::kAuto;
+using mjcf::kTrue;
+using mjcf::ThrowAt;
+
+namespace {
+
+// Names of one kind of tree object.
+template <typename T>
+std::vector<std::string> Names(const std::vector<T>& items) {
+  std::vector<std::string> names;
+  for (const T& item : items) names.push_back(item.spec->src.name);
+  return names;
+}
+
+int Find(const mjcf::ActuatorSpec& a, const std::vector<std::string>& names,
+         const std::string& name, const char* what) {
+  int id = name.empty() ? -1 : FindName(names, name);
+  if (id < 0) ThrowAt(a.src, std::string("unknown ") + what + " '" + name + "'");
+  return id;
+}
+
+// actuator_trnid: the target, and the slider or reference site where used.
+void ResolveTarget(const mjcf::ActuatorSpec& a, const CompileState& s, const Model& m, int* trnid) {
+  trnid[0] = trnid[1] = -1;
+  if (a.target.empty()) ThrowAt(a.src, "missing transmission target");
+  switch (a.trntype) {
+    case kTrnJoint:
+    case kTrnJointInParent: trnid[0] = Find(a, Names(s.joints), a.target, "joint"); break;
+    case kTrnTendon: trnid[0] = Find(a, m.tendon_names, a.target, "tendon"); break;
+    case kTrnSliderCrank:
+      if (a.slidersite.empty()) ThrowAt(a.src, "missing slidersite for a slider-crank");
+      trnid[1] = Find(a, Names(s.sites), a.slidersite, "site");
+      if (a.cranklength <= 0) ThrowAt(a.src, "cranklength must be positive");
+      trnid[0] = Find(a, Names(s.sites), a.target, "site");
+      break;
+    case kTrnSite:
+      if (!a.refsite.empty()) ThrowAt(a.src, "site transmissions with a refsite are not supported yet");
+      trnid[0] = Find(a, Names(s.sites), a.target, "site");
+      break;
+    case kTrnBody: trnid[0] = Find(a, m.body_names, a.target, "body"); break;
+    default: ThrowAt(a.src, "missing transmission target");
+  }
+}
+
+// inheritrange: a position (or intvelocity) actuator takes its target's range,
+// scaled about the middle.
+void InheritRange(const mjcf::ActuatorSpec& a, const CompileState& s, const Model& m,
+                  const int* trnid, std::array<double, 2>* ctrlrange,
+                  std::array<double, 2>* actrange) {
+  if (!(a.gaintype == kGainFixed && a.biastype == kBiasAffine && a.gainprm[0] == -a.biasprm[1] &&
+        a.inheritrange > 0)) {
+    return;
+  }
+  std::array<double, 2>* range = nullptr;
+  if (a.dyntype == kDynNone || a.dyntype == kDynFilterExact) range = ctrlrange;
+  if (a.dyntype == kDynIntegrator) range = actrange;
+  if (!range) ThrowAt(a.src, "inheritrange is only available for position and intvelocity actuators");
+  const double* target = nullptr;
+  if (a.trntype == kTrnJoint) {
+    int type = s.joints[trnid[0]].spec->type;
+    if (type != kJointHinge && type != kJointSlide) {
+      ThrowAt(a.src, "inheritrange can only be used with hinge and slide joints");
+    }
+    target = s.joints[trnid[0]].range;
+  } else if (a.trntype == kTrnTendon) {
+    target = &m.tendon_range[2 * trnid[0]];
+  } else {
+    ThrowAt(a.src, "inheritrange can only be used with joint and tendon transmissions");
+  }
+  if (target[0] == target[1]) ThrowAt(a.src, "inheritrange used but the target has no range");
+  double mean = 0.5 * (target[1] + target[0]), radius = 0.5 * (target[1] - target[0]) * a.inheritrange;
+  (*range)[0] = mean - radius;
+  (*range)[1] = mean + radius;
+}
+
+bool Limited(const mjcf::ModelSpec& spec, const mjcf::Source& src, int limited,
+             const std::array<double, 2>& range, const char* attr) {
+  bool hasrange = !(range[0] == 0 && range[1] == 0);
+  if (limited == kAuto && !spec.compiler.autolimits && hasrange) {
+    ThrowAt(src, std::string("has ") + attr + "range but not " + attr +
+                     "limited; set autolimits=\"true\" in <compiler> or set " + attr + "limited");
+  }
+  return limited == kTrue || (limited == kAuto && range[0] < range[1]);
+}
+
+// Limits: resolve, check.
+void Limits(const mjcf::ModelSpec& spec, const mjcf::ActuatorSpec& a,
+            const std::array<double, 2>& ctrl, const std::array<double, 2>& act, int i, Model* m) {
+  m->actuator_forcelimited[i] = Limited(spec, a.src, a.forcelimited, a.forcerange, "force");
+  m->actuator_ctrllimited[i] = Limited(spec, a.src, a.ctrllimited, ctrl, "ctrl");
+  m->actuator_actlimited[i] = Limited(spec, a.src, a.actlimited, act, "act");
+  if (m->actuator_forcelimited[i] && a.forcerange[0] >= a.forcerange[1]) ThrowAt(a.src, "invalid forcerange");
+  if (m->actuator_ctrllimited[i] && ctrl[0] >= ctrl[1]) ThrowAt(a.src, "invalid ctrlrange");
+  if (m->actuator_actlimited[i] && act[0] >= act[1]) ThrowAt(a.src, "invalid actrange");
+  if (m->actuator_actlimited[i] && a.dyntype == kDynNone) {
+    ThrowAt(a.src, "actrange specified but dyntype is 'none'");
+  }
+  for (int k = 0; k < 2; k++) {
+    m->actuator_ctrlrange[2 * i + k] = ctrl[k];
+    m->actuator_forcerange[2 * i + k] = a.forcerange[k];
+    m->actuator_actrange[2 * i + k] = act[k];
+    m->actuator_lengthrange[2 * i + k] = a.lengthrange[k];
+  }
+}
+
+}  // namespace
+
+// Activation states per actuator (checked): actdim, else 1 with dynamics.
+int ActuatorActDim(const mjcf::ActuatorSpec& a) {
+  if (a.dyntype == kDynMuscle || a.gaintype == kGainMuscle || a.biastype == kBiasMuscle) {
+    ThrowAt(a.src, "muscle actuators are not supported yet");
+  }
+  if (a.dyntype == kDynUser || a.gaintype == kGainUser || a.biastype == kBiasUser) {
+    ThrowAt(a.src, "user-defined actuator dynamics, gain or bias are not supported yet");
+  }
+  if (a.actdim > 1 && a.dyntype != kDynUser) ThrowAt(a.src, "actdim > 1 is only allowed for dyntype 'user'");
+  if (a.actdim == 1 && a.dyntype == kDynNone) ThrowAt(a.src, "invalid actdim 1 in a stateless actuator");
+  if (a.actdim == 0 && a.dyntype != kDynNone) ThrowAt(a.src, "invalid actdim 0 in a stateful actuator");
+  return a.actdim < 0 ? (a.dyntype != kDynNone ? 1 : 0) : a.actdim;
+}
+
+void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
+  int adr = 0;
+  for (int i = 0; i < m->nu; i++) {
+    const mjcf::ActuatorSpec& a = spec.actuators[i];
+    if (!a.src.name.empty() && FindName(m->actuator_names, a.src.name) >= 0) {
+      ThrowAt(a.src, "repeated actuator name '" + a.src.name + "'");
+    }
+    m->actuator_names[i] = a.src.name;
+
+    // Transmission and ranges.
+    int trnid[2];
+    ResolveTarget(a, state, *m, trnid);
+    std::array<double, 2> ctrl = a.ctrlrange, act = a.actrange;
+    InheritRange(a, state, *m, trnid, &ctrl, &act);
+    Limits(spec, a, ctrl, act, i, m);
+
+    // Types, parameters, activation layout.
+    m->actuator_trntype[i] = a.trntype;
+    m->actuator_trnid[2 * i] = trnid[0];
+    m->actuator_trnid[2 * i + 1] = trnid[1];
+    m->actuator_dyntype[i] = a.dyntype;
+    m->actuator_gaintype[i] = a.gaintype;
+    m->actuator_biastype[i] = a.biastype;
+    int actnum = ActuatorActDim(a);
+    m->actuator_actnum[i] = actnum;
+    m->actuator_actadr[i] = actnum ? adr : -1;
+    adr += actnum;
+    m->actuator_group[i] = a.group;
+    m->actuator_actearly[i] = a.actearly;
+    m->actuator_cranklength[i] = a.cranklength;
+    for (int k = 0; k < 6; k++) m->actuator_gear[6 * i + k] = a.gear[k];
+    for (int k = 0; k < kNDyn; k++) m->actuator_dynprm[kNDyn * i + k] = a.dynprm[k];
+    for (int k = 0; k < kNGain; k++) m->actuator_gainprm[kNGain * i + k] = a.gainprm[k];
+    for (int k = 0; k < kNBias; k++) m->actuator_biasprm[kNBias * i + k] = a.biasprm[k];
+  }
+}
+
+}  // namespace simlab::compiler

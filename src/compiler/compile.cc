@@ -1,0 +1,69 @@
+// The compiler's driver, and the public loading functions.
+#include <fstream>
+#include <sstream>
+
+#include "compiler/compiler.h"
+#include "mjcf/reader.h"
+#include "simlab/simlab.h"
+
+namespace simlab {
+
+namespace compiler {
+
+namespace {
+
+// Sizes of everything outside the tree.
+void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
+  m->ntendon = static_cast<int>(spec.tendons.size());
+  m->nwrap = 0;
+  for (const mjcf::TendonSpec& t : spec.tendons) m->nwrap += static_cast<int>(t.wraps.size());
+  m->nu = static_cast<int>(spec.actuators.size());
+  m->na = 0;
+  for (const mjcf::ActuatorSpec& a : spec.actuators) m->na += ActuatorActDim(a);
+  m->nkey = static_cast<int>(spec.keys.size());
+  m->nsensor = m->nsensordata = 0;
+}
+
+}  // namespace
+
+Model Compile(const mjcf::ModelSpec& spec) {
+  // The tree: flatten, compile bodies and their elements, check masses.
+  CompileState state;
+  FlattenTree(spec, &state);
+  CompileBodies(&state);
+  CheckMovingBodies(state);
+
+  // Sizes, then every array.
+  Model m;
+  CompileOption(spec, &m);
+  TreeSizes(state, &m);
+  SectionSizes(spec, &m);
+  m.Allocate();
+  LayoutTree(state, &m);
+  CompileTendons(spec, state, &m);
+  CompileActuators(spec, state, &m);
+  CompileKeyframes(spec, &m);
+
+  // Whole-model adjustments and constants at qpos0.
+  if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
+  ComputeConstants(&m);
+  return m;
+}
+
+}  // namespace compiler
+
+Model LoadXmlString(const std::string& xml, const std::string& filename) {
+  mjcf::ModelSpec spec = mjcf::ReadMjcf(xml, filename);
+  return compiler::Compile(spec);
+}
+
+Model LoadXml(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error(path + ": cannot read file");
+  return LoadXmlString(text.str(), path);
+}
+
+}  // namespace simlab

@@ -1,0 +1,105 @@
+// spec tree -> simlab::Model, the way MuJoCo's compiler (mjCModel::Compile) lays out
+// and computes mjModel. One file per section:
+//
+//   body.cc      the tree: bodies, joints, dofs, geoms, sites, in depth-first order
+//   inertia.cc   geom volumes and inertias, body inertia from geoms, mass bounds
+//   tendon.cc    fixed tendons
+//   actuator.cc  actuators: transmission targets, limits, activation layout
+//   keyframe.cc  keyframes, padded as MuJoCo does
+//   option.cc    physics options
+//   constants.cc quantities computed at qpos0 (subtree mass, lengths, acc0)
+#ifndef SIMLAB_COMPILER_COMPILER_H_
+#define SIMLAB_COMPILER_COMPILER_H_
+
+#include <string>
+#include <vector>
+
+#include "mjcf/spec.h"
+#include "simlab/model.h"
+
+namespace simlab::compiler {
+
+// A body while compiling: its spec, its place in the tree, and the values that end
+// up in the model.
+struct BodyState {
+  const mjcf::BodySpec* spec = nullptr;
+  int id = 0;
+  int parent = -1;
+  double pos[3] = {0, 0, 0};
+  double quat[4] = {1, 0, 0, 0};
+  double ipos[3] = {0, 0, 0};
+  double iquat[4] = {1, 0, 0, 0};
+  double mass = 0;
+  double inertia[3] = {0, 0, 0};
+  int weldid = 0;
+  int dofnum = 0;
+};
+
+// A geom while compiling (pose in the body frame, mass properties).
+struct GeomState {
+  const mjcf::GeomSpec* spec = nullptr;
+  int body = 0;
+  double size[3] = {0, 0, 0};
+  double pos[3] = {0, 0, 0};
+  double quat[4] = {1, 0, 0, 0};
+  double mass = 0;
+  double inertia[3] = {0, 0, 0};
+};
+
+struct JointState {
+  const mjcf::JointSpec* spec = nullptr;
+  int body = 0;
+  double pos[3] = {0, 0, 0};
+  double axis[3] = {0, 0, 1};
+  double range[2] = {0, 0};
+  bool limited = false;
+  bool actfrclimited = false;
+  double ref = 0;
+  double springref = 0;
+};
+
+struct SiteState {
+  const mjcf::SiteSpec* spec = nullptr;
+  int body = 0;
+  double size[3] = {0, 0, 0};
+  double pos[3] = {0, 0, 0};
+  double quat[4] = {1, 0, 0, 0};
+};
+
+// Everything the section compilers share.
+struct CompileState {
+  const mjcf::ModelSpec* spec = nullptr;
+  std::vector<BodyState> bodies;
+  std::vector<JointState> joints;
+  std::vector<GeomState> geoms;
+  std::vector<SiteState> sites;
+};
+
+// The whole compilation.
+Model Compile(const mjcf::ModelSpec& spec);
+
+// Sections, in the order Compile runs them.
+void CompileOption(const mjcf::ModelSpec& spec, Model* m);
+void TreeSizes(const CompileState& state, Model* m);
+void FlattenTree(const mjcf::ModelSpec& spec, CompileState* state);
+void CompileBodies(CompileState* state);
+void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g);
+void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>& geoms,
+                      BodyState* body);
+void BoundMassInertia(const mjcf::CompilerSpec& c, BodyState* body);
+double GeomRBound(const GeomState& g);
+void CheckMovingBodies(const CompileState& state);
+void LayoutTree(const CompileState& state, Model* m);
+void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
+int ActuatorActDim(const mjcf::ActuatorSpec& a);
+void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
+void CompileKeyframes(const mjcf::ModelSpec& spec, Model* m);
+void SetTotalMass(double total, Model* m);
+void ComputeConstants(Model* m);
+
+// Name lookup while compiling (-1 if absent).
+int FindName(const std::vector<std::string>& names, const std::string& name);
+
+}  // namespace simlab::compiler
+
+#endif  // SIMLAB_COMPILER_COMPILER_H_

@@ -1,0 +1,218 @@
+// Orientation alternatives, frames, and principal axes.
+#include "compiler/orientation.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "math/math.h"
+#include "mjcf/error.h"
+
+namespace simlab::compiler {
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+constexpr double kEigEps = 1e-12;  // convergence threshold of the Jacobi iteration
+}  // namespace
+
+double NormalizeVec(double* v, int n) {
+  double sq = 0;
+  for (int i = 0; i < n; i++) sq += v[i] * v[i];
+  if (sq < kEps) return 0;
+  double norm = std::sqrt(sq);
+  if (std::abs(norm - 1) > kEps) {
+    for (int i = 0; i < n; i++) v[i] /= norm;
+  }
+  return norm;
+}
+
+// ---------------------------------------------------------------- alternatives
+
+namespace {
+
+// axisangle: rotation about a (normalized) axis.
+const char* FromAxisAngle(double* quat, bool degree, const std::array<double, 4>& aa) {
+  double axis[3] = {aa[0], aa[1], aa[2]};
+  double angle = degree ? aa[3] / 180.0 * kPi : aa[3];
+  if (NormalizeVec(axis, 3) < kEps) return "axisangle too small";
+  quat[0] = std::cos(angle / 2);
+  for (int i = 0; i < 3; i++) quat[i + 1] = std::sin(angle / 2) * axis[i];
+  return nullptr;
+}
+
+// xyaxes: x axis, and y made orthogonal to it; z = x cross y.
+const char* FromXYAxes(double* quat, const std::array<double, 6>& xy) {
+  double x[3] = {xy[0], xy[1], xy[2]}, y[3] = {xy[3], xy[4], xy[5]}, z[3];
+  if (NormalizeVec(x, 3) < kEps) return "xaxis too small";
+  double d = math::Dot3(x, y);
+  for (int i = 0; i < 3; i++) y[i] -= x[i] * d;
+  if (NormalizeVec(y, 3) < kEps) return "yaxis too small";
+  math::Cross3(z, x, y);
+  if (NormalizeVec(z, 3) < kEps) return "cross(xaxis, yaxis) too small";
+  double mat[9] = {x[0], y[0], z[0], x[1], y[1], z[1], x[2], y[2], z[2]};
+  math::MatToQuat(quat, mat);
+  return nullptr;
+}
+
+// zaxis: the minimal rotation taking z to the given direction.
+const char* FromZAxis(double* quat, const std::array<double, 3>& za) {
+  double z[3] = {za[0], za[1], za[2]};
+  if (NormalizeVec(z, 3) < kEps) return "zaxis too small";
+  math::QuatZ2Vec(quat, z);
+  return nullptr;
+}
+
+// euler: three rotations; lowercase axes move with the body (post-multiply),
+// uppercase axes are fixed (pre-multiply).
+const char* FromEuler(double* quat, bool degree, const std::string& seq,
+                      const std::array<double, 3>& euler) {
+  math::SetIdentityQuat(quat);
+  for (int i = 0; i < 3; i++) {
+    double angle = degree ? euler[i] / 180.0 * kPi : euler[i];
+    double rot[4] = {std::cos(angle / 2), 0, 0, 0}, tmp[4];
+    char axis = seq[i];
+    int k = (axis == 'x' || axis == 'X') ? 1 : (axis == 'y' || axis == 'Y') ? 2 : 3;
+    rot[k] = std::sin(angle / 2);
+    if (axis == 'x' || axis == 'y' || axis == 'z') {
+      math::MulQuat(tmp, quat, rot);
+    } else {
+      math::MulQuat(tmp, rot, quat);
+    }
+    math::CopyQuat(quat, tmp);
+  }
+  NormalizeVec(quat, 4);
+  return nullptr;
+}
+
+}  // namespace
+
+const char* ResolveOrientation(double* quat, bool degree, const std::string& eulerseq,
+                               const mjcf::Orientation& alt) {
+  switch (alt.kind) {
+    case mjcf::OrientKind::kQuat: return nullptr;
+    case mjcf::OrientKind::kAxisAngle: return FromAxisAngle(quat, degree, alt.axisangle);
+    case mjcf::OrientKind::kXYAxes: return FromXYAxes(quat, alt.xyaxes);
+    case mjcf::OrientKind::kZAxis: return FromZAxis(quat, alt.zaxis);
+    case mjcf::OrientKind::kEuler: return FromEuler(quat, degree, eulerseq, alt.euler);
+  }
+  return nullptr;
+}
+
+// ---------------------------------------------------------------- frames
+
+void AccumulateChild(const double fpos[3], const double fquat[4], double pos[3], double quat[4]) {
+  double p[3], q[4];
+  math::MulPose(p, q, fpos, fquat, pos, quat);
+  math::Copy3(pos, p);
+  math::CopyQuat(quat, q);
+}
+
+void FramePose(const mjcf::FrameSpec& frame, bool degree, const std::string& eulerseq,
+               double pos[3], double quat[4]) {
+  // This frame's own pose.
+  math::Copy3(pos, frame.pos.data());
+  math::CopyQuat(quat, frame.quat.data());
+  if (const char* err = ResolveOrientation(quat, degree, eulerseq, frame.alt)) {
+    mjcf::ThrowAt(frame.src, std::string("orientation error: ") + err);
+  }
+
+  // Composed with the enclosing frames.
+  if (frame.parent) {
+    double ppos[3], pquat[4];
+    FramePose(*frame.parent, degree, eulerseq, ppos, pquat);
+    AccumulateChild(ppos, pquat, pos, quat);
+  }
+  NormalizeVec(quat, 4);
+}
+
+// ---------------------------------------------------------------- inertia
+
+void GlobalInertia(double global[6], const double local[3], const double quat[4]) {
+  double r[9];
+  math::QuatToMat(r, quat);
+  // R diag(local) R^T, upper triangle.
+  auto entry = [&](int i, int j) {
+    return r[3 * i] * local[0] * r[3 * j] + r[3 * i + 1] * local[1] * r[3 * j + 1] +
+           r[3 * i + 2] * local[2] * r[3 * j + 2];
+  };
+  global[0] = entry(0, 0);
+  global[1] = entry(1, 1);
+  global[2] = entry(2, 2);
+  global[3] = entry(0, 1);
+  global[4] = entry(0, 2);
+  global[5] = entry(1, 2);
+}
+
+namespace {
+
+// One Jacobi step: the rotation (as a quaternion about axis `k`) that zeroes the
+// largest off-diagonal entry D(r, c) of the current D = V^T A V.
+bool JacobiRotation(const double d[9], double rot[4]) {
+  int r = 1, c = 2, k = 0;
+  if (std::abs(d[1]) > std::abs(d[2]) && std::abs(d[1]) > std::abs(d[5])) {
+    r = 0, c = 1, k = 2;
+  } else if (std::abs(d[2]) > std::abs(d[5])) {
+    r = 0, c = 2, k = 1;
+  }
+  if (std::abs(d[3 * r + c]) < kEigEps) return false;
+
+  // Symmetric Schur decomposition of the 2x2 block, as a half-angle rotation.
+  double tau = (d[4 * c] - d[4 * r]) / (2 * d[3 * r + c]);
+  double t = tau >= 0 ? 1.0 / (tau + std::sqrt(1 + tau * tau))
+                      : -1.0 / (-tau + std::sqrt(1 + tau * tau));
+  double cs = 1.0 / std::sqrt(1 + t * t);
+  if (cs > 1.0 - kEigEps) return false;
+  double s = std::sqrt(0.5 - 0.5 * cs);
+  rot[1] = rot[2] = rot[3] = 0;
+  rot[k + 1] = (tau >= 0) ? -s : s;
+  if (k == 1) rot[k + 1] = -rot[k + 1];
+  rot[0] = std::sqrt(1.0 - rot[k + 1] * rot[k + 1]);
+  NormalizeVec(rot, 4);
+  return true;
+}
+
+}  // namespace
+
+void Eig3(double eigval[3], double quat[4], const double mat[9]) {
+  math::SetIdentityQuat(quat);
+  for (int iter = 0; iter < 500; iter++) {
+    // D = V^T A V with V the rotation of quat.
+    double v[9], tmp[9], d[9];
+    math::QuatToMat(v, quat);
+    math::MulMatTMat3(tmp, v, mat);
+    math::MulMat3(d, tmp, v);
+    eigval[0] = d[0];
+    eigval[1] = d[4];
+    eigval[2] = d[8];
+    double rot[4], q[4];
+    if (!JacobiRotation(d, rot)) break;
+    math::MulQuat(q, quat, rot);
+    math::CopyQuat(quat, q);
+    NormalizeVec(quat, 4);
+  }
+
+  // Sort in decreasing order by swaps (0,1), (1,2), (0,1), each a quarter turn.
+  for (int j = 0; j < 3; j++) {
+    int a = j % 2;
+    if (eigval[a] + kEigEps < eigval[a + 1]) {
+      std::swap(eigval[a], eigval[a + 1]);
+      double rot[4] = {0.707106781186548, 0, 0, 0}, q[4];
+      rot[(a + 2) % 3 + 1] = rot[0];
+      math::MulQuat(q, quat, rot);
+      math::CopyQuat(quat, q);
+      NormalizeVec(quat, 4);
+    }
+  }
+}
+
+const char* FullInertia(double quat[4], double inertia[3], const double full[6]) {
+  double mat[9] = {full[0], full[3], full[4], full[3], full[1], full[5],
+                   full[4], full[5], full[2]};
+  double eigval[3], q[4];
+  Eig3(eigval, q, mat);
+  if (eigval[2] < kEps) return "inertia must have positive eigenvalues";
+  math::CopyQuat(quat, q);
+  for (int i = 0; i < 3; i++) inertia[i] = eigval[i];
+  return nullptr;
+}
+
+}  // namespace simlab::compiler

@@ -1,0 +1,82 @@
+// MJCF text -> spec tree (src/mjcf/spec.h).
+//
+// The reader validates the XML against the subset of MuJoCo's schema that simlab
+// supports, applies default classes and childclass, records frames, and keeps every
+// value as written. Elements that MuJoCo knows but simlab does not implement yet are
+// rejected with "<element> is not supported yet" and their line.
+#ifndef SIMLAB_MJCF_READER_H_
+#define SIMLAB_MJCF_READER_H_
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include <pugixml.hpp>
+
+#include "mjcf/spec.h"
+#include "mjcf/xml_attrs.h"
+
+namespace simlab::mjcf {
+
+// Parses MJCF text; `file` names it in error messages.
+ModelSpec ReadMjcf(const std::string& text, const std::string& file);
+
+// The reader's state while walking one document.
+class Reader {
+ public:
+  Reader(const std::string& file, const LineIndex& lines, ModelSpec* spec);
+  void Root(pugi::xml_node root);
+
+ private:
+  XmlElement Element(pugi::xml_node node) const { return XmlElement(node, file_, lines_); }
+  [[noreturn]] void NotSupported(const XmlElement& e, const std::string& what = "") const;
+  [[noreturn]] void Unknown(const XmlElement& e) const;
+
+  // sections (reader_sections.cc)
+  void Compiler(const XmlElement& e);
+  void Option(const XmlElement& e);
+  void Flags(const XmlElement& e);
+  void Size(const XmlElement& e);
+  void Visual(const XmlElement& e);
+  void Statistic(const XmlElement& e);
+  void Custom(const XmlElement& e);
+  void Asset(const XmlElement& e);
+  void Contact(const XmlElement& e);
+  void Tendon(const XmlElement& e);
+  void Actuator(const XmlElement& e);
+  void Keyframe(const XmlElement& e);
+  void Camera(const XmlElement& e, bool in_default) const;
+  void Light(const XmlElement& e, bool in_default) const;
+
+  // defaults and the body tree (reader.cc)
+  void Default(const XmlElement& e, const DefaultClass* parent);
+  const DefaultClass* FindClass(const XmlElement& e, const char* attr) const;
+  void Body(const XmlElement& e, BodySpec* body, const FramePtr& frame,
+            const DefaultClass* def);
+  void BodyChild(const XmlElement& e, BodySpec* body, const FramePtr& frame,
+                 const DefaultClass* def);
+  void ChildBody(const XmlElement& e, BodySpec* parent, const FramePtr& frame,
+                 const DefaultClass* def);
+  void Frame(const XmlElement& e, BodySpec* body, const FramePtr& frame,
+             const DefaultClass* def);
+  void Inertial(const XmlElement& e, BodySpec* body);
+  void FreeJoint(const XmlElement& e, BodySpec* body, const FramePtr& frame);
+
+  // one element of each kind, in a body or a default class (reader_elements.cc)
+  void ReadJoint(const XmlElement& e, JointSpec* joint, bool in_default) const;
+  void ReadGeom(const XmlElement& e, GeomSpec* geom, bool in_default) const;
+  void ReadSite(const XmlElement& e, SiteSpec* site, bool in_default) const;
+  void ReadTendon(const XmlElement& e, TendonSpec* tendon, bool in_default) const;
+  void ReadActuator(const XmlElement& e, ActuatorSpec* act, bool in_default) const;
+  void ReadTransmission(const XmlElement& e, ActuatorSpec* act) const;
+  void ReadShortcut(const XmlElement& e, ActuatorSpec* act) const;
+
+  std::string file_;
+  const LineIndex& lines_;
+  ModelSpec* spec_;
+  std::map<std::string, std::unique_ptr<DefaultClass>> classes_;
+};
+
+}  // namespace simlab::mjcf
+
+#endif  // SIMLAB_MJCF_READER_H_

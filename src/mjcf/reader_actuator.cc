@@ -1,0 +1,332 @@
+// MJCF reader: actuators. Every shortcut (motor, position, ...) writes MuJoCo's
+// general actuator parameters (dyn/gain/bias type and prm) into the same spec, so a
+// default class holds one actuator default whatever shortcut set it.
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "mjcf/error.h"
+#include "mjcf/reader.h"
+
+namespace simlab::mjcf {
+
+namespace {
+
+// Allowed attributes per actuator element, in the model (defaults drop the
+// transmission and naming attributes).
+std::vector<const char*> ActuatorAttributes(const std::string& tag, bool in_default) {
+  if (tag == "general") {
+    if (in_default) {
+      return {"ctrllimited", "forcelimited", "actlimited", "ctrlrange", "forcerange",
+              "actrange", "gear", "cranklength", "user", "group", "nsample", "interp",
+              "delay", "actdim", "dyntype", "gaintype", "biastype", "dynprm", "gainprm",
+              "biasprm", "actearly"};
+    }
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
+            "forcelimited", "actlimited", "ctrlrange", "forcerange", "actrange",
+            "lengthrange", "gear", "cranklength", "user", "joint", "jointinparent", "tendon",
+            "slidersite", "cranksite", "site", "refsite", "body", "actdim", "dyntype",
+            "gaintype", "biastype", "dynprm", "gainprm", "biasprm", "actearly"};
+  }
+  if (in_default) {
+    if (tag == "motor") {
+      return {"ctrllimited", "forcelimited", "ctrlrange", "forcerange", "gear", "cranklength",
+              "user", "group", "nsample", "interp", "delay"};
+    }
+    if (tag == "position") {
+      return {"ctrllimited", "forcelimited", "ctrlrange", "inheritrange", "forcerange",
+              "gear", "cranklength", "user", "group", "nsample", "interp", "delay", "kp",
+              "kv", "dampratio", "timeconst"};
+    }
+    if (tag == "velocity") {
+      return {"ctrllimited", "forcelimited", "ctrlrange", "forcerange", "gear", "cranklength",
+              "user", "group", "nsample", "interp", "delay", "kv"};
+    }
+    if (tag == "intvelocity") {
+      return {"ctrllimited", "forcelimited", "ctrlrange", "forcerange", "actrange",
+              "inheritrange", "gear", "cranklength", "user", "group", "nsample", "interp",
+              "delay", "kp", "kv", "dampratio"};
+    }
+    if (tag == "damper") {
+      return {"forcelimited", "ctrlrange", "forcerange", "gear", "cranklength", "user",
+              "group", "nsample", "interp", "delay", "kv"};
+    }
+    if (tag == "cylinder") {
+      return {"ctrllimited", "forcelimited", "ctrlrange", "forcerange", "gear", "cranklength",
+              "user", "group", "nsample", "interp", "delay", "timeconst", "area", "diameter",
+              "bias"};
+    }
+    if (tag == "muscle") {
+      return {"ctrllimited", "forcelimited", "ctrlrange", "forcerange", "gear", "cranklength",
+              "user", "group", "nsample", "interp", "delay", "timeconst", "range", "force",
+              "scale", "lmin", "lmax", "vmax", "fpmax", "fvmax"};
+    }
+    return {"forcelimited", "ctrlrange", "forcerange", "gain", "user", "group", "nsample",
+            "interp", "delay"};  // adhesion
+  }
+  if (tag == "motor") {
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
+            "forcelimited", "ctrlrange", "forcerange", "lengthrange", "gear", "cranklength",
+            "user", "joint", "jointinparent", "tendon", "slidersite", "cranksite", "site",
+            "refsite"};
+  }
+  if (tag == "position") {
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
+            "forcelimited", "ctrlrange", "inheritrange", "forcerange", "lengthrange", "gear",
+            "cranklength", "user", "joint", "jointinparent", "tendon", "slidersite",
+            "cranksite", "site", "refsite", "kp", "kv", "dampratio", "timeconst"};
+  }
+  if (tag == "velocity") {
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
+            "forcelimited", "ctrlrange", "forcerange", "lengthrange", "gear", "cranklength",
+            "user", "joint", "jointinparent", "tendon", "slidersite", "cranksite", "site",
+            "refsite", "kv"};
+  }
+  if (tag == "intvelocity") {
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
+            "forcelimited", "ctrlrange", "forcerange", "actrange", "inheritrange",
+            "lengthrange", "gear", "cranklength", "user", "joint", "jointinparent", "tendon",
+            "slidersite", "cranksite", "site", "refsite", "kp", "kv", "dampratio"};
+  }
+  if (tag == "damper") {
+    return {"name", "class", "group", "nsample", "interp", "delay", "forcelimited",
+            "ctrlrange", "forcerange", "lengthrange", "gear", "cranklength", "user", "joint",
+            "jointinparent", "tendon", "slidersite", "cranksite", "site", "refsite", "kv"};
+  }
+  if (tag == "cylinder") {
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
+            "forcelimited", "ctrlrange", "forcerange", "lengthrange", "gear", "cranklength",
+            "user", "joint", "jointinparent", "tendon", "slidersite", "cranksite", "site",
+            "refsite", "timeconst", "area", "diameter", "bias"};
+  }
+  if (tag == "muscle") {
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
+            "forcelimited", "ctrlrange", "forcerange", "lengthrange", "gear", "cranklength",
+            "user", "joint", "jointinparent", "tendon", "slidersite", "cranksite",
+            "timeconst", "tausmooth", "range", "force", "scale", "lmin", "lmax", "vmax",
+            "fpmax", "fvmax"};
+  }
+  return {"name", "class", "group", "nsample", "interp", "delay", "forcelimited",
+          "ctrlrange", "forcerange", "user", "body", "gain"};  // adhesion
+}
+
+// An optional number: present or not.
+struct Maybe {
+  bool has = false;
+  double value = 0;
+};
+
+Maybe ReadMaybe(const XmlElement& e, const char* name) {
+  Maybe m;
+  m.has = e.Number(name, &m.value);
+  return m;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- common attributes
+
+void Reader::ReadActuator(const XmlElement& e, ActuatorSpec* a, bool in_default) const {
+  e.CheckAttributes(ActuatorAttributes(e.tag(), in_default));
+  if (!in_default) a->src = e.src();
+  e.Int("group", &a->group);
+  e.Int("nsample", &a->nsample);
+  int interp = 0;
+  e.Enum("interp", &interp, {{"zoh", 0}, {"linear", 1}, {"cubic", 2}});
+  e.Number("delay", &a->delay);
+  e.Tri("ctrllimited", &a->ctrllimited);
+  e.Tri("forcelimited", &a->forcelimited);
+  e.Tri("actlimited", &a->actlimited);
+  e.Numbers("ctrlrange", a->ctrlrange);
+  e.Numbers("forcerange", a->forcerange);
+  e.Numbers("actrange", a->actrange);
+  e.Numbers("lengthrange", a->lengthrange);
+  e.Numbers("gear", a->gear, false);
+  ReadTransmission(e, a);
+  ReadShortcut(e, a);
+  e.Vector("user");
+  if (a->nsample > 0 || a->delay > 0) NotSupported(e, "actuator delay (nsample, delay)");
+}
+
+void Reader::ReadTransmission(const XmlElement& e, ActuatorSpec* a) const {
+  // At most one target attribute sets the transmission type.
+  struct Target {
+    const char* attr;
+    int type;
+  };
+  static const Target kTargets[] = {{"joint", kTrnJoint},         {"jointinparent", kTrnJointInParent},
+                                    {"tendon", kTrnTendon},       {"cranksite", kTrnSliderCrank},
+                                    {"site", kTrnSite},           {"body", kTrnBody}};
+  int count = 0;
+  for (const Target& t : kTargets) {
+    if (e.Text(t.attr, &a->target)) {
+      a->trntype = t.type;
+      count++;
+    }
+  }
+  if (count > 1) e.Fail("an actuator can have at most one transmission target");
+
+  // Slider-crank and reference-site parameters belong to their transmissions.
+  bool crank = e.Number("cranklength", &a->cranklength);
+  bool slider = e.Text("slidersite", &a->slidersite);
+  if ((crank || slider) && a->trntype != kTrnSliderCrank && a->trntype != kTrnUndefined) {
+    e.Fail("cranklength and slidersite can only be used in a slider-crank transmission");
+  }
+  bool ref = e.Text("refsite", &a->refsite);
+  if (ref && a->trntype != kTrnSite && a->trntype != kTrnUndefined) {
+    e.Fail("refsite can only be used with a site transmission");
+  }
+}
+
+// ---------------------------------------------------------------- shortcuts
+
+namespace {
+
+// motor: unit gain, no dynamics or bias.
+void SetMotor(ActuatorSpec* a) {
+  a->gainprm[0] = 1;
+  a->dyntype = kDynNone;
+  a->gaintype = kGainFixed;
+  a->biastype = kBiasNone;
+}
+
+// position servo: gain kp, bias -kp*length - kv*velocity; dampratio is stored as a
+// positive biasprm[2] and turned into a damping at compile time.
+void SetPosition(const XmlElement& e, ActuatorSpec* a, double kp, Maybe kv, Maybe dampratio,
+                 Maybe timeconst, double inheritrange) {
+  a->gainprm[0] = kp;
+  a->biasprm[1] = -kp;
+  if (kv.has && dampratio.has) e.Fail("kv and dampratio cannot both be defined");
+  if (kv.has) {
+    if (kv.value < 0) e.Fail("kv cannot be negative");
+    a->biasprm[2] = -kv.value;
+  }
+  if (dampratio.has) {
+    if (dampratio.value < 0) e.Fail("dampratio cannot be negative");
+    a->biasprm[2] = dampratio.value;
+  }
+  if (timeconst.has) {
+    if (timeconst.value < 0) e.Fail("timeconst cannot be negative");
+    a->dynprm[0] = timeconst.value;
+    a->dyntype = timeconst.value == 0 ? kDynNone : kDynFilterExact;
+  }
+  a->inheritrange = inheritrange;
+  if (inheritrange > 0 && (a->ctrlrange[0] != 0 || a->ctrlrange[1] != 0)) {
+    e.Fail("ctrlrange and inheritrange cannot both be defined");
+  }
+  a->gaintype = kGainFixed;
+  a->biastype = kBiasAffine;
+}
+
+// velocity servo: gain kv, bias -kv*velocity.
+void SetVelocity(ActuatorSpec* a, double kv) {
+  a->biasprm.fill(0);
+  a->gainprm[0] = kv;
+  a->biasprm[2] = -kv;
+  a->dyntype = kDynNone;
+  a->gaintype = kGainFixed;
+  a->biastype = kBiasAffine;
+}
+
+// damper: force -kv*velocity*ctrl, control limited to nonnegative values.
+void SetDamper(const XmlElement& e, ActuatorSpec* a, double kv) {
+  a->gainprm.fill(0);
+  a->gainprm[2] = -kv;
+  a->ctrllimited = kTrue;
+  a->dyntype = kDynNone;
+  a->gaintype = kGainAffine;
+  a->biastype = kBiasNone;
+  if (kv < 0) e.Fail("damping coefficient cannot be negative");
+  if (a->ctrlrange[0] < 0 || a->ctrlrange[1] < 0) {
+    e.Fail("damper control range cannot be negative");
+  }
+}
+
+// cylinder: first-order filter on pressure, force area*act + bias.
+void SetCylinder(ActuatorSpec* a, double timeconst, const std::array<double, 3>& bias,
+                 double area, double diameter) {
+  a->dynprm[0] = timeconst;
+  a->biasprm[0] = bias[0];
+  a->biasprm[1] = bias[1];
+  a->biasprm[2] = bias[2];
+  a->gainprm[0] = area;
+  if (diameter >= 0) a->gainprm[0] = std::numbers::pi / 4 * diameter * diameter;
+  a->dyntype = kDynFilter;
+  a->gaintype = kGainFixed;
+  a->biastype = kBiasAffine;
+}
+
+// adhesion: gain on a body transmission, control limited to nonnegative values.
+void SetAdhesion(const XmlElement& e, ActuatorSpec* a, double gain) {
+  a->gainprm[0] = gain;
+  a->ctrllimited = kTrue;
+  a->gaintype = kGainFixed;
+  a->biastype = kBiasNone;
+  if (gain < 0) e.Fail("adhesion gain cannot be negative");
+  if (a->ctrlrange[0] < 0 || a->ctrlrange[1] < 0) {
+    e.Fail("adhesion control range cannot be negative");
+  }
+}
+
+}  // namespace
+
+void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
+  const std::string& tag = e.tag();
+  if (tag == "general") {
+    static const std::initializer_list<Keyword> kDyn = {
+        {"none", kDynNone},           {"integrator", kDynIntegrator}, {"filter", kDynFilter},
+        {"filterexact", kDynFilterExact}, {"muscle", kDynMuscle},     {"user", kDynUser}};
+    e.Enum("dyntype", &a->dyntype, kDyn);
+    e.Enum("gaintype", &a->gaintype,
+           {{"fixed", kGainFixed}, {"affine", kGainAffine}, {"muscle", kGainMuscle}, {"user", kGainUser}});
+    e.Enum("biastype", &a->biastype,
+           {{"none", kBiasNone}, {"affine", kBiasAffine}, {"muscle", kBiasMuscle}, {"user", kBiasUser}});
+    e.Bool("actearly", &a->actearly);
+    e.Numbers("dynprm", a->dynprm, false);
+    e.Numbers("gainprm", a->gainprm, false);
+    e.Numbers("biasprm", a->biasprm, false);
+    e.Int("actdim", &a->actdim);
+  } else if (tag == "motor") {
+    SetMotor(a);
+  } else if (tag == "position" || tag == "intvelocity") {
+    double kp = a->gainprm[0];
+    e.Number("kp", &kp);
+    Maybe kv = ReadMaybe(e, "kv");
+    Maybe dampratio = ReadMaybe(e, "dampratio");
+    Maybe timeconst = ReadMaybe(e, "timeconst");
+    double inheritrange = a->inheritrange;
+    e.Number("inheritrange", &inheritrange);
+    SetPosition(e, a, kp, kv, dampratio, timeconst, inheritrange);
+    if (tag == "intvelocity") {
+      a->dyntype = kDynIntegrator;
+      a->actlimited = kTrue;
+      if (inheritrange > 0 && (a->actrange[0] != 0 || a->actrange[1] != 0)) {
+        e.Fail("actrange and inheritrange cannot both be defined");
+      }
+    }
+  } else if (tag == "velocity") {
+    double kv = a->gainprm[0];
+    e.Number("kv", &kv);
+    SetVelocity(a, kv);
+  } else if (tag == "damper") {
+    double kv = 0;
+    e.Number("kv", &kv);
+    SetDamper(e, a, kv);
+  } else if (tag == "cylinder") {
+    double timeconst = a->dynprm[0], area = a->gainprm[0], diameter = -1;
+    std::array<double, 3> bias = {a->biasprm[0], a->biasprm[1], a->biasprm[2]};
+    e.Number("timeconst", &timeconst);
+    e.Numbers("bias", bias);
+    e.Number("area", &area);
+    e.Number("diameter", &diameter);
+    SetCylinder(a, timeconst, bias, area, diameter);
+  } else if (tag == "muscle") {
+    NotSupported(e, "muscle actuators");
+  } else if (tag == "adhesion") {
+    double gain = a->gainprm[0];
+    e.Number("gain", &gain);
+    SetAdhesion(e, a, gain);
+  }
+}
+
+}  // namespace simlab::mjcf

@@ -1,0 +1,411 @@
+// MJCF reader: the sections outside the body tree (compiler, option, visual, asset,
+// contact, tendon, actuator, keyframe), and cameras and lights, which are accepted
+// and ignored because they do not change the simulation.
+#include <string>
+
+#include "mjcf/error.h"
+#include "mjcf/reader.h"
+
+namespace simlab::mjcf {
+
+// ---------------------------------------------------------------- compiler
+
+void Reader::Compiler(const XmlElement& e) {
+  e.CheckAttributes({"autolimits", "boundmass", "boundinertia", "settotalmass",
+                     "balanceinertia", "strippath", "coordinate", "angle", "fitaabb",
+                     "eulerseq", "meshdir", "texturedir", "discardvisual", "usethread",
+                     "fusestatic", "inertiafromgeom", "inertiagrouprange", "saveinertial",
+                     "assetdir", "alignfree"});
+  CompilerSpec& c = spec_->compiler;
+  bool flag = false;
+  e.Bool("autolimits", &c.autolimits);
+  e.Number("boundmass", &c.boundmass);
+  e.Number("boundinertia", &c.boundinertia);
+  e.Number("settotalmass", &c.settotalmass);
+  e.Bool("balanceinertia", &c.balanceinertia);
+  e.Bool("strippath", &flag);
+  e.Bool("fitaabb", &flag);
+  int global = 0;
+  if (e.Enum("coordinate", &global, {{"local", 0}, {"global", 1}}) && global) {
+    e.Fail("global coordinates are no longer supported (as in MuJoCo)");
+  }
+  int degree = 1;
+  if (e.Enum("angle", &degree, {{"radian", 0}, {"degree", 1}})) c.degree = (degree == 1);
+  if (e.Text("eulerseq", &c.eulerseq)) {
+    if (c.eulerseq.size() != 3) e.Fail("eulerseq must have 3 characters");
+    for (char ch : c.eulerseq) {
+      if (std::string("xyzXYZ").find(ch) == std::string::npos) {
+        e.Fail("eulerseq can only contain x, y, z, X, Y, Z");
+      }
+    }
+  }
+  e.Bool("discardvisual", &flag);
+  e.Bool("usethread", &flag);
+  bool fusestatic = false;
+  if (e.Bool("fusestatic", &fusestatic) && fusestatic) NotSupported(e, "fusestatic=\"true\"");
+  e.Tri("inertiafromgeom", &c.inertiafromgeom);
+  e.Ints("inertiagrouprange", c.inertiagrouprange.data(), 2);
+  e.Bool("saveinertial", &flag);
+  e.Bool("alignfree", &c.alignfree);
+  if (c.alignfree) NotSupported(e, "alignfree=\"true\"");
+
+  // <lengthrange> only matters for muscles, which are not supported yet.
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c2 = Element(n);
+    if (c2.tag() != "lengthrange") Unknown(c2);
+    c2.CheckAttributes({"mode", "useexisting", "uselimit", "accel", "maxforce", "timeconst",
+                        "timestep", "inttotal", "interval", "tolrange"});
+  }
+}
+
+// ---------------------------------------------------------------- option
+
+void Reader::Option(const XmlElement& e) {
+  e.CheckAttributes({"timestep", "impratio", "tolerance", "ls_tolerance", "noslip_tolerance",
+                     "ccd_tolerance", "sleep_tolerance", "gravity", "wind", "magnetic",
+                     "density", "viscosity", "o_margin", "o_solref", "o_solimp", "o_friction",
+                     "integrator", "cone", "jacobian", "solver", "iterations", "ls_iterations",
+                     "noslip_iterations", "ccd_iterations", "sdf_iterations",
+                     "sdf_initpoints", "actuatorgroupdisable"});
+  simlab::Option& o = spec_->option;
+  double unused = 0;
+  int unused_int = 0;
+  e.Number("timestep", &o.timestep);
+  e.Number("impratio", &o.impratio);
+  e.Number("tolerance", &o.tolerance);
+  e.Number("ls_tolerance", &o.ls_tolerance);
+  e.Number("noslip_tolerance", &o.noslip_tolerance);
+  e.Number("ccd_tolerance", &o.ccd_tolerance);
+  e.Number("sleep_tolerance", &unused);
+  e.Numbers("gravity", o.gravity);
+  e.Numbers("wind", o.wind);
+  e.Numbers("magnetic", o.magnetic);
+  e.Number("density", &o.density);
+  e.Number("viscosity", &o.viscosity);
+  e.Number("o_margin", &o.o_margin);
+  e.Numbers("o_solref", o.o_solref, false);
+  e.Numbers("o_solimp", o.o_solimp, false);
+  e.Numbers("o_friction", o.o_friction, false);
+  e.Enum("integrator", &o.integrator,
+         {{"Euler", kIntegratorEuler}, {"RK4", kIntegratorRK4}, {"implicit", kIntegratorImplicit},
+          {"implicitfast", kIntegratorImplicitFast}});
+  e.Enum("cone", &o.cone, {{"pyramidal", kConePyramidal}, {"elliptic", kConeElliptic}});
+  e.Enum("jacobian", &o.jacobian,
+         {{"dense", kJacobianDense}, {"sparse", kJacobianSparse}, {"auto", kJacobianAuto}});
+  e.Enum("solver", &o.solver, {{"PGS", kSolverPGS}, {"CG", kSolverCG}, {"Newton", kSolverNewton}});
+  e.Int("iterations", &o.iterations);
+  e.Int("ls_iterations", &o.ls_iterations);
+  e.Int("noslip_iterations", &o.noslip_iterations);
+  e.Int("ccd_iterations", &o.ccd_iterations);
+  e.Int("sdf_iterations", &unused_int);
+  e.Int("sdf_initpoints", &unused_int);
+
+  // Disabled actuator groups become bits.
+  int groups[31];
+  int ngroup = e.Ints("actuatorgroupdisable", groups, 31, false);
+  for (int i = 0; i < ngroup; i++) {
+    if (groups[i] < 0 || groups[i] > 30) e.Fail("actuatorgroupdisable values must be in 0..30");
+    o.disableactuator |= (1 << groups[i]);
+  }
+
+  // Fluid forces are not implemented: refuse models that would need them.
+  if (o.density != 0 || o.viscosity != 0 || o.wind[0] != 0 || o.wind[1] != 0 ||
+      o.wind[2] != 0) {
+    NotSupported(e, "fluid forces (nonzero density, viscosity or wind)");
+  }
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() != "flag") Unknown(c);
+    Flags(c);
+  }
+}
+
+void Reader::Flags(const XmlElement& e) {
+  struct Flag {
+    const char* name;
+    int bit;
+    bool enable;  // an enable bit (else a disable bit)
+  };
+  static const Flag kFlags[] = {
+      {"constraint", kDisableConstraint, false}, {"equality", kDisableEquality, false},
+      {"frictionloss", kDisableFrictionloss, false}, {"limit", kDisableLimit, false},
+      {"contact", kDisableContact, false},       {"spring", kDisableSpring, false},
+      {"damper", kDisableDamper, false},         {"gravity", kDisableGravity, false},
+      {"clampctrl", kDisableClampctrl, false},   {"warmstart", kDisableWarmstart, false},
+      {"filterparent", kDisableFilterparent, false}, {"actuation", kDisableActuation, false},
+      {"refsafe", kDisableRefsafe, false},       {"sensor", kDisableSensor, false},
+      {"midphase", kDisableMidphase, false},     {"eulerdamp", kDisableEulerdamp, false},
+      {"autoreset", kDisableAutoreset, false},   {"nativeccd", kDisableNativeccd, false},
+      {"island", kDisableIsland, false},         {"override", kEnableOverride, true},
+      {"energy", kEnableEnergy, true},           {"fwdinv", kEnableFwdinv, true},
+      {"invdiscrete", kEnableInvdiscrete, true}, {"multiccd", kEnableMulticcd, true},
+      {"sleep", kEnableSleep, true}};
+  std::vector<const char*> names;
+  for (const Flag& f : kFlags) names.push_back(f.name);
+  e.CheckAttributes(names);
+
+  // "enable" sets an enable bit or clears a disable bit; "disable" the opposite.
+  simlab::Option& o = spec_->option;
+  for (const Flag& f : kFlags) {
+    int on = 0;
+    if (!e.Enum(f.name, &on, {{"disable", 0}, {"enable", 1}})) continue;
+    int& bits = f.enable ? o.enableflags : o.disableflags;
+    bits &= ~f.bit;
+    if (on == (f.enable ? 1 : 0)) bits |= f.bit;
+  }
+}
+
+// ---------------------------------------------------------------- size, visual, statistic
+
+void Reader::Size(const XmlElement& e) {
+  e.CheckAttributes({"memory", "njmax", "nconmax", "nstack", "nuserdata", "nkey",
+                     "nuser_body", "nuser_jnt", "nuser_geom", "nuser_site", "nuser_cam",
+                     "nuser_tendon", "nuser_actuator", "nuser_sensor"});
+  int value = 0;
+  for (const char* name : {"njmax", "nconmax", "nstack", "nuserdata", "nuser_body",
+                           "nuser_jnt", "nuser_geom", "nuser_site", "nuser_cam",
+                           "nuser_tendon", "nuser_actuator", "nuser_sensor"}) {
+    e.Int(name, &value);
+  }
+  int nkey = 0;
+  if (e.Int("nkey", &nkey)) {
+    if (nkey < 0) e.Fail("nkey cannot be negative");
+    while (static_cast<int>(spec_->keys.size()) < nkey) {
+      KeySpec key;
+      key.src = e.src();
+      key.src.tag = "key";
+      key.src.name.clear();
+      spec_->keys.push_back(key);
+    }
+  }
+}
+
+void Reader::Visual(const XmlElement& e) {
+  e.CheckAttributes({});
+  struct Child {
+    const char* tag;
+    std::vector<const char*> attrs;
+  };
+  static const Child kChildren[] = {
+      {"global", {"cameraid", "orthographic", "fovy", "ipd", "azimuth", "elevation",
+                  "linewidth", "glow", "offwidth", "offheight", "realtime",
+                  "ellipsoidinertia", "bvactive"}},
+      {"quality", {"shadowsize", "offsamples", "numslices", "numstacks", "numquads"}},
+      {"headlight", {"ambient", "diffuse", "specular", "active"}},
+      {"map", {"stiffness", "stiffnessrot", "force", "torque", "alpha", "fogstart", "fogend",
+               "znear", "zfar", "haze", "shadowclip", "shadowscale", "actuatortendon"}},
+      {"scale", {"forcewidth", "contactwidth", "contactheight", "connect", "com", "camera",
+                 "light", "selectpoint", "jointlength", "jointwidth", "actuatorlength",
+                 "actuatorwidth", "framelength", "framewidth", "constraint", "slidercrank",
+                 "frustum"}},
+      {"rgba", {"fog", "haze", "force", "inertia", "joint", "actuator", "actuatornegative",
+                "actuatorpositive", "com", "camera", "light", "selectpoint", "connect",
+                "contactpoint", "contactforce", "contactfriction", "contacttorque",
+                "contactgap", "rangefinder", "constraint", "slidercrank", "crankbroken",
+                "frustum", "bv", "bvactive"}}};
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    const Child* match = nullptr;
+    for (const Child& k : kChildren) {
+      if (c.tag() == k.tag) match = &k;
+    }
+    if (!match) Unknown(c);
+    c.CheckAttributes(match->attrs);
+    for (pugi::xml_attribute a : n.attributes()) {
+      if (std::string(a.name()) == "realtime" || std::string(a.name()) == "fovy") c.Vector(a.name());
+    }
+  }
+}
+
+void Reader::Statistic(const XmlElement& e) {
+  e.CheckAttributes({"meaninertia", "meanmass", "meansize", "extent", "center"});
+  double v = 0;
+  std::array<double, 3> center;
+  e.Number("meaninertia", &v);
+  e.Number("meanmass", &v);
+  e.Number("meansize", &v);
+  if (e.Number("extent", &v) && v <= 0) e.Fail("extent must be strictly positive");
+  e.Numbers("center", center);
+}
+
+// ---------------------------------------------------------------- custom, asset, contact
+
+void Reader::Custom(const XmlElement& e) {
+  e.CheckAttributes({});
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() == "numeric") {
+      c.CheckAttributes({"name", "size", "data"});
+      c.Vector("data");
+    } else if (c.tag() == "text") {
+      c.CheckAttributes({"name", "data"});
+    } else if (c.tag() == "tuple") {
+      c.CheckAttributes({"name"});
+      for (pugi::xml_node t : n.children()) {
+        if (t.type() != pugi::node_element) continue;
+        XmlElement te = Element(t);
+        if (te.tag() != "element") Unknown(te);
+        te.CheckAttributes({"objtype", "objname", "prm"});
+      }
+    } else {
+      Unknown(c);
+    }
+  }
+}
+
+void Reader::Asset(const XmlElement& e) {
+  e.CheckAttributes({});
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() == "texture") {
+      c.CheckAttributes({"name", "type", "colorspace", "content_type", "file", "gridsize",
+                         "gridlayout", "fileright", "fileleft", "fileup", "filedown",
+                         "filefront", "fileback", "builtin", "rgb1", "rgb2", "mark",
+                         "markrgb", "random", "width", "height", "hflip", "vflip",
+                         "nchannel"});
+    } else if (c.tag() == "material") {
+      c.CheckAttributes({"name", "class", "texture", "texrepeat", "texuniform", "emission",
+                         "specular", "shininess", "reflectance", "metallic", "roughness",
+                         "rgba"});
+      FindClass(c, "class");
+    } else if (c.tag() == "mesh" || c.tag() == "hfield" || c.tag() == "skin" ||
+               c.tag() == "model") {
+      NotSupported(c, "<" + c.tag() + "> assets");
+    } else {
+      Unknown(c);
+    }
+  }
+}
+
+void Reader::Contact(const XmlElement& e) {
+  // Contact pairs and exclusions are accepted; contacts are compiled later.
+  e.CheckAttributes({});
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() == "pair") {
+      c.CheckAttributes({"name", "class", "geom1", "geom2", "condim", "friction", "solref",
+                         "solreffriction", "solimp", "gap", "margin"});
+      FindClass(c, "class");
+    } else if (c.tag() == "exclude") {
+      c.CheckAttributes({"name", "body1", "body2"});
+    } else {
+      Unknown(c);
+    }
+  }
+}
+
+// ---------------------------------------------------------------- tendon, actuator, keyframe
+
+void Reader::Tendon(const XmlElement& e) {
+  e.CheckAttributes({});
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() == "spatial") NotSupported(c, "spatial tendons");
+    if (c.tag() != "fixed") Unknown(c);
+    const DefaultClass* cls = FindClass(c, "class");
+    TendonSpec tendon = cls ? cls->tendon : classes_.at("main")->tendon;
+    ReadTendon(c, &tendon, false);
+
+    // The path: joints with coefficients.
+    for (pugi::xml_node w : n.children()) {
+      if (w.type() != pugi::node_element) continue;
+      XmlElement we = Element(w);
+      if (we.tag() != "joint") Unknown(we);
+      we.CheckAttributes({"joint", "coef"});
+      WrapSpec wrap;
+      wrap.src = we.src();
+      we.RequiredText("joint", &wrap.joint);
+      we.RequiredNumber("coef", &wrap.coef);
+      tendon.wraps.push_back(wrap);
+    }
+    spec_->tendons.push_back(std::move(tendon));
+  }
+}
+
+void Reader::Actuator(const XmlElement& e) {
+  e.CheckAttributes({});
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    const std::string& tag = c.tag();
+    if (tag == "plugin") NotSupported(c, "actuator plugins");
+    if (tag != "general" && tag != "motor" && tag != "position" && tag != "velocity" &&
+        tag != "intvelocity" && tag != "damper" && tag != "cylinder" && tag != "muscle" &&
+        tag != "adhesion") {
+      Unknown(c);
+    }
+    const DefaultClass* cls = FindClass(c, "class");
+    ActuatorSpec act = cls ? cls->actuator : classes_.at("main")->actuator;
+    ReadActuator(c, &act, false);
+    spec_->actuators.push_back(std::move(act));
+  }
+}
+
+void Reader::Keyframe(const XmlElement& e) {
+  e.CheckAttributes({});
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() != "key") Unknown(c);
+    c.CheckAttributes({"name", "time", "qpos", "qvel", "act", "mpos", "mquat", "ctrl"});
+    KeySpec key;
+    key.src = c.src();
+    c.Number("time", &key.time);
+    auto read = [&](const char* name, std::vector<double>* out) {
+      if (auto v = c.Vector(name)) *out = *v;
+    };
+    read("qpos", &key.qpos);
+    read("qvel", &key.qvel);
+    read("act", &key.act);
+    read("mpos", &key.mpos);
+    read("mquat", &key.mquat);
+    read("ctrl", &key.ctrl);
+    spec_->keys.push_back(std::move(key));
+  }
+}
+
+// ---------------------------------------------------------------- cameras and lights
+
+void Reader::Camera(const XmlElement& e, bool in_default) const {
+  if (in_default) {
+    e.CheckAttributes({"projection", "fovy", "ipd", "resolution", "output", "pos", "quat",
+                       "axisangle", "xyaxes", "zaxis", "euler", "mode", "focal", "focalpixel",
+                       "principal", "principalpixel", "sensorsize", "user"});
+  } else {
+    e.CheckAttributes({"name", "class", "projection", "fovy", "ipd", "resolution", "output",
+                       "pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "mode",
+                       "target", "focal", "focalpixel", "principal", "principalpixel",
+                       "sensorsize", "user"});
+  }
+  std::array<double, 3> pos;
+  std::array<double, 4> quat;
+  Orientation alt;
+  e.Numbers("pos", pos);
+  e.Quat("quat", quat);
+  e.Orient(&alt);
+}
+
+void Reader::Light(const XmlElement& e, bool in_default) const {
+  if (in_default) {
+    e.CheckAttributes({"pos", "dir", "bulbradius", "intensity", "range", "directional",
+                       "type", "castshadow", "active", "attenuation", "cutoff", "exponent",
+                       "ambient", "diffuse", "specular", "mode"});
+  } else {
+    e.CheckAttributes({"name", "class", "directional", "type", "castshadow", "active", "pos",
+                       "dir", "bulbradius", "intensity", "range", "attenuation", "cutoff",
+                       "exponent", "ambient", "diffuse", "specular", "mode", "target",
+                       "texture"});
+  }
+  std::array<double, 3> pos;
+  e.Numbers("pos", pos);
+  e.Numbers("dir", pos);
+}
+
+}  // namespace simlab::mjcf

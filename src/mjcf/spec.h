@@ -1,0 +1,253 @@
+// The spec tree: an MJCF file after parsing, with default classes applied and
+// orientation alternatives kept as written (they are resolved by the compiler).
+//
+// Every element keeps its Source (file, line, tag, name) so that compile errors can
+// point at the XML that caused them. Values start at MuJoCo's defaults (mjs_default*),
+// then the class defaults, then the attributes written on the element.
+#ifndef SIMLAB_MJCF_SPEC_H_
+#define SIMLAB_MJCF_SPEC_H_
+
+#include <array>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simlab/model.h"
+
+namespace simlab::mjcf {
+
+inline constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
+
+// Where an element came from, for error messages.
+struct Source {
+  std::string file;
+  int line = 0;
+  std::string tag;
+  std::string name;
+};
+
+// Three-valued flags such as limited="false|true|auto".
+enum TriState : int { kFalse = 0, kTrue = 1, kAuto = 2 };
+
+// Orientation alternatives (MuJoCo's mjsOrientation): which one was written.
+enum class OrientKind { kQuat, kAxisAngle, kXYAxes, kZAxis, kEuler };
+
+struct Orientation {
+  OrientKind kind = OrientKind::kQuat;
+  std::array<double, 4> axisangle = {0, 0, 0, 0};
+  std::array<double, 6> xyaxes = {0, 0, 0, 0, 0, 0};
+  std::array<double, 3> zaxis = {0, 0, 0};
+  std::array<double, 3> euler = {0, 0, 0};
+};
+
+// A <frame> element as written; frames nest through `parent`. Elements inside a
+// frame point at it, and the compiler composes the chain into their poses.
+struct FrameSpec {
+  Source src;
+  std::array<double, 3> pos = {0, 0, 0};
+  std::array<double, 4> quat = {1, 0, 0, 0};
+  Orientation alt;
+  std::shared_ptr<const FrameSpec> parent;
+};
+using FramePtr = std::shared_ptr<const FrameSpec>;
+
+// ---------------------------------------------------------------- tree elements
+
+struct JointSpec {
+  Source src;
+  int type = kJointHinge;
+  int group = 0;
+  std::array<double, 3> pos = {0, 0, 0};
+  std::array<double, 3> axis = {0, 0, 1};
+  std::array<double, 2> springdamper = {0, 0};
+  int limited = kAuto;
+  int actfrclimited = kAuto;
+  std::array<double, kNRef> solref_limit = {0.02, 1};
+  std::array<double, kNImp> solimp_limit = {0.9, 0.95, 0.001, 0.5, 2};
+  std::array<double, kNRef> solref_friction = {0.02, 1};
+  std::array<double, kNImp> solimp_friction = {0.9, 0.95, 0.001, 0.5, 2};
+  double stiffness = 0;
+  std::array<double, 2> range = {0, 0};
+  std::array<double, 2> actfrcrange = {0, 0};
+  bool actgravcomp = false;
+  double margin = 0;
+  double ref = 0;
+  double springref = 0;
+  double armature = 0;
+  double damping = 0;
+  double frictionloss = 0;
+  int align = kAuto;
+  FramePtr frame;
+};
+
+struct GeomSpec {
+  Source src;
+  int type = kGeomSphere;
+  std::array<double, 3> size = {0, 0, 0};
+  int contype = 1;
+  int conaffinity = 1;
+  int condim = 3;
+  int group = 0;
+  int priority = 0;
+  std::array<double, 3> friction = {1, 0.005, 0.0001};
+  double solmix = 1;
+  std::array<double, kNRef> solref = {0.02, 1};
+  std::array<double, kNImp> solimp = {0.9, 0.95, 0.001, 0.5, 2};
+  double margin = 0;
+  double gap = 0;
+  double mass = kUndefined;
+  double density = 1000;
+  bool shellinertia = false;
+  std::array<double, 6> fromto = {kUndefined, 0, 0, 0, 0, 0};
+  std::array<double, 3> pos = {0, 0, 0};
+  std::array<double, 4> quat = {1, 0, 0, 0};
+  Orientation alt;
+  std::array<double, 4> rgba = {0.5, 0.5, 0.5, 1};
+  std::string mesh;
+  std::string hfield;
+  FramePtr frame;
+};
+
+struct SiteSpec {
+  Source src;
+  int type = kGeomSphere;
+  int group = 0;
+  std::array<double, 3> size = {0.005, 0.005, 0.005};
+  std::array<double, 6> fromto = {kUndefined, 0, 0, 0, 0, 0};
+  std::array<double, 3> pos = {0, 0, 0};
+  std::array<double, 4> quat = {1, 0, 0, 0};
+  Orientation alt;
+  std::array<double, 4> rgba = {0.5, 0.5, 0.5, 1};
+  FramePtr frame;
+};
+
+struct BodySpec {
+  Source src;
+  std::array<double, 3> pos = {0, 0, 0};
+  std::array<double, 4> quat = {1, 0, 0, 0};
+  Orientation alt;
+  bool mocap = false;
+  double gravcomp = 0;
+  FramePtr frame;
+
+  // <inertial>, if written (ipos[0] is NaN otherwise, as MuJoCo)
+  bool explicit_inertial = false;
+  Source inertial_src;
+  std::array<double, 3> ipos = {kUndefined, 0, 0};
+  std::array<double, 4> iquat = {1, 0, 0, 0};
+  Orientation ialt;
+  double mass = 0;
+  std::array<double, 3> inertia = {0, 0, 0};
+  std::array<double, 6> fullinertia = {kUndefined, 0, 0, 0, 0, 0};
+
+  // children in XML order (frame contents included)
+  std::vector<JointSpec> joints;
+  std::vector<GeomSpec> geoms;
+  std::vector<SiteSpec> sites;
+  std::vector<std::unique_ptr<BodySpec>> bodies;
+};
+
+// ---------------------------------------------------------------- other sections
+
+struct WrapSpec {
+  Source src;
+  std::string joint;
+  double coef = 0;
+};
+
+struct TendonSpec {
+  Source src;
+  int group = 0;
+  int limited = kAuto;
+  int actfrclimited = kAuto;
+  std::array<double, 2> range = {0, 0};
+  std::array<double, 2> actfrcrange = {0, 0};
+  std::array<double, kNRef> solref_limit = {0.02, 1};
+  std::array<double, kNImp> solimp_limit = {0.9, 0.95, 0.001, 0.5, 2};
+  std::array<double, kNRef> solref_friction = {0.02, 1};
+  std::array<double, kNImp> solimp_friction = {0.9, 0.95, 0.001, 0.5, 2};
+  double margin = 0;
+  double stiffness = 0;
+  double damping = 0;
+  double armature = 0;
+  double frictionloss = 0;
+  std::array<double, 2> springlength = {-1, -1};
+  std::vector<WrapSpec> wraps;
+};
+
+struct ActuatorSpec {
+  Source src;
+  int group = 0;
+  int ctrllimited = kAuto;
+  int forcelimited = kAuto;
+  int actlimited = kAuto;
+  std::array<double, 2> ctrlrange = {0, 0};
+  std::array<double, 2> forcerange = {0, 0};
+  std::array<double, 2> actrange = {0, 0};
+  std::array<double, 2> lengthrange = {0, 0};
+  std::array<double, 6> gear = {1, 0, 0, 0, 0, 0};
+  double cranklength = 0;
+  int trntype = kTrnUndefined;
+  std::string target;
+  std::string slidersite;
+  std::string refsite;
+  int dyntype = kDynNone;
+  int gaintype = kGainFixed;
+  int biastype = kBiasNone;
+  std::array<double, kNDyn> dynprm = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  std::array<double, kNGain> gainprm = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  std::array<double, kNBias> biasprm = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  bool actearly = false;
+  int actdim = -1;
+  double inheritrange = 0;
+  int nsample = 0;
+  double delay = 0;
+};
+
+struct KeySpec {
+  Source src;
+  double time = 0;
+  std::vector<double> qpos, qvel, act, ctrl, mpos, mquat;
+};
+
+// A default class: the starting values of each element kind.
+struct DefaultClass {
+  std::string name;
+  std::string parent;
+  JointSpec joint;
+  GeomSpec geom;
+  SiteSpec site;
+  TendonSpec tendon;
+  ActuatorSpec actuator;
+};
+
+// <compiler> settings that affect the compiled model.
+struct CompilerSpec {
+  bool autolimits = true;
+  double boundmass = 0;
+  double boundinertia = 0;
+  double settotalmass = -1;
+  bool balanceinertia = false;
+  bool degree = true;
+  std::string eulerseq = "xyz";
+  int inertiafromgeom = kAuto;
+  std::array<int, 2> inertiagrouprange = {0, 5};
+  bool alignfree = false;
+};
+
+// The whole parsed model.
+struct ModelSpec {
+  std::string file;
+  std::string model_name = "MuJoCo Model";
+  CompilerSpec compiler;
+  Option option;
+  BodySpec world;
+  std::vector<TendonSpec> tendons;
+  std::vector<ActuatorSpec> actuators;
+  std::vector<KeySpec> keys;
+};
+
+}  // namespace simlab::mjcf
+
+#endif  // SIMLAB_MJCF_SPEC_H_

@@ -1,0 +1,165 @@
+// Compiler conformance: every compiled field of a model against MuJoCo's, from goldens
+// made by tools/dump_model.mjs (MuJoCo 3.5.1) and committed in tests/compiler_goldens.
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "math/math.h"
+#include "simlab/simlab.h"
+
+namespace simlab {
+namespace {
+
+using nlohmann::json;
+
+// Relative-ish tolerance on compiled numbers.
+constexpr double kTol = 1e-12;
+
+bool Near(double a, double b, double tol = kTol) {
+  return std::abs(a - b) <= tol * std::max(1.0, std::abs(b));
+}
+
+json ReadGolden(const std::string& name) {
+  std::ifstream in(std::string(SIMLAB_SOURCE_DIR) + "/tests/compiler_goldens/" + name + ".json");
+  EXPECT_TRUE(in.good()) << "missing golden " << name;
+  json j;
+  if (in) in >> j;
+  return j;
+}
+
+// The inertia tensor R diag(I) R^T of body i: independent of the principal-axes order.
+void InertiaTensor(const double* quat, const double* diag, double* out) {
+  double r[9];
+  math::QuatToMat(r, quat);
+  for (int a = 0; a < 3; a++) {
+    for (int b = 0; b < 3; b++) {
+      out[3 * a + b] = 0;
+      for (int k = 0; k < 3; k++) out[3 * a + b] += r[3 * a + k] * diag[k] * r[3 * b + k];
+    }
+  }
+}
+
+// Compares one dumped array with our field of the same name; returns the worst
+// absolute difference.
+double CompareField(const std::string& model, FieldView& f, const json& golden) {
+  size_t n = static_cast<size_t>(f.rows) * f.cols;
+  EXPECT_EQ(golden.size(), n) << model << ": " << f.name << " size";
+  if (golden.size() != n) return INFINITY;
+  double worst = 0;
+  for (size_t i = 0; i < n; i++) {
+    double want = golden[i].get<double>();
+    double got = f.is_int ? f.ints[i] : f.doubles[i];
+    worst = std::max(worst, std::abs(got - want));
+    if (f.is_int) {
+      EXPECT_EQ(got, want) << model << ": " << f.name << "[" << i << "]";
+    } else {
+      EXPECT_TRUE(Near(got, want)) << model << ": " << f.name << "[" << i << "] = " << got
+                                   << ", MuJoCo " << want;
+    }
+  }
+  return worst;
+}
+
+// body_iquat: compare the rotated inertia tensors instead of the quaternions.
+void CompareInertialFrames(const std::string& model, const Model& m, const json& arrays) {
+  for (int b = 0; b < m.nbody; b++) {
+    double want_q[4], want_i[3], want[9], got[9];
+    for (int k = 0; k < 4; k++) want_q[k] = arrays["body_iquat"][4 * b + k].get<double>();
+    for (int k = 0; k < 3; k++) want_i[k] = arrays["body_inertia"][3 * b + k].get<double>();
+    InertiaTensor(want_q, want_i, want);
+    InertiaTensor(&m.body_iquat[4 * b], &m.body_inertia[3 * b], got);
+    for (int k = 0; k < 9; k++) {
+      EXPECT_TRUE(Near(got[k], want[k])) << model << ": inertia tensor of body " << b << "[" << k
+                                         << "] = " << got[k] << ", MuJoCo " << want[k];
+    }
+  }
+}
+
+void CompareOptions(const std::string& model, const Model& m, const json& opt) {
+  EXPECT_EQ(m.opt.timestep, opt["timestep"].get<double>()) << model;
+  for (int k = 0; k < 3; k++) EXPECT_EQ(m.opt.gravity[k], opt["gravity"][k].get<double>()) << model;
+  EXPECT_EQ(m.opt.integrator, opt["integrator"].get<int>()) << model;
+  EXPECT_EQ(m.opt.cone, opt["cone"].get<int>()) << model;
+  EXPECT_EQ(m.opt.jacobian, opt["jacobian"].get<int>()) << model;
+  EXPECT_EQ(m.opt.solver, opt["solver"].get<int>()) << model;
+  EXPECT_EQ(m.opt.iterations, opt["iterations"].get<int>()) << model;
+  EXPECT_EQ(m.opt.ls_iterations, opt["ls_iterations"].get<int>()) << model;
+  EXPECT_EQ(m.opt.disableflags, opt["disableflags"].get<int>()) << model;
+  EXPECT_EQ(m.opt.enableflags, opt["enableflags"].get<int>()) << model;
+  EXPECT_EQ(m.opt.disableactuator, opt["disableactuator"].get<int>()) << model;
+  EXPECT_EQ(m.opt.impratio, opt["impratio"].get<double>()) << model;
+  EXPECT_EQ(m.opt.tolerance, opt["tolerance"].get<double>()) << model;
+  for (int k = 0; k < 5; k++) EXPECT_EQ(m.opt.o_solimp[k], opt["o_solimp"][k].get<double>()) << model;
+}
+
+// Loads `path` and compares every dumped field with the golden `name`.
+void CheckModel(const std::string& name, const std::string& path) {
+  json golden = ReadGolden(name);
+  ASSERT_FALSE(golden.is_null());
+  Model m = LoadXml(path);
+
+  // Sizes.
+  const json& sizes = golden["sizes"];
+  EXPECT_EQ(m.nq, sizes["nq"].get<int>());
+  EXPECT_EQ(m.nv, sizes["nv"].get<int>());
+  EXPECT_EQ(m.nu, sizes["nu"].get<int>());
+  EXPECT_EQ(m.na, sizes["na"].get<int>());
+  EXPECT_EQ(m.nbody, sizes["nbody"].get<int>());
+  EXPECT_EQ(m.njnt, sizes["njnt"].get<int>());
+  EXPECT_EQ(m.ngeom, sizes["ngeom"].get<int>());
+  EXPECT_EQ(m.nsite, sizes["nsite"].get<int>());
+  EXPECT_EQ(m.ntendon, sizes["ntendon"].get<int>());
+  EXPECT_EQ(m.nwrap, sizes["nwrap"].get<int>());
+  EXPECT_EQ(m.nkey, sizes["nkey"].get<int>());
+  EXPECT_EQ(m.nM, sizes["nM"].get<int>());
+  EXPECT_EQ(m.nmocap, sizes["nmocap"].get<int>());
+  if (::testing::Test::HasFailure()) return;
+
+  // Every array we have and MuJoCo dumped.
+  const json& arrays = golden["arrays"];
+  int compared = 0;
+  double worst = 0;
+  std::string worst_field;
+  for (FieldView& f : m.Fields()) {
+    std::string field = f.name;
+    if (!arrays.contains(field) || field == "body_iquat") continue;
+    double w = CompareField(name, f, arrays[field]);
+    if (!f.is_int && w > worst) worst = w, worst_field = field;
+    compared++;
+  }
+  CompareInertialFrames(name, m, arrays);
+  CompareOptions(name, m, golden["opt"]);
+  EXPECT_GT(compared, 100) << name;
+  std::cout << "[ compiler ] " << name << ": " << compared << " fields, worst |diff| " << worst
+            << " in " << worst_field << "\n";
+}
+
+std::string Corpus(const std::string& rel) {
+  return std::string(SIMLAB_SOURCE_DIR) + "/../shared/corpus/mujoco/model/" + rel;
+}
+
+std::string Local(const std::string& rel) {
+  return std::string(SIMLAB_SOURCE_DIR) + "/tests/compiler_models/" + rel;
+}
+
+TEST(CompilerConformance, Humanoid) { CheckModel("humanoid", Corpus("humanoid/humanoid.xml")); }
+TEST(CompilerConformance, SliderCrank) {
+  CheckModel("slider_crank", Corpus("slider_crank/slider_crank.xml"));
+}
+TEST(CompilerConformance, Orientations) { CheckModel("orientations", Local("orientations.xml")); }
+TEST(CompilerConformance, Frames) { CheckModel("frames", Local("frames.xml")); }
+TEST(CompilerConformance, Defaults) { CheckModel("defaults", Local("defaults.xml")); }
+TEST(CompilerConformance, GeomInertia) { CheckModel("geom_inertia", Local("geom_inertia.xml")); }
+TEST(CompilerConformance, Inertial) { CheckModel("inertial", Local("inertial.xml")); }
+TEST(CompilerConformance, Radian) { CheckModel("radian", Local("radian.xml")); }
+TEST(CompilerConformance, Actuators) { CheckModel("actuators", Local("actuators.xml")); }
+TEST(CompilerConformance, Tendons) { CheckModel("tendons", Local("tendons.xml")); }
+TEST(CompilerConformance, Keyframes) { CheckModel("keyframes", Local("keyframes.xml")); }
+
+}  // namespace
+}  // namespace simlab

@@ -1,0 +1,90 @@
+// Dump selected compiled mjModel fields from MuJoCo itself (the oracle) as JSON, the
+// goldens of the compiler conformance test (tests/compiler_conformance_test.cc).
+//
+//   node tools/dump_model.mjs MODEL.xml [OUT.json]
+//
+// MuJoCo comes from the oracle's node_modules: $SIMLAB_ORACLE, else ../shared/oracle
+// beside the repository.
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+// Fields compared by the test; sizes first.
+const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
+  'nkey', 'nM', 'nmocap'];
+const ARRAYS = [
+  'qpos0', 'qpos_spring',
+  'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
+  'body_dofnum', 'body_dofadr', 'body_treeid', 'body_geomnum', 'body_geomadr',
+  'body_sameframe', 'body_pos', 'body_quat', 'body_ipos', 'body_iquat', 'body_mass',
+  'body_subtreemass', 'body_inertia', 'body_gravcomp',
+  'jnt_type', 'jnt_qposadr', 'jnt_dofadr', 'jnt_bodyid', 'jnt_group', 'jnt_limited',
+  'jnt_actfrclimited', 'jnt_actgravcomp', 'jnt_solref', 'jnt_solimp', 'jnt_pos', 'jnt_axis',
+  'jnt_stiffness', 'jnt_range', 'jnt_actfrcrange', 'jnt_margin',
+  'dof_bodyid', 'dof_jntid', 'dof_parentid', 'dof_treeid', 'dof_Madr', 'dof_solref',
+  'dof_solimp', 'dof_frictionloss', 'dof_armature', 'dof_damping',
+  'M_rownnz', 'M_rowadr', 'M_colind',
+  'geom_type', 'geom_contype', 'geom_conaffinity', 'geom_condim', 'geom_bodyid', 'geom_group',
+  'geom_priority', 'geom_sameframe', 'geom_solmix', 'geom_solref', 'geom_solimp', 'geom_size',
+  'geom_rbound', 'geom_pos', 'geom_quat', 'geom_friction', 'geom_margin', 'geom_gap',
+  'geom_rgba',
+  'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
+  'site_quat', 'site_rgba',
+  'tendon_adr', 'tendon_num', 'tendon_limited', 'tendon_actfrclimited', 'tendon_solref_lim',
+  'tendon_solimp_lim', 'tendon_solref_fri', 'tendon_solimp_fri', 'tendon_range',
+  'tendon_actfrcrange', 'tendon_margin', 'tendon_stiffness', 'tendon_damping',
+  'tendon_armature', 'tendon_frictionloss', 'tendon_lengthspring', 'tendon_length0',
+  'wrap_type', 'wrap_objid', 'wrap_prm',
+  'actuator_trntype', 'actuator_dyntype', 'actuator_gaintype', 'actuator_biastype',
+  'actuator_trnid', 'actuator_actadr', 'actuator_actnum', 'actuator_group',
+  'actuator_ctrllimited', 'actuator_forcelimited', 'actuator_actlimited', 'actuator_actearly',
+  'actuator_dynprm', 'actuator_gainprm', 'actuator_biasprm', 'actuator_ctrlrange',
+  'actuator_forcerange', 'actuator_actrange', 'actuator_gear', 'actuator_cranklength',
+  'actuator_acc0', 'actuator_length0', 'actuator_lengthrange',
+  'key_time', 'key_qpos', 'key_qvel', 'key_act', 'key_mpos', 'key_mquat', 'key_ctrl',
+];
+const OPTIONS = ['timestep', 'impratio', 'tolerance', 'ls_tolerance', 'gravity', 'wind',
+  'magnetic', 'o_margin', 'o_solref', 'o_solimp', 'o_friction', 'integrator', 'cone',
+  'jacobian', 'solver', 'iterations', 'ls_iterations', 'noslip_iterations', 'disableflags',
+  'enableflags', 'disableactuator'];
+
+// Copy a folder into MuJoCo's virtual file system.
+function copyTree(mj, hostDir, vfsDir) {
+  for (const entry of fs.readdirSync(hostDir, { withFileTypes: true })) {
+    const host = path.join(hostDir, entry.name);
+    const vfs = `${vfsDir}/${entry.name}`;
+    if (entry.isDirectory()) {
+      try { mj.FS.mkdir(vfs); } catch { /* exists */ }
+      copyTree(mj, host, vfs);
+    } else if (entry.isFile()) {
+      mj.FS.writeFile(vfs, fs.readFileSync(host));
+    }
+  }
+}
+
+const [modelPath, outPath] = process.argv.slice(2);
+if (!modelPath) throw new Error('usage: node dump_model.mjs MODEL.xml [OUT.json]');
+const here = path.dirname(fileURLToPath(import.meta.url));
+const oracle = process.env.SIMLAB_ORACLE || path.join(here, '..', '..', 'shared', 'oracle');
+const entry = path.join(oracle, 'node_modules', 'mujoco', 'mujoco.js');
+const { default: loadMujoco } = await import(pathToFileURL(entry).href);
+const mj = await loadMujoco();
+try { mj.FS.mkdir('/model'); } catch { /* exists */ }
+copyTree(mj, path.dirname(path.resolve(modelPath)), '/model');
+const model = mj.MjModel.mj_loadXML(`/model/${path.basename(modelPath)}`);
+
+// Sizes, arrays (typed arrays become plain lists), options.
+const out = { engine: `mujoco ${mj.mj_versionString()}`, sizes: {}, arrays: {}, opt: {} };
+for (const s of SIZES) out.sizes[s] = model[s];
+for (const a of ARRAYS) {
+  const v = model[a];
+  if (v === undefined) continue;
+  out.arrays[a] = Array.from(v, Number);
+}
+for (const o of OPTIONS) {
+  const v = model.opt[o];
+  if (v === undefined) continue;
+  out.opt[o] = typeof v === 'object' ? Array.from(v, Number) : Number(v);
+}
+const text = JSON.stringify(out);
+if (outPath) fs.writeFileSync(outPath, text + '\n'); else process.stdout.write(text + '\n');
