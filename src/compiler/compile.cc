@@ -42,7 +42,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   LayoutTree(state, &m);
   CompileTendons(spec, state, &m);
   CompileActuators(spec, state, &m);
-  CompileKeyframes(spec, &m);
+  CompileKeyframes(spec, state, &m);
 
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);

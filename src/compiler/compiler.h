@@ -93,7 +93,7 @@ void LayoutTree(const CompileState& state, Model* m);
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 int ActuatorActDim(const mjcf::ActuatorSpec& a);
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
-void CompileKeyframes(const mjcf::ModelSpec& spec, Model* m);
+void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void SetTotalMass(double total, Model* m);
 void ComputeConstants(Model* m);
 

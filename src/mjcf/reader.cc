@@ -106,6 +106,13 @@ void Reader::Root(pugi::xml_node root) {
     if (e.node().first_attribute()) e.Fail("the world body cannot have attributes");
     Body(e, &spec_->world, nullptr, classes_.at("main").get());
   });
+
+  // <size nkey> asks for at least that many keyframes.
+  while (static_cast<int>(spec_->keys.size()) < spec_->nkey) {
+    KeySpec key;
+    key.src = {file_, 0, "key", ""};
+    spec_->keys.push_back(key);
+  }
 }
 
 // ---------------------------------------------------------------- default classes

@@ -242,13 +242,12 @@ void SetDamper(const XmlElement& e, ActuatorSpec* a, double kv) {
   }
 }
 
-// cylinder: first-order filter on pressure, force area*act + bias.
+// cylinder: first-order filter on pressure, force area*act + bias. MuJoCo 3.5 keeps
+// only the first of the three bias numbers (biasprm[0]).
 void SetCylinder(ActuatorSpec* a, double timeconst, const std::array<double, 3>& bias,
                  double area, double diameter) {
   a->dynprm[0] = timeconst;
   a->biasprm[0] = bias[0];
-  a->biasprm[1] = bias[1];
-  a->biasprm[2] = bias[2];
   a->gainprm[0] = area;
   if (diameter >= 0) a->gainprm[0] = std::numbers::pi / 4 * diameter * diameter;
   a->dyntype = kDynFilter;

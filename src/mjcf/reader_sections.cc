@@ -169,17 +169,7 @@ void Reader::Size(const XmlElement& e) {
                            "nuser_tendon", "nuser_actuator", "nuser_sensor"}) {
     e.Int(name, &value);
   }
-  int nkey = 0;
-  if (e.Int("nkey", &nkey)) {
-    if (nkey < 0) e.Fail("nkey cannot be negative");
-    while (static_cast<int>(spec_->keys.size()) < nkey) {
-      KeySpec key;
-      key.src = e.src();
-      key.src.tag = "key";
-      key.src.name.clear();
-      spec_->keys.push_back(key);
-    }
-  }
+  if (e.Int("nkey", &spec_->nkey) && spec_->nkey < 0) e.Fail("nkey cannot be negative");
 }
 
 void Reader::Visual(const XmlElement& e) {

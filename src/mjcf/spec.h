@@ -160,7 +160,7 @@ struct TendonSpec {
   Source src;
   int group = 0;
   int limited = kAuto;
-  int actfrclimited = kAuto;
+  int actfrclimited = kFalse;  // MuJoCo 3.5 leaves this one at false, not auto
   std::array<double, 2> range = {0, 0};
   std::array<double, 2> actfrcrange = {0, 0};
   std::array<double, kNRef> solref_limit = {0.02, 1};
@@ -246,6 +246,7 @@ struct ModelSpec {
   std::vector<TendonSpec> tendons;
   std::vector<ActuatorSpec> actuators;
   std::vector<KeySpec> keys;
+  int nkey = 0;  // <size nkey>: at least this many keyframes
 };
 
 }  // namespace simlab::mjcf
