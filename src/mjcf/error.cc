@@ -4,16 +4,20 @@
 namespace simlab::mjcf {
 
 std::string DescribeElement(const std::string& tag, const std::string& name) {
-  if (name.empty()) return "<" + tag + ">";
-  return "<" + tag + " name=\"" + name + "\">";
+  std::string s = "<";
+  s.append(tag);
+  if (!name.empty()) s.append(" name=\"").append(name).append("\"");
+  s.append(">");
+  return s;
 }
 
 std::string FormatError(const Source& src, const std::string& what) {
   std::string msg = src.file;
-  if (src.line > 0) msg += ":" + std::to_string(src.line);
-  msg += ": ";
-  if (!src.tag.empty()) msg += DescribeElement(src.tag, src.name) + ": ";
-  return msg + what;
+  if (src.line > 0) msg.append(":").append(std::to_string(src.line));
+  msg.append(": ");
+  if (!src.tag.empty()) msg.append(DescribeElement(src.tag, src.name)).append(": ");
+  msg.append(what);
+  return msg;
 }
 
 void ThrowAt(const Source& src, const std::string& what) {

@@ -1,0 +1,171 @@
+// Bad input: each kind of malformed or unsupported MJCF gets a clear error that names
+// the file, the line, the element and the problem; nothing crashes.
+#include <string>
+#include <vector>
+
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "simlab/simlab.h"
+
+namespace simlab {
+namespace {
+
+// Loads `xml` as "bad.xml" and returns the error message ("" if it loaded).
+std::string LoadError(const std::string& xml) {
+  try {
+    LoadXmlString(xml, "bad.xml");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The message contains every expected piece.
+void ExpectError(const std::string& xml, const std::vector<std::string>& pieces) {
+  std::string msg = LoadError(xml);
+  ASSERT_FALSE(msg.empty()) << "expected an error for:\n" << xml;
+  for (const std::string& p : pieces) {
+    EXPECT_NE(msg.find(p), std::string::npos) << "missing '" << p << "' in: " << msg;
+  }
+}
+
+TEST(MjcfErrors, NotXml) { ExpectError("this is not xml", {"bad.xml:1:", "malformed XML"}); }
+
+TEST(MjcfErrors, MalformedXml) {
+  ExpectError("<mujoco>\n  <worldbody>\n    <body>\n  </worldbody>\n</mujoco>\n",
+              {"bad.xml:", "malformed XML"});
+}
+
+TEST(MjcfErrors, WrongRoot) { ExpectError("<robot/>", {"bad.xml:1:", "<robot>", "<mujoco>"}); }
+
+TEST(MjcfErrors, UnknownElement) {
+  ExpectError("<mujoco>\n<worldbody>\n<bogus/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<bogus>", "unknown element"});
+}
+
+TEST(MjcfErrors, UnknownAttribute) {
+  ExpectError("<mujoco>\n<worldbody>\n<geom name=\"g\" size=\".1\" colour=\"red\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<geom name=\"g\">", "unknown attribute 'colour'"});
+}
+
+TEST(MjcfErrors, WrongCount) {
+  ExpectError("<mujoco>\n<worldbody>\n<body name=\"b\" pos=\"1 2\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<body name=\"b\">", "'pos'", "expects 3", "got 2"});
+}
+
+TEST(MjcfErrors, NotANumber) {
+  ExpectError("<mujoco>\n<worldbody>\n<geom size=\"abc\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<geom>", "'abc' is not a number"});
+}
+
+TEST(MjcfErrors, MissingRequiredAttribute) {
+  ExpectError(
+      "<mujoco>\n<worldbody><body><joint name=\"j\"/><geom size=\".1\"/></body></worldbody>\n"
+      "<tendon>\n<fixed name=\"t\">\n<joint coef=\"1\"/>\n</fixed>\n</tendon>\n</mujoco>",
+      {"bad.xml:5:", "<joint>", "missing required attribute 'joint'"});
+}
+
+TEST(MjcfErrors, UnknownTendonJoint) {
+  ExpectError(
+      "<mujoco>\n<worldbody><body><joint name=\"j\"/><geom size=\".1\"/></body></worldbody>\n"
+      "<tendon>\n<fixed name=\"t\">\n<joint joint=\"nope\" coef=\"1\"/>\n</fixed>\n</tendon>\n</mujoco>",
+      {"bad.xml:5:", "<joint>", "unknown joint 'nope'"});
+}
+
+TEST(MjcfErrors, NegativeGeomMass) {
+  ExpectError("<mujoco>\n<worldbody>\n<body>\n<joint/>\n<geom name=\"g\" size=\".1\" mass=\"-1\"/>\n"
+              "</body>\n</worldbody>\n</mujoco>",
+              {"bad.xml:5:", "<geom name=\"g\">", "mass", "negative"});
+}
+
+TEST(MjcfErrors, ZeroInertialMassOnMovingBody) {
+  ExpectError("<mujoco>\n<worldbody>\n<body name=\"b\">\n<joint/>\n"
+              "<inertial pos=\"0 0 0\" mass=\"0\" diaginertia=\"1 1 1\"/>\n</body>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<body name=\"b\">", "mass"});
+}
+
+TEST(MjcfErrors, NegativeInertialMass) {
+  ExpectError("<mujoco>\n<worldbody>\n<body>\n<inertial pos=\"0 0 0\" mass=\"-2\"/>\n</body>\n"
+              "</worldbody>\n</mujoco>",
+              {"bad.xml:4:", "<inertial>", "mass must not be negative"});
+}
+
+TEST(MjcfErrors, UnknownDefaultClass) {
+  ExpectError("<mujoco>\n<worldbody>\n<geom class=\"nope\" size=\".1\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<geom>", "unknown default class 'nope'"});
+  ExpectError("<mujoco>\n<worldbody>\n<body childclass=\"nope\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<body>", "unknown default class 'nope'"});
+}
+
+TEST(MjcfErrors, DuplicateNames) {
+  ExpectError("<mujoco>\n<worldbody>\n<geom name=\"a\" size=\".1\"/>\n<geom name=\"a\" size=\".2\"/>\n"
+              "</worldbody>\n</mujoco>",
+              {"bad.xml:4:", "<geom name=\"a\">", "repeated geom name 'a'"});
+  ExpectError("<mujoco>\n<default>\n<default class=\"x\"/>\n<default class=\"x\"/>\n</default>\n</mujoco>",
+              {"bad.xml:4:", "repeated default class name 'x'"});
+}
+
+TEST(MjcfErrors, MissingFile) {
+  try {
+    LoadXml("/nonexistent/dir/robot.xml");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/robot.xml"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos);
+  }
+}
+
+TEST(MjcfErrors, NotSupportedYet) {
+  ExpectError("<mujoco>\n<sensor>\n<jointpos joint=\"j\"/>\n</sensor>\n</mujoco>",
+              {"bad.xml:2:", "sensors is not supported yet"});
+  ExpectError("<mujoco>\n<equality/>\n</mujoco>", {"bad.xml:2:", "<equality> is not supported yet"});
+  ExpectError("<mujoco>\n<asset>\n<mesh name=\"m\" file=\"m.stl\"/>\n</asset>\n</mujoco>",
+              {"bad.xml:3:", "<mesh name=\"m\">", "not supported yet"});
+  ExpectError("<mujoco>\n<option density=\"1.2\"/>\n</mujoco>", {"bad.xml:2:", "fluid", "not supported yet"});
+  ExpectError("<mujoco>\n<compiler fusestatic=\"true\"/>\n</mujoco>", {"bad.xml:2:", "fusestatic", "not supported yet"});
+  ExpectError("<mujoco>\n<tendon>\n<spatial/>\n</tendon>\n</mujoco>", {"bad.xml:3:", "spatial tendons is not supported yet"});
+  ExpectError("<mujoco>\n<worldbody>\n<body>\n<composite/>\n</body>\n</worldbody>\n</mujoco>",
+              {"bad.xml:4:", "<composite> is not supported yet"});
+  ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"
+              "<actuator>\n<muscle joint=\"j\"/>\n</actuator>\n</mujoco>",
+              {"bad.xml:6:", "muscle actuators is not supported yet"});
+}
+
+TEST(MjcfErrors, CompileErrorsNameTheElement) {
+  ExpectError("<mujoco>\n<worldbody>\n<body>\n<joint name=\"h\" limited=\"true\" range=\"10 -10\"/>\n<geom size=\".1\"/>\n"
+              "</body>\n</worldbody>\n</mujoco>",
+              {"bad.xml:4:", "<joint name=\"h\">", "range[0] should be smaller"});
+  ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"
+              "<actuator>\n<motor name=\"m\" joint=\"nope\"/>\n</actuator>\n</mujoco>",
+              {"bad.xml:6:", "<motor name=\"m\">", "unknown joint 'nope'"});
+  ExpectError("<mujoco>\n<worldbody>\n<body><joint/><geom size=\".1\"/></body>\n</worldbody>\n"
+              "<keyframe>\n<key name=\"k\" qpos=\"1 2 3\"/>\n</keyframe>\n</mujoco>",
+              {"bad.xml:6:", "<key name=\"k\">", "invalid qpos size"});
+  ExpectError("<mujoco>\n<worldbody>\n<geom type=\"box\" size=\".1 .1\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<geom>", "size[2] must be positive"});
+}
+
+// Every prefix of a real model either loads or throws simlab::Error: never a crash.
+TEST(MjcfErrors, TruncatedFilesNeverCrash) {
+  std::ifstream in(std::string(SIMLAB_SOURCE_DIR) + "/tests/compiler_models/actuators.xml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  ASSERT_FALSE(xml.empty());
+  int errors = 0;
+  for (size_t n = 0; n < xml.size(); n += 7) {
+    try {
+      LoadXmlString(xml.substr(0, n), "cut.xml");
+    } catch (const Error& e) {
+      errors++;
+      EXPECT_EQ(std::string(e.what()).rfind("cut.xml:", 0), 0u) << e.what();
+    }
+  }
+  EXPECT_GT(errors, 0);
+}
+
+}  // namespace
+}  // namespace simlab
