@@ -3,6 +3,12 @@
 //
 //   node tools/dump_model.mjs MODEL.xml [OUT.json]
 //
+// Regenerate all compiler goldens (from the repository root):
+//   for f in tests/compiler_models/*.xml; do
+//     node tools/dump_model.mjs $f tests/compiler_goldens/$(basename $f .xml).json; done
+//   node tools/dump_model.mjs ../shared/corpus/mujoco/model/humanoid/humanoid.xml \
+//     tests/compiler_goldens/humanoid.json   (likewise slider_crank)
+//
 // MuJoCo comes from the oracle's node_modules: $SIMLAB_ORACLE, else ../shared/oracle
 // beside the repository.
 import fs from 'node:fs';

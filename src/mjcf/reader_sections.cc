@@ -204,9 +204,6 @@ void Reader::Visual(const XmlElement& e) {
     }
     if (!match) Unknown(c);
     c.CheckAttributes(match->attrs);
-    for (pugi::xml_attribute a : n.attributes()) {
-      if (std::string(a.name()) == "realtime" || std::string(a.name()) == "fovy") c.Vector(a.name());
-    }
   }
 }
 
