@@ -101,6 +101,10 @@ struct Data {
 #define SIMLAB_X(type, name, rows, cols) std::vector<type> name;
   SIMLAB_DATA_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+
+  // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData.
+  std::vector<double> stack;
+  size_t stack_top = 0;
 };
 
 // A Data sized for the model and reset to its default state.
