@@ -151,7 +151,9 @@ int RunRollout(const RolloutOptions& o, std::ostream& default_out) {
   }
   std::ostream& out = file ? *file : default_out;
   if (o.table) {
-    out << "  step      time" << "  qpos[0..3]\n";
+    out << "  step      time";
+    for (int i = 0; i < std::min(m.nq, 4); i++) out << "     qpos[" << i << "]";
+    out << "\n";
   } else {
     out << Header(m).dump() << "\n";
   }

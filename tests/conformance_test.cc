@@ -25,6 +25,9 @@ struct Case {
   int steps = 0;
 };
 
+// gtest prints a case by its model path.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.model; }
+
 std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE_DIR) + "/" + relative; }
 
 std::vector<Case> ReadCases() {
