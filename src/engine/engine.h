@@ -10,11 +10,6 @@
 
 namespace simlab {
 
-// ------------------------------------------------------------ model constants (setconst.cc)
-
-// Fills the model arrays derived from the tree (inertia-matrix sparsity).
-void SetConst(Model& m);
-
 // ------------------------------------------------------------ position stage
 
 // xpos, xquat, xmat, xipos, ximat, xanchor, xaxis, geom and site poses (kinematics.cc).
