@@ -43,8 +43,8 @@ void ResolveTarget(const mjcf::ActuatorSpec& a, const CompileState& s, const Mod
       trnid[0] = Find(a, Names(s.sites), a.target, "site");
       break;
     case kTrnSite:
-      if (!a.refsite.empty()) ThrowAt(a.src, "site transmissions with a refsite are not supported yet");
       trnid[0] = Find(a, Names(s.sites), a.target, "site");
+      if (!a.refsite.empty()) trnid[1] = Find(a, Names(s.sites), a.refsite, "site");
       break;
     case kTrnBody: trnid[0] = Find(a, m.body_names, a.target, "body"); break;
     default: ThrowAt(a.src, "missing transmission target");

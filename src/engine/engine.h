@@ -25,6 +25,20 @@ void FactorInertia(const Model& m, Data& d);
 // actuator_length, actuator_moment (transmission.cc).
 void Transmission(const Model& m, Data& d);
 
+// ------------------------------------------------------------ Jacobians (jacobian.cc)
+
+// 3 x nv Jacobians of a world point moving with `body`: translation jacp, rotation
+// jacr (either may be null), from cdof along the body's dof chain (MuJoCo mj_jac).
+void Jacobian(const Model& m, const Data& d, double* jacp, double* jacr, const double* point,
+              int body);
+// Jacobian of site `site`'s position and rotation (MuJoCo mj_jacSite).
+void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site);
+// Translation Jacobian of a point and the Jacobian of a unit axis turning with `body`.
+void JacobianPointAxis(const Model& m, Data& d, double* jac_point, double* jac_axis,
+                       const double* point, const double* axis, int body);
+// res (nv) = jac^T vec for a 3 x nv Jacobian.
+void MulJacTVec(const Model& m, const double* jac, const double* vec, double* res);
+
 // ------------------------------------------------------------ velocity stage
 
 // cvel, cdof_dot (rne.cc).

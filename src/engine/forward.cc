@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "engine/engine.h"
+#include "engine/stack.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -73,25 +74,21 @@ bool CheckState(const Model& m, Data& d, const std::vector<double>& values, Warn
 }
 
 // qfrc += J^T (force, torque) for every body with a Cartesian force in xfrc_applied,
-// applied at the body's centre of mass (MuJoCo mj_xfrcAccumulate).
-void XfrcAccumulate(const Model& m, const Data& d, double* qfrc) {
+// applied at the body's centre of mass (MuJoCo mj_xfrcAccumulate, mj_applyFT).
+void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
+  StackFrame frame(d);
+  double* jacp = frame.Alloc(3 * m.nv);
+  double* jacr = frame.Alloc(3 * m.nv);
+  double* tmp = frame.Alloc(m.nv);
   for (int b = 1; b < m.nbody; b++) {
     const double* f = &d.xfrc_applied[6 * b];
     if (f[0] == 0 && f[1] == 0 && f[2] == 0 && f[3] == 0 && f[4] == 0 && f[5] == 0) continue;
-    // The last dof that moves the body, then up the dof tree.
-    int body = b;
-    while (body > 0 && m.body_dofnum[body] == 0) body = m.body_parentid[body];
-    if (body == 0) continue;
-    double offset[3];
-    for (int k = 0; k < 3; k++) offset[k] = d.xipos[3 * b + k] - d.subtree_com[3 * m.body_rootid[b] + k];
-    for (int j = m.body_dofadr[body] + m.body_dofnum[body] - 1; j >= 0; j = m.dof_parentid[j]) {
-      const double* c = &d.cdof[6 * j];
-      // Linear Jacobian column: v + w x offset; angular: w.
-      double jp[3] = {c[3] + c[1] * offset[2] - c[2] * offset[1],
-                      c[4] + c[2] * offset[0] - c[0] * offset[2],
-                      c[5] + c[0] * offset[1] - c[1] * offset[0]};
-      qfrc[j] += jp[0] * f[0] + jp[1] * f[1] + jp[2] * f[2] + c[0] * f[3] + c[1] * f[4] + c[2] * f[5];
-    }
+    Jacobian(m, d, jacp, jacr, &d.xipos[3 * b], b);
+    // Force through the point Jacobian, then torque through the rotation Jacobian.
+    MulJacTVec(m, jacp, f, tmp);
+    for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
+    MulJacTVec(m, jacr, f + 3, tmp);
+    for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
   }
 }
 

@@ -7,9 +7,20 @@
 //   joint (free):        l = 0, moment = gear (6 dofs); jointinparent rotates the
 //                        rotational gear into the parent (world) frame
 //   tendon:              l = gear0 ten_length, moment = gear0 ten_J
+//   site:                l = 0; moment = J^T (R gear): the site's Jacobian projected on
+//                        the gear wrench expressed in the site frame R
+//   site with refsite:   l = gear . (site pose relative to the refsite, in the refsite
+//                        frame: position and rotation vector); moment = the Jacobian of
+//                        that relative pose projected on the gear in the refsite frame
+//   slider-crank:        l = a.v - sqrt((a.v)^2 + r^2 - v.v) for the slider axis a, the
+//                        vector v from slider to crank site and the rod length r
+//   body (adhesion):     l = 0, moment = 0 until contacts exist (its moment is the mean
+//                        of the body's contact normal Jacobians)
 #include <algorithm>
+#include <cmath>
 
 #include "engine/engine.h"
+#include "engine/stack.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -63,6 +74,140 @@ void JointTransmission(const Model& m, Data& d, int i, int id, double* moment) {
   }
 }
 
+// The last dof shared by the dof chains of two sites' bodies, or -1.
+int CommonAncestorDof(const Model& m, int site0, int site1) {
+  int b0 = m.body_weldid[m.site_bodyid[site0]], b1 = m.body_weldid[m.site_bodyid[site1]];
+  int dof0 = m.body_dofadr[b0] + m.body_dofnum[b0] - 1;
+  int dof1 = m.body_dofadr[b1] + m.body_dofnum[b1] - 1;
+  if (dof0 < 0 || dof1 < 0) return -1;
+  while (dof0 != dof1) {
+    if (dof0 < dof1) {
+      dof1 = m.dof_parentid[dof1];
+    } else {
+      dof0 = m.dof_parentid[dof0];
+    }
+    if (dof0 < 0 || dof1 < 0) return -1;
+  }
+  return dof0;
+}
+
+// jac -= jac_ref, then the columns of the shared chain (which move both sites alike)
+// are cleared exactly.
+void RelativeJacobian(const Model& m, double* jac, const double* jac_ref, int common) {
+  int nv = m.nv;
+  for (int k = 0; k < 3 * nv; k++) jac[k] -= jac_ref[k];
+  for (int v = common; v >= 0; v = m.dof_parentid[v]) {
+    jac[v] = jac[nv + v] = jac[2 * nv + v] = 0;
+  }
+}
+
+// Site transmission without a reference site: the gear is a wrench in the site frame.
+void SiteTransmission(const Model& m, Data& d, int i, int id, double* moment) {
+  const double* gear = &m.actuator_gear[6 * i];
+  StackFrame frame(d);
+  double* jacp = frame.Alloc(3 * m.nv);
+  double* jacr = frame.Alloc(3 * m.nv);
+  double* tmp = frame.Alloc(m.nv);
+  JacobianSite(m, d, jacp, jacr, id);
+  double force[3], torque[3];
+  MulMatVec3(force, &d.site_xmat[9 * id], gear);
+  MulMatVec3(torque, &d.site_xmat[9 * id], gear + 3);
+  MulJacTVec(m, jacp, force, moment);
+  MulJacTVec(m, jacr, torque, tmp);
+  for (int v = 0; v < m.nv; v++) moment[v] += tmp[v];
+  d.actuator_length[i] = 0;
+}
+
+// Site transmission relative to reference site `ref`: translation and rotation of the
+// site in the refsite frame, each projected on its half of the gear.
+void RefSiteTransmission(const Model& m, Data& d, int i, int id, int ref, double* moment) {
+  const double* gear = &m.actuator_gear[6 * i];
+  const double* ref_mat = &d.site_xmat[9 * ref];
+  int nv = m.nv;
+  StackFrame frame(d);
+  double* jacp = frame.Alloc(3 * nv);
+  double* jacr = frame.Alloc(3 * nv);
+  double* jac_ref = frame.Alloc(3 * nv);
+  double* tmp = frame.Alloc(nv);
+  JacobianSite(m, d, jacp, jacr, id);
+  int common = CommonAncestorDof(m, id, ref);
+  d.actuator_length[i] = 0;
+
+  // Translation: the site's position relative to the refsite, in the refsite frame.
+  if (gear[0] != 0 || gear[1] != 0 || gear[2] != 0) {
+    double dif[3], local[3], force[3];
+    Sub3(dif, &d.site_xpos[3 * id], &d.site_xpos[3 * ref]);
+    MulMatTVec3(local, ref_mat, dif);
+    d.actuator_length[i] += Dot3(local, gear);
+    JacobianSite(m, d, jac_ref, nullptr, ref);
+    RelativeJacobian(m, jacp, jac_ref, common);
+    MulMatVec3(force, ref_mat, gear);
+    MulJacTVec(m, jacp, force, moment);
+  }
+
+  // Rotation: the rotation vector of the site's orientation relative to the refsite's,
+  // with the orientations composed from the bodies' quaternions as MuJoCo does.
+  if (gear[3] != 0 || gear[4] != 0 || gear[5] != 0) {
+    double quat[4], ref_quat[4], vec[3], torque[3];
+    MulQuat(quat, &m.site_quat[4 * id], &d.xquat[4 * m.site_bodyid[id]]);
+    MulQuat(ref_quat, &m.site_quat[4 * ref], &d.xquat[4 * m.site_bodyid[ref]]);
+    SubQuat(vec, quat, ref_quat);
+    d.actuator_length[i] += Dot3(vec, gear + 3);
+    JacobianSite(m, d, nullptr, jac_ref, ref);
+    RelativeJacobian(m, jacr, jac_ref, common);
+    MulMatVec3(torque, ref_mat, gear + 3);
+    MulJacTVec(m, jacr, torque, tmp);
+    for (int v = 0; v < nv; v++) moment[v] += tmp[v];
+  }
+}
+
+// Slider-crank: the crank site `id` is pushed by a rod of length r from the slider
+// site, which moves along its own z axis a. With v = crank - slider,
+//   l = a.v - sqrt(det),  det = (a.v)^2 + r^2 - v.v
+// (l = a.v when the rod cannot reach, det <= 0), and dl/dq by the chain rule through
+// v and a.
+void SliderCrankTransmission(const Model& m, Data& d, int i, int id, double* moment) {
+  int slider = m.actuator_trnid[2 * i + 1], nv = m.nv;
+  double rod = m.actuator_cranklength[i];
+  const double* smat = &d.site_xmat[9 * slider];
+  double axis[3] = {smat[2], smat[5], smat[8]}, vec[3];
+  Sub3(vec, &d.site_xpos[3 * id], &d.site_xpos[3 * slider]);
+  double av = Dot3(vec, axis), det = av * av + rod * rod - Dot3(vec, vec);
+
+  // Length and its gradients with respect to the axis (dlda) and the vector (dldv).
+  double dlda[3], dldv[3];
+  if (det <= 0) {
+    d.actuator_length[i] = av;
+    Copy3(dlda, vec);
+    Copy3(dldv, axis);
+  } else {
+    double sdet = std::sqrt(det), tmp[3];
+    d.actuator_length[i] = av - sdet;
+    Scale3(dldv, axis, 1 - av / sdet);
+    Scale3(tmp, vec, 1 / sdet);
+    Add3(dldv, dldv, tmp);
+    Scale3(dlda, vec, 1 - av / sdet);
+  }
+
+  // Chain rule through the Jacobians of the axis and of v.
+  StackFrame frame(d);
+  double* jac_slider = frame.Alloc(3 * nv);
+  double* jac_axis = frame.Alloc(3 * nv);
+  double* jac = frame.Alloc(3 * nv);
+  JacobianPointAxis(m, d, jac_slider, jac_axis, &d.site_xpos[3 * slider], axis,
+                    m.site_bodyid[slider]);
+  JacobianSite(m, d, jac, nullptr, id);
+  for (int k = 0; k < 3 * nv; k++) jac[k] -= jac_slider[k];
+  for (int v = 0; v < nv; v++) {
+    for (int k = 0; k < 3; k++) moment[v] += dlda[k] * jac_axis[k * nv + v] + dldv[k] * jac[k * nv + v];
+  }
+
+  // Gear scales length and moment.
+  double gear = m.actuator_gear[6 * i];
+  d.actuator_length[i] *= gear;
+  for (int v = 0; v < nv; v++) moment[v] *= gear;
+}
+
 }  // namespace
 
 void Transmission(const Model& m, Data& d) {
@@ -82,9 +227,19 @@ void Transmission(const Model& m, Data& d) {
         for (int v = 0; v < m.nv; v++) moment[v] = jac[v] * gear;
         break;
       }
+      case kTrnSite:
+        if (m.actuator_trnid[2 * i + 1] < 0) {
+          SiteTransmission(m, d, i, id, moment);
+        } else {
+          RefSiteTransmission(m, d, i, id, m.actuator_trnid[2 * i + 1], moment);
+        }
+        break;
+      case kTrnSliderCrank:
+        SliderCrankTransmission(m, d, i, id, moment);
+        break;
       default:
-        // Site, slider-crank and body transmissions are compiled but rejected by the
-        // loader until their Jacobians exist; nothing reaches here.
+        // Body transmission (adhesion): its moment averages the Jacobians of the body's
+        // contacts, which arrive with collision detection; until then it is zero.
         d.actuator_length[i] = 0;
     }
   }

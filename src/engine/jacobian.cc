@@ -1,0 +1,74 @@
+// Jacobians of points and axes attached to bodies (MuJoCo mj_jac, mj_jacPointAxis).
+//
+// A dof j moves a point p of a body below it with the spatial motion cdof_j
+// (angular w, linear v at the subtree centre of mass c of the tree's root), so
+//
+//   jacp[:, j] = v + w x (p - c),   jacr[:, j] = w
+//
+// for the dofs on the chain from the body up to the root; every other column is zero.
+// Jacobians are 3 x nv, row-major.
+#include <algorithm>
+
+#include "engine/engine.h"
+#include "engine/stack.h"
+#include "math/math.h"
+
+namespace simlab {
+
+void Jacobian(const Model& m, const Data& d, double* jacp, double* jacr, const double* point,
+              int body) {
+  int nv = m.nv;
+  double offset[3] = {0, 0, 0};
+  if (jacp) {
+    std::fill(jacp, jacp + 3 * nv, 0.0);
+    math::Sub3(offset, point, &d.subtree_com[3 * m.body_rootid[body]]);
+  }
+  if (jacr) std::fill(jacr, jacr + 3 * nv, 0.0);
+
+  // The welded ancestor carries the dofs; a body welded to the world does not move.
+  body = m.body_weldid[body];
+  if (body == 0) return;
+
+  // Walk the dof chain up from the last dof that moves the body.
+  for (int i = m.body_dofadr[body] + m.body_dofnum[body] - 1; i >= 0; i = m.dof_parentid[i]) {
+    const double* cdof = &d.cdof[6 * i];
+    if (jacr) {
+      for (int k = 0; k < 3; k++) jacr[k * nv + i] = cdof[k];
+    }
+    if (jacp) {
+      double w_cross[3];
+      math::Cross3(w_cross, cdof, offset);
+      for (int k = 0; k < 3; k++) jacp[k * nv + i] = cdof[3 + k] + w_cross[k];
+    }
+  }
+}
+
+void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site) {
+  Jacobian(m, d, jacp, jacr, &d.site_xpos[3 * site], m.site_bodyid[site]);
+}
+
+void JacobianPointAxis(const Model& m, Data& d, double* jac_point, double* jac_axis,
+                       const double* point, const double* axis, int body) {
+  int nv = m.nv;
+  StackFrame frame(d);
+  double* jacr = frame.Alloc(3 * nv);
+  Jacobian(m, d, jac_point, jacr, point, body);
+
+  // The axis turns with the body: each column is (rotation column) x axis.
+  if (!jac_axis) return;
+  for (int i = 0; i < nv; i++) {
+    jac_axis[i] = jacr[nv + i] * axis[2] - jacr[2 * nv + i] * axis[1];
+    jac_axis[nv + i] = jacr[2 * nv + i] * axis[0] - jacr[i] * axis[2];
+    jac_axis[2 * nv + i] = jacr[i] * axis[1] - jacr[nv + i] * axis[0];
+  }
+}
+
+void MulJacTVec(const Model& m, const double* jac, const double* vec, double* res) {
+  int nv = m.nv;
+  std::fill(res, res + nv, 0.0);
+  for (int k = 0; k < 3; k++) {
+    for (int i = 0; i < nv; i++) res[i] += jac[k * nv + i] * vec[k];
+  }
+}
+
+}  // namespace simlab
