@@ -131,7 +131,19 @@ TEST(MjcfErrors, NotSupportedYet) {
               {"bad.xml:4:", "<composite> is not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"
               "<actuator>\n<muscle joint=\"j\"/>\n</actuator>\n</mujoco>",
-              {"bad.xml:6:", "muscle actuators is not supported yet"});
+              {"bad.xml:6:", "<muscle>", "lengthrange by simulation is not supported yet"});
+}
+
+TEST(MjcfErrors, MuscleParameters) {
+  const std::string head =
+      "<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"
+      "<actuator>\n";
+  ExpectError(head + "<muscle joint=\"j\" lengthrange=\"0 1\" range=\"1 0.5\"/>\n</actuator>\n</mujoco>",
+              {"bad.xml:6:", "range[0]<range[1] required in muscle"});
+  ExpectError(head + "<muscle joint=\"j\" lengthrange=\"0 1\" lmin=\"1.2\"/>\n</actuator>\n</mujoco>",
+              {"bad.xml:6:", "lmin<1<lmax required in muscle"});
+  ExpectError(head + "<muscle joint=\"j\" lengthrange=\"0 1\" tausmooth=\"-1\"/>\n</actuator>\n</mujoco>",
+              {"bad.xml:6:", "tausmooth cannot be negative"});
 }
 
 TEST(MjcfErrors, CompileErrorsNameTheElement) {

@@ -112,13 +112,26 @@ void Limits(const mjcf::ModelSpec& spec, const mjcf::ActuatorSpec& a,
   }
 }
 
+// Muscle parameters (gainprm or biasprm of a muscle gain or bias) must describe a
+// valid force-length-velocity curve.
+void CheckMuscle(const mjcf::ActuatorSpec& a) {
+  for (int k = 0; k < 2; k++) {
+    const double* prm = nullptr;
+    if (k == 0 && a.gaintype == kGainMuscle) prm = a.gainprm.data();
+    if (k == 1 && a.biastype == kBiasMuscle) prm = a.biasprm.data();
+    if (!prm) continue;
+    if (prm[0] >= prm[1]) ThrowAt(a.src, "range[0]<range[1] required in muscle");
+    if (prm[4] >= 1 || prm[5] <= 1) ThrowAt(a.src, "lmin<1<lmax required in muscle");
+    if (prm[3] <= 0 || prm[6] <= 0 || prm[7] <= 0 || prm[8] <= 0) {
+      ThrowAt(a.src, "positive scale, vmax, fpmax, fvmax required in muscle");
+    }
+  }
+}
+
 }  // namespace
 
 // Activation states per actuator (checked): actdim, else 1 with dynamics.
 int ActuatorActDim(const mjcf::ActuatorSpec& a) {
-  if (a.dyntype == kDynMuscle || a.gaintype == kGainMuscle || a.biastype == kBiasMuscle) {
-    ThrowAt(a.src, "muscle actuators are not supported yet");
-  }
   if (a.dyntype == kDynUser || a.gaintype == kGainUser || a.biastype == kBiasUser) {
     ThrowAt(a.src, "user-defined actuator dynamics, gain or bias are not supported yet");
   }
@@ -152,6 +165,7 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     m->actuator_gaintype[i] = a.gaintype;
     m->actuator_biastype[i] = a.biastype;
     int actnum = ActuatorActDim(a);
+    CheckMuscle(a);
     m->actuator_actnum[i] = actnum;
     m->actuator_actadr[i] = actnum ? adr : -1;
     adr += actnum;

@@ -47,6 +47,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
   ComputeConstants(&m);
+  ComputeLengthRanges(spec, &m);
   return m;
 }
 

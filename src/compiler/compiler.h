@@ -96,6 +96,8 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void SetTotalMass(double total, Model* m);
 void ComputeConstants(Model* m);
+// actuator_lengthrange where the <compiler><lengthrange> options ask for it (lengthrange.cc).
+void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m);
 
 // Name lookup while compiling (-1 if absent).
 int FindName(const std::vector<std::string>& names, const std::string& name);

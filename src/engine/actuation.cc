@@ -4,7 +4,8 @@
 //
 // with ctrl clamped to ctrlrange (in a copy: data.ctrl is never rewritten), act_dot from
 // the dynamics type, p clamped to forcerange, then qfrc_actuator = moment^T p clamped
-// to each joint's actuatorfrcrange.
+// to each joint's actuatorfrcrange. Forces on a tendon are first scaled so their total
+// respects the tendon's actuatorfrcrange. Muscles: see muscle.cc.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -46,7 +47,8 @@ void ActivationRate(const Model& m, Data& d, int i, double ctrl) {
     case kDynIntegrator: d.act_dot[adr] = ctrl; break;
     case kDynFilter:
     case kDynFilterExact: d.act_dot[adr] = (ctrl - d.act[adr]) / std::max(kMinVal, prm[0]); break;
-    default: d.act_dot[adr] = 0;  // muscle dynamics are rejected by the loader for now
+    case kDynMuscle: d.act_dot[adr] = MuscleDynamics(ctrl, d.act[adr], prm); break;
+    default: d.act_dot[adr] = 0;  // user dynamics are rejected by the loader
   }
 }
 
@@ -59,15 +61,50 @@ double Affine(const double* prm, double length, double velocity) {
 double ActuatorForce(const Model& m, const Data& d, int i, double ctrl) {
   double l = d.actuator_length[i], ldot = d.actuator_velocity[i];
   const double* gainprm = &m.actuator_gainprm[kNGain * i];
-  double gain = m.actuator_gaintype[i] == kGainAffine ? Affine(gainprm, l, ldot) : gainprm[0];
+  const double* biasprm = &m.actuator_biasprm[kNBias * i];
+  const double* lengthrange = &m.actuator_lengthrange[2 * i];
+  double gain = gainprm[0];
+  if (m.actuator_gaintype[i] == kGainAffine) gain = Affine(gainprm, l, ldot);
+  if (m.actuator_gaintype[i] == kGainMuscle) {
+    gain = MuscleGain(l, ldot, lengthrange, m.actuator_acc0[i], gainprm);
+  }
   double input = ctrl;
   if (m.actuator_actadr[i] >= 0) {
     int adr = m.actuator_actadr[i] + m.actuator_actnum[i] - 1;
     input = m.actuator_actearly[i] ? NextActivation(m, d, i, adr, d.act_dot[adr]) : d.act[adr];
   }
   double bias = 0;
-  if (m.actuator_biastype[i] == kBiasAffine) bias = Affine(&m.actuator_biasprm[kNBias * i], l, ldot);
+  if (m.actuator_biastype[i] == kBiasAffine) bias = Affine(biasprm, l, ldot);
+  if (m.actuator_biastype[i] == kBiasMuscle) {
+    bias = MuscleBias(l, lengthrange, m.actuator_acc0[i], biasprm);
+  }
   return gain * input + bias;
+}
+
+// Tendon-level clamp: when the actuators on a tendon with actuatorfrcrange together
+// push beyond the range, each is scaled by range / total.
+void ClampTendonForces(const Model& m, Data& d) {
+  bool any = false;
+  for (int i = 0; i < m.nu && !any; i++) {
+    any = m.actuator_trntype[i] == kTrnTendon && m.tendon_actfrclimited[m.actuator_trnid[2 * i]];
+  }
+  if (!any) return;
+  StackFrame frame(d);
+  double* total = frame.Alloc(m.ntendon);
+  for (int i = 0; i < m.nu; i++) {
+    if (m.actuator_trntype[i] == kTrnTendon) total[m.actuator_trnid[2 * i]] += d.actuator_force[i];
+  }
+  for (int i = 0; i < m.nu; i++) {
+    if (m.actuator_trntype[i] != kTrnTendon) continue;
+    int t = m.actuator_trnid[2 * i];
+    if (!m.tendon_actfrclimited[t] || total[t] == 0) continue;
+    const double* range = &m.tendon_actfrcrange[2 * t];
+    if (total[t] < range[0]) {
+      d.actuator_force[i] *= range[0] / total[t];
+    } else if (total[t] > range[1]) {
+      d.actuator_force[i] *= range[1] / total[t];
+    }
+  }
 }
 
 }  // namespace
@@ -96,17 +133,21 @@ void Actuation(const Model& m, Data& d) {
   double* ctrl = frame.Alloc(m.nu);
   EffectiveControls(m, d, ctrl);
 
-  // Activation dynamics, then forces, clamped to forcerange.
+  // Activation dynamics, then forces (disabled actuators stay at zero).
   for (int i = 0; i < m.nu; i++) {
     if (m.actuator_actadr[i] >= 0) ActivationRate(m, d, i, ctrl[i]);
   }
   for (int i = 0; i < m.nu; i++) {
-    if (ActuatorDisabled(m, i)) continue;
-    double f = ActuatorForce(m, d, i, ctrl[i]);
+    if (!ActuatorDisabled(m, i)) d.actuator_force[i] = ActuatorForce(m, d, i, ctrl[i]);
+  }
+
+  // Clamps: tendon totals, then each actuator (disabled ones too) to its forcerange.
+  ClampTendonForces(m, d);
+  for (int i = 0; i < m.nu; i++) {
     if (m.actuator_forcelimited[i]) {
-      f = std::clamp(f, m.actuator_forcerange[2 * i], m.actuator_forcerange[2 * i + 1]);
+      d.actuator_force[i] = std::clamp(d.actuator_force[i], m.actuator_forcerange[2 * i],
+                                       m.actuator_forcerange[2 * i + 1]);
     }
-    d.actuator_force[i] = f;
   }
 
   // Joint space, clamped per joint to actuatorfrcrange.

@@ -4,7 +4,7 @@
 //   qDeriv = d(qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel     (nv x nv, dense)
 //
 // Actuators: moment^T (d p / d l') moment where p is affine in l' (bias b2, gain a2 times
-// the input). Passive: -diag(dof damping) - J^T b J for tendon damping. Bias: the
+// the input) or a muscle (the force-velocity curve's slope times the input). Passive: -diag(dof damping) - J^T b J for tendon damping. Bias: the
 // velocity derivative of RNE, propagated body by body (Dcvel, Dcdofdot, Dcacc, Dcfrc:
 // 6 x nv blocks per body or dof).
 #include <algorithm>
@@ -38,7 +38,13 @@ void ActuatorDerivative(const Model& m, Data& d) {
       if (f <= m.actuator_forcerange[2 * i] || f >= m.actuator_forcerange[2 * i + 1]) continue;
     }
     double b = m.actuator_biastype[i] == kBiasAffine ? m.actuator_biasprm[kNBias * i + 2] : 0;
-    double gain_vel = m.actuator_gaintype[i] == kGainAffine ? m.actuator_gainprm[kNGain * i + 2] : 0;
+    double gain_vel = 0;
+    if (m.actuator_gaintype[i] == kGainAffine) gain_vel = m.actuator_gainprm[kNGain * i + 2];
+    if (m.actuator_gaintype[i] == kGainMuscle) {
+      gain_vel = MuscleGainVelocity(d.actuator_length[i], d.actuator_velocity[i],
+                                    &m.actuator_lengthrange[2 * i], m.actuator_acc0[i],
+                                    &m.actuator_gainprm[kNGain * i]);
+    }
     if (gain_vel != 0) {
       if (m.actuator_dyntype[i] == kDynNone) {
         b += gain_vel * d.ctrl[i];

@@ -55,6 +55,15 @@ void Actuation(const Model& m, Data& d);
 // The activation after one step of its dynamics, clamped to actrange (actuation.cc).
 double NextActivation(const Model& m, const Data& d, int actuator, int act_adr,
                       double act_dot);
+// MuJoCo's muscle model (muscle.cc); prm is gainprm/biasprm (9 numbers) or dynprm.
+double MuscleGainLength(double length, double lmin, double lmax);
+double MuscleGain(double len, double vel, const double* lengthrange, double acc0,
+                  const double* prm);
+// d MuscleGain / d vel.
+double MuscleGainVelocity(double len, double vel, const double* lengthrange, double acc0,
+                          const double* prm);
+double MuscleBias(double len, const double* lengthrange, double acc0, const double* prm);
+double MuscleDynamics(double ctrl, double act, const double* prm);
 // qfrc_smooth, qacc_smooth (forward.cc).
 void SmoothAcceleration(const Model& m, Data& d);
 // qfrc_constraint, qacc (constraint.cc).

@@ -267,6 +267,40 @@ void SetAdhesion(const XmlElement& e, ActuatorSpec* a, double gain) {
   }
 }
 
+// muscle: MuJoCo's muscle model. gainprm = biasprm = (range[2], force, scale, lmin,
+// lmax, vmax, fpmax, fvmax), dynprm = (tau activation, tau deactivation, tausmooth).
+// Parameters still at the general defaults take the muscle defaults first; each
+// attribute given (>= 0) then overrides its slot.
+struct MuscleAttrs {
+  std::array<double, 2> timeconst = {-1, -1}, range = {-1, -1};
+  double tausmooth = 0, force = -1, scale = -1, lmin = -1, lmax = -1, vmax = -1;
+  double fpmax = -1, fvmax = -1;
+};
+
+void SetMuscle(const XmlElement& e, ActuatorSpec* a, const MuscleAttrs& m) {
+  static const double kDefaults[9] = {0.75, 1.05, -1, 200, 0.5, 1.6, 1.5, 1.3, 1.2};
+  static const double kGeneral[9] = {1, 0, 0, 0, 0, 0, 0, 0, 0};
+  if (a->dynprm[0] == 1) a->dynprm[0] = 0.01;
+  if (a->dynprm[1] == 0) a->dynprm[1] = 0.04;
+  for (int k = 0; k < 9; k++) {
+    if (a->gainprm[k] == kGeneral[k]) a->gainprm[k] = kDefaults[k];
+  }
+  if (m.tausmooth < 0) e.Fail("muscle tausmooth cannot be negative");
+  a->dynprm[2] = m.tausmooth;
+  const double given[11] = {m.timeconst[0], m.timeconst[1], m.range[0], m.range[1], m.force,
+                            m.scale, m.lmin, m.lmax, m.vmax, m.fpmax, m.fvmax};
+  for (int k = 0; k < 2; k++) {
+    if (given[k] >= 0) a->dynprm[k] = given[k];
+  }
+  for (int k = 0; k < 9; k++) {
+    if (given[2 + k] >= 0) a->gainprm[k] = given[2 + k];
+  }
+  for (int k = 0; k < 9; k++) a->biasprm[k] = a->gainprm[k];
+  a->dyntype = kDynMuscle;
+  a->gaintype = kGainMuscle;
+  a->biastype = kBiasMuscle;
+}
+
 }  // namespace
 
 void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
@@ -320,7 +354,19 @@ void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
     e.Number("diameter", &diameter);
     SetCylinder(a, timeconst, bias, area, diameter);
   } else if (tag == "muscle") {
-    NotSupported(e, "muscle actuators");
+    MuscleAttrs attrs;
+    attrs.tausmooth = a->dynprm[2];
+    e.Numbers("timeconst", attrs.timeconst);
+    e.Number("tausmooth", &attrs.tausmooth);
+    e.Numbers("range", attrs.range);
+    e.Number("force", &attrs.force);
+    e.Number("scale", &attrs.scale);
+    e.Number("lmin", &attrs.lmin);
+    e.Number("lmax", &attrs.lmax);
+    e.Number("vmax", &attrs.vmax);
+    e.Number("fpmax", &attrs.fpmax);
+    e.Number("fvmax", &attrs.fvmax);
+    SetMuscle(e, a, attrs);
   } else if (tag == "adhesion") {
     double gain = a->gainprm[0];
     e.Number("gain", &gain);

@@ -49,13 +49,24 @@ void Reader::Compiler(const XmlElement& e) {
   e.Bool("alignfree", &c.alignfree);
   if (c.alignfree) NotSupported(e, "alignfree=\"true\"");
 
-  // <lengthrange> only matters for muscles, which are not supported yet.
+  // <lengthrange>: options of the actuator lengthrange computation.
   for (pugi::xml_node n : e.node().children()) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c2 = Element(n);
     if (c2.tag() != "lengthrange") Unknown(c2);
     c2.CheckAttributes({"mode", "useexisting", "uselimit", "accel", "maxforce", "timeconst",
                         "timestep", "inttotal", "interval", "tolrange"});
+    LengthRangeSpec& lr = c.lengthrange;
+    c2.Enum("mode", &lr.mode, {{"none", 0}, {"muscle", 1}, {"muscleuser", 2}, {"all", 3}});
+    c2.Bool("useexisting", &lr.useexisting);
+    c2.Bool("uselimit", &lr.uselimit);
+    c2.Number("accel", &lr.accel);
+    c2.Number("maxforce", &lr.maxforce);
+    c2.Number("timeconst", &lr.timeconst);
+    c2.Number("timestep", &lr.timestep);
+    c2.Number("inttotal", &lr.inttotal);
+    c2.Number("interval", &lr.interval);
+    c2.Number("tolrange", &lr.tolrange);
   }
 }
 

@@ -223,6 +223,16 @@ struct DefaultClass {
 };
 
 // <compiler> settings that affect the compiled model.
+// <compiler><lengthrange>: which actuators get a lengthrange computed, and how
+// (MuJoCo mjLROpt; mode 0 none, 1 muscle, 2 muscle and user, 3 all).
+struct LengthRangeSpec {
+  int mode = 1;
+  bool useexisting = true;
+  bool uselimit = false;
+  double accel = 20, maxforce = 0, timeconst = 1, timestep = 0.01;
+  double inttotal = 10, interval = 2, tolrange = 0.05;
+};
+
 struct CompilerSpec {
   bool autolimits = true;
   double boundmass = 0;
@@ -234,6 +244,7 @@ struct CompilerSpec {
   int inertiafromgeom = kAuto;
   std::array<int, 2> inertiagrouprange = {0, 5};
   bool alignfree = false;
+  LengthRangeSpec lengthrange;
 };
 
 // The whole parsed model.
