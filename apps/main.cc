@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "explain.h"
 #include "rollout.h"
 #include "simlab/simlab.h"
 
@@ -9,6 +10,7 @@ int main(int argc, char** argv) {
   CLI::App app{"simlab: MJCF models simulated with MuJoCo's semantics"};
   app.require_subcommand(1);
   simlab::apps::AddRolloutCommand(app);
+  simlab::apps::AddExplainCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,328 @@
+// `simlab explain MODEL.xml`
+//
+// Reads each compiled actuator back as the one law of MuJoCo's actuator model,
+//
+//   p = a u + b0 + b1 l + b2 l'
+//
+// a from gaintype/gainprm, b from biastype/biasprm, u = ctrl or the activation w
+// (whose dynamics come from dyntype/dynprm), l and l' the length and velocity at the
+// transmission (l = gear * q for a joint), then the clamps: ctrlrange on u, actrange on
+// w, forcerange on p, actuatorfrcrange on the joint or tendon force. The element that
+// wrote an actuator is not stored in the model, so the shortcut it "reads as" is
+// recognized from the parameters, as the lesson's table relates them.
+#include "explain.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "simlab/simlab.h"
+
+namespace simlab::apps {
+
+namespace {
+
+// ---------------------------------------------------------------- number text
+
+// A number in the shortest readable form ("10", "-0.5", "1e-05").
+std::string Num(double x) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%g", x == 0 ? 0.0 : x);  // no "-0"
+  return buffer;
+}
+
+std::string Range(const double* range) { return "[" + Num(range[0]) + ", " + Num(range[1]) + "]"; }
+
+std::string Quoted(const std::string& name) { return name.empty() ? "(unnamed)" : "\"" + name + "\""; }
+
+// "c x" as a term of a sum: " + 3 l", " - 10 l"; empty for a zero coefficient.
+std::string Term(double c, const std::string& symbol) {
+  if (c == 0) return "";
+  return (c < 0 ? " - " : " + ") + Num(std::abs(c)) + (symbol.empty() ? "" : " " + symbol);
+}
+
+// One labelled line of a block.
+std::string Line(const std::string& label, const std::string& text) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "  %-14s", label.c_str());
+  return buffer + text + "\n";
+}
+
+const double* Gain(const Model& m, int i) { return &m.actuator_gainprm[kNGain * i]; }
+const double* Bias(const Model& m, int i) { return &m.actuator_biasprm[kNBias * i]; }
+const double* Dyn(const Model& m, int i) { return &m.actuator_dynprm[kNDyn * i]; }
+
+bool HasActivation(const Model& m, int i) { return m.actuator_actadr[i] >= 0; }
+
+// ---------------------------------------------------------------- which shortcut
+
+// The name of a dynamics type as MJCF writes it.
+std::string DynName(int dyn) {
+  switch (dyn) {
+    case kDynIntegrator: return "integrator";
+    case kDynFilter: return "filter";
+    case kDynFilterExact: return "filterexact";
+    case kDynMuscle: return "muscle";
+    default: return "user";
+  }
+}
+
+// No shortcut has these parameters: a <general>, named with its dynamics.
+std::string GeneralName(int dyn) {
+  return dyn == kDynNone ? "general" : "general with " + DynName(dyn) + " dynamics";
+}
+
+// Shortcuts whose bias is a PD servo on the length: b = 0, -kp, -kv.
+std::string ServoShortcut(const Model& m, int i) {
+  const double *g = Gain(m, i), *b = Bias(m, i);
+  std::string gains = "kp " + Num(g[0]) + ", kv " + Num(-b[2]);
+  switch (m.actuator_dyntype[i]) {
+    case kDynNone: return "position (" + gains + ")";
+    case kDynFilterExact: return "position with timeconst " + Num(Dyn(m, i)[0]) + " (" + gains + ")";
+    case kDynIntegrator: return "intvelocity (" + gains + ")";
+    default: return "general";
+  }
+}
+
+// The shortcut element these parameters are an instance of, or "general".
+std::string ReadsAs(const Model& m, int i) {
+  const double *g = Gain(m, i), *b = Bias(m, i);
+  int dyn = m.actuator_dyntype[i], gain = m.actuator_gaintype[i], bias = m.actuator_biastype[i];
+  if (gain == kGainMuscle) return "muscle";
+  if (m.actuator_trntype[i] == kTrnBody) return "adhesion (gain " + Num(g[0]) + ")";
+  if (gain == kGainAffine && bias == kBiasNone && dyn == kDynNone && g[0] == 0 && g[1] == 0) {
+    return "damper (kv " + Num(-g[2]) + ")";
+  }
+  if (gain != kGainFixed) return GeneralName(dyn);
+  if (bias == kBiasNone && dyn == kDynNone && g[0] == 1) return "motor";
+  if (bias == kBiasAffine && b[0] == 0 && b[1] == -g[0] && g[0] != 0) return ServoShortcut(m, i);
+  if (bias == kBiasAffine && dyn == kDynNone && b[0] == 0 && b[1] == 0 && b[2] == -g[0]) {
+    return "velocity (kv " + Num(g[0]) + ")";
+  }
+  if (bias == kBiasAffine && dyn == kDynFilter) return "cylinder, or the general it stands for";
+  return GeneralName(dyn);
+}
+
+// ---------------------------------------------------------------- the law's terms
+
+// The gain a: fixed, affine in l and l', or the muscle curves.
+std::string GainText(const Model& m, int i) {
+  const double* g = Gain(m, i);
+  switch (m.actuator_gaintype[i]) {
+    case kGainFixed: return "fixed: a = gainprm[0] = " + Num(g[0]);
+    case kGainAffine:
+      return "affine: a = " + Num(g[0]) + Term(g[1], "l") + Term(g[2], "l'") +
+             "  (gainprm[0:3])";
+    case kGainMuscle:
+      return "muscle: a = -force * FL(l) * FV(l'), force " + Num(g[2]) + ", scale " + Num(g[3]) +
+             ", lengths " + Num(g[4]) + ".." + Num(g[5]) + ", vmax " + Num(g[6]) + ", fvmax " +
+             Num(g[8]);
+    default: return "user: computed by a callback";
+  }
+}
+
+// True when any of biasprm[0:3] is nonzero.
+bool BiasprmSet(const Model& m, int i) {
+  const double* b = Bias(m, i);
+  return b[0] != 0 || b[1] != 0 || b[2] != 0;
+}
+
+// The bias b0 + b1 l + b2 l', stating plainly when biasprm is present but unused.
+std::string BiasText(const Model& m, int i) {
+  const double* b = Bias(m, i);
+  switch (m.actuator_biastype[i]) {
+    case kBiasNone:
+      if (!BiasprmSet(m, i)) return "none: b0 = b1 = b2 = 0";
+      return "none: biasprm [" + Num(b[0]) + " " + Num(b[1]) + " " + Num(b[2]) +
+             "] ignored (compiled into the model, never used: biastype is none,\n" +
+             std::string(16, ' ') +
+             "the default of <general>; write biastype=\"affine\" to apply it)";
+    case kBiasAffine:
+      return "affine: b0 = " + Num(b[0]) + ", b1 = " + Num(b[1]) + ", b2 = " + Num(b[2]);
+    case kBiasMuscle: return "muscle: passive force of the muscle, fpmax " + Num(b[7]);
+    default: return "user: computed by a callback";
+  }
+}
+
+// The law with this actuator's numbers: "p = 10 u - 10 l - 1 l'".
+std::string LawText(const Model& m, int i) {
+  std::string law = "p = ";
+  std::string input = HasActivation(m, i) ? "w" : "u";
+  if (m.actuator_gaintype[i] == kGainFixed) {
+    law += Num(Gain(m, i)[0]) + " " + input;
+  } else {
+    law += "a(l, l') " + input;
+  }
+  const double* b = Bias(m, i);
+  switch (m.actuator_biastype[i]) {
+    case kBiasNone: break;
+    case kBiasAffine: law += Term(b[0], "") + Term(b[1], "l") + Term(b[2], "l'"); break;
+    default: law += " + bias(l, l')";
+  }
+  return law;
+}
+
+// ---------------------------------------------------------------- input and dynamics
+
+// What u is in the law: the control, or the activation state.
+std::string InputText(const Model& m, int i) {
+  if (!HasActivation(m, i)) return "ctrl[" + std::to_string(i) + "] (no activation state)";
+  std::string text = "act[" + std::to_string(m.actuator_actadr[i]) + "], the activation w";
+  if (m.actuator_actearly[i]) text += " (actearly: the force uses next step's w)";
+  return text;
+}
+
+// How w evolves: w' from the dynamics type and its time constants.
+std::string DynamicsText(const Model& m, int i) {
+  const double* p = Dyn(m, i);
+  switch (m.actuator_dyntype[i]) {
+    case kDynNone: return "none: u = ctrl, no state";
+    case kDynIntegrator: return "integrator: w' = ctrl";
+    case kDynFilter:
+      return "filter: w' = (ctrl - w) / tau, tau = " + Num(p[0]) +
+             " s; Euler steps run ahead of 1 - exp(-t/tau)";
+    case kDynFilterExact:
+      return "filterexact: w' = (ctrl - w) / tau, tau = " + Num(p[0]) +
+             " s; exact steps follow 1 - exp(-t/tau)";
+    case kDynMuscle:
+      return "muscle: activation tau " + Num(p[0]) + " s, deactivation tau " + Num(p[1]) +
+             " s, smoothing " + Num(p[2]);
+    default: return "user: computed by a callback";
+  }
+}
+
+// ---------------------------------------------------------------- transmission
+
+// The 6 gear numbers, or the first alone when the rest are zero.
+std::string GearText(const Model& m, int i) {
+  const double* g = &m.actuator_gear[6 * i];
+  bool scalar = g[1] == 0 && g[2] == 0 && g[3] == 0 && g[4] == 0 && g[5] == 0;
+  if (scalar) return Num(g[0]);
+  std::string text = "[";
+  for (int k = 0; k < 6; k++) text += (k ? " " : "") + Num(g[k]);
+  return text + "]";
+}
+
+const char* JointTypeName(int type) {
+  switch (type) {
+    case kJointFree: return "free";
+    case kJointBall: return "ball";
+    case kJointSlide: return "slide";
+    default: return "hinge";
+  }
+}
+
+// Where the force goes: joint, tendon, site, slider-crank or body, with the gear.
+std::string TransmissionText(const Model& m, int i) {
+  int id = m.actuator_trnid[2 * i], ref = m.actuator_trnid[2 * i + 1];
+  std::string gear = GearText(m, i);
+  switch (m.actuator_trntype[i]) {
+    case kTrnJoint:
+    case kTrnJointInParent: {
+      bool scalar = m.jnt_type[id] == kJointHinge || m.jnt_type[id] == kJointSlide;
+      std::string text = std::string(m.actuator_trntype[i] == kTrnJoint ? "joint " : "jointinparent ") +
+                         Quoted(m.jnt_names[id]) + " (" + JointTypeName(m.jnt_type[id]) +
+                         "), gear " + gear;
+      if (scalar) text += ": l = " + gear + " q, joint force = " + gear + " p";
+      return text;
+    }
+    case kTrnTendon:
+      return "tendon " + Quoted(m.tendon_names[id]) + ", gear " + gear + ": l = " + gear +
+             " ten_length, joint forces = moment arms * " + gear + " p";
+    case kTrnSite:
+      return "site " + Quoted(m.site_names[id]) +
+             (ref >= 0 ? " relative to refsite " + Quoted(m.site_names[ref]) : "") + ", gear " + gear;
+    case kTrnSliderCrank:
+      return "slider-crank: crank site " + Quoted(m.site_names[id]) + ", slider site " +
+             Quoted(m.site_names[ref]) + ", crank length " + Num(m.actuator_cranklength[i]) +
+             ", gear " + gear;
+    case kTrnBody: return "body " + Quoted(m.body_names[id]) + " (adhesion through contacts)";
+    default: return "undefined";
+  }
+}
+
+// ---------------------------------------------------------------- clamps
+
+// "on  [lo, hi]  what it clamps" or "off".
+std::string ClampText(bool on, const double* range, const std::string& meaning) {
+  return on ? "on  " + Range(range) + "  " + meaning : "off";
+}
+
+// The force clamp of the joint or tendon the actuator drives, if it has one.
+std::string TargetClampLine(const Model& m, int i) {
+  int id = m.actuator_trnid[2 * i];
+  switch (m.actuator_trntype[i]) {
+    case kTrnJoint:
+    case kTrnJointInParent:
+      return Line("", "actuatorfrcrange of joint " + Quoted(m.jnt_names[id]) + ": " +
+                          ClampText(m.jnt_actfrclimited[id], &m.jnt_actfrcrange[2 * id],
+                                    "clamps the total actuator force on the joint"));
+    case kTrnTendon:
+      return Line("", "actuatorfrcrange of tendon " + Quoted(m.tendon_names[id]) + ": " +
+                          ClampText(m.tendon_actfrclimited[id], &m.tendon_actfrcrange[2 * id],
+                                    "clamps the total actuator force on the tendon"));
+    default: return "";
+  }
+}
+
+// Every clamp, one per line, in the order MuJoCo applies them.
+std::string ClampLines(const Model& m, int i) {
+  std::string ctrl = ClampText(m.actuator_ctrllimited[i], &m.actuator_ctrlrange[2 * i],
+                               "clamps ctrl inside the computation (data.ctrl keeps what was written)");
+  if (m.actuator_ctrllimited[i] && (m.opt.disableflags & kDisableClampctrl)) {
+    ctrl = "set " + Range(&m.actuator_ctrlrange[2 * i]) + " but disabled by <flag clampctrl>";
+  }
+  std::string text = Line("clamps", "ctrlrange: " + ctrl);
+  if (HasActivation(m, i)) {
+    text += Line("", "actrange: " + ClampText(m.actuator_actlimited[i], &m.actuator_actrange[2 * i],
+                                               "clamps the activation w"));
+  }
+  text += Line("", "forcerange: " + ClampText(m.actuator_forcelimited[i],
+                                               &m.actuator_forcerange[2 * i], "clamps p"));
+  return text + TargetClampLine(m, i);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- public
+
+std::string ExplainActuator(const Model& m, int i) {
+  std::string head = "actuator " + std::to_string(i) + " " + Quoted(m.actuator_names[i]) +
+                     ", reads as: " + ReadsAs(m, i) + "\n";
+  return head + Line("law", LawText(m, i)) + Line("a (gain)", GainText(m, i)) +
+         Line("b (bias)", BiasText(m, i)) + Line("u", InputText(m, i)) +
+         Line("dynamics", DynamicsText(m, i)) + Line("transmission", TransmissionText(m, i)) +
+         ClampLines(m, i);
+}
+
+std::string ExplainModel(const Model& m) {
+  std::string name = m.model_name.empty() ? "model" : m.model_name;
+  std::string text = name + ": " + std::to_string(m.nu) +
+                     " actuator(s), each an instance of p = a u + b0 + b1 l + b2 l'\n" +
+                     "(u: ctrl or activation w; l, l': length and velocity at the transmission)\n";
+  if (m.opt.disableflags & kDisableActuation) {
+    text += "note: <flag actuation=\"disable\"/>: every actuator force is zero\n";
+  }
+  for (int i = 0; i < m.nu; i++) text += "\n" + ExplainActuator(m, i);
+  return text;
+}
+
+int RunExplain(const std::string& path, std::ostream& out) {
+  Model m = LoadXml(path);
+  out << ExplainModel(m);
+  return 0;
+}
+
+void AddExplainCommand(CLI::App& app) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand(
+      "explain", "read every actuator as an instance of p = a u + b0 + b1 l + b2 l'");
+  cmd->add_option("model", *path, "MJCF file")->required();
+  cmd->callback([path] { std::exit(RunExplain(*path, std::cout)); });
+}
+
+}  // namespace simlab::apps

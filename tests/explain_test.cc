@@ -1,0 +1,101 @@
+// `simlab explain`: each actuator read as p = a u + b0 + b1 l + b2 l', on the lesson's
+// bench and on the lesson's trap (a general with biasprm but no biastype).
+#include "explain.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+
+#include "simlab/simlab.h"
+
+namespace simlab::apps {
+namespace {
+
+const std::string kBench = std::string(SIMLAB_SOURCE_DIR) + "/models/actuator_bench.xml";
+
+bool Contains(const std::string& text, const std::string& piece) {
+  return text.find(piece) != std::string::npos;
+}
+
+// The position servo's whole block, as a reader sees it.
+TEST(Explain, BenchPositionServoBlock) {
+  Model m = LoadXml(kBench);
+  EXPECT_EQ(ExplainActuator(m, 1),
+            "actuator 1 \"position\", reads as: position (kp 10, kv 1)\n"
+            "  law           p = 10 u - 10 l - 1 l'\n"
+            "  a (gain)      fixed: a = gainprm[0] = 10\n"
+            "  b (bias)      affine: b0 = 0, b1 = -10, b2 = -1\n"
+            "  u             ctrl[1] (no activation state)\n"
+            "  dynamics      none: u = ctrl, no state\n"
+            "  transmission  joint \"position_hinge\" (hinge), gear 1: l = 1 q, joint force = 1 p\n"
+            "  clamps        ctrlrange: off\n"
+            "                forcerange: on  [-3, 3]  clamps p\n"
+            "                actuatorfrcrange of joint \"position_hinge\": off\n");
+}
+
+// Every bench actuator: its shortcut, law, gear, dynamics and clamps.
+TEST(Explain, BenchReadsAsTheLessonsTable) {
+  std::ostringstream out;
+  EXPECT_EQ(RunExplain(kBench, out), 0);
+  std::string text = out.str();
+  EXPECT_TRUE(Contains(text, "4 actuator(s), each an instance of p = a u + b0 + b1 l + b2 l'"));
+  EXPECT_TRUE(Contains(text, "actuator 0 \"motor\", reads as: motor\n  law           p = 1 u\n"));
+  EXPECT_TRUE(Contains(text, "gear 2: l = 2 q, joint force = 2 p"));
+  EXPECT_TRUE(Contains(text, "ctrlrange: on  [-1, 1]"));
+  EXPECT_TRUE(Contains(text, "actuator 2 \"velocity\", reads as: velocity (kv 3)\n"
+                             "  law           p = 3 u - 3 l'\n"));
+  EXPECT_TRUE(Contains(text, "actuator 3 \"filter\", reads as: general with filter dynamics\n"
+                             "  law           p = 5 w\n"));
+  EXPECT_TRUE(Contains(text, "act[0], the activation w"));
+  EXPECT_TRUE(Contains(text, "filter: w' = (ctrl - w) / tau, tau = 0.1 s"));
+  EXPECT_TRUE(Contains(text, "actrange: off"));
+}
+
+// The lesson's trap: biasprm compiled, biastype none, so no bias; stated plainly.
+TEST(Explain, GeneralWithBiasprmButNoBiastype) {
+  Model m = LoadXmlString(
+      "<mujoco><worldbody><body><joint name=\"j\" axis=\"0 0 1\"/><geom size=\"0.1\"/>"
+      "</body></worldbody><actuator>"
+      "<general name=\"trap\" joint=\"j\" gainprm=\"4\" biasprm=\"0 0 -4\"/>"
+      "<general name=\"fixed\" joint=\"j\" gainprm=\"4\" biastype=\"affine\" biasprm=\"0 0 -4\"/>"
+      "</actuator></mujoco>");
+  std::string trap = ExplainActuator(m, 0), fixed = ExplainActuator(m, 1);
+  EXPECT_TRUE(Contains(trap, "reads as: general\n"));
+  EXPECT_TRUE(Contains(trap, "law           p = 4 u\n"));
+  EXPECT_TRUE(Contains(trap, "b (bias)      none: biasprm [0 0 -4] ignored"));
+  EXPECT_TRUE(Contains(trap, "biastype=\"affine\""));
+  // Written out with its biastype, the same numbers are the velocity servo.
+  EXPECT_TRUE(Contains(fixed, "reads as: velocity (kv 4)\n"));
+  EXPECT_TRUE(Contains(fixed, "law           p = 4 u - 4 l'\n"));
+}
+
+// Other shortcuts and transmissions: intvelocity, position with timeconst on a tendon,
+// damper, joint actuatorfrcrange.
+TEST(Explain, ShortcutsTendonAndJointClamp) {
+  Model m = LoadXmlString(
+      "<mujoco><worldbody>"
+      "<body><joint name=\"j\" axis=\"0 0 1\" actuatorfrcrange=\"-2 2\"/><geom size=\"0.1\"/></body>"
+      "<body pos=\"1 0 0\"><joint name=\"k\" type=\"slide\"/><geom size=\"0.1\"/></body>"
+      "</worldbody><tendon><fixed name=\"t\"><joint joint=\"j\" coef=\"0.5\"/>"
+      "<joint joint=\"k\" coef=\"0.5\"/></fixed></tendon><actuator>"
+      "<intvelocity joint=\"k\" kp=\"5\" actrange=\"-1 1\"/>"
+      "<position tendon=\"t\" kp=\"5\" timeconst=\"0.2\" ctrlrange=\"0 1\"/>"
+      "<damper joint=\"k\" kv=\"2\" ctrlrange=\"0 1\"/>"
+      "<motor joint=\"j\"/>"
+      "</actuator></mujoco>");
+  std::string text = ExplainModel(m);
+  EXPECT_TRUE(Contains(text, "reads as: intvelocity (kp 5, kv 0)"));
+  EXPECT_TRUE(Contains(text, "dynamics      integrator: w' = ctrl"));
+  EXPECT_TRUE(Contains(text, "actrange: on  [-1, 1]"));
+  EXPECT_TRUE(Contains(text, "reads as: position with timeconst 0.2 (kp 5, kv 0)"));
+  EXPECT_TRUE(Contains(text, "filterexact: w' = (ctrl - w) / tau, tau = 0.2 s"));
+  EXPECT_TRUE(Contains(text, "transmission  tendon \"t\", gear 1"));
+  EXPECT_TRUE(Contains(text, "reads as: damper (kv 2)"));
+  EXPECT_TRUE(Contains(text, "affine: a = 0 - 2 l'"));
+  EXPECT_TRUE(Contains(text, "actuatorfrcrange of joint \"j\": on  [-2, 2]"));
+  EXPECT_TRUE(Contains(text, "(unnamed)"));
+}
+
+}  // namespace
+}  // namespace simlab::apps
