@@ -20,9 +20,12 @@ namespace {
 
 using Json = nlohmann::json;
 
+// One line of a case list: model, golden, steps, state (or -), and optionally the
+// control schedule (or -) and the relative tolerance (default 1e-9).
 struct Case {
-  std::string model, golden, state;
+  std::string model, golden, state, ctrl;
   int steps = 0;
+  double tol = 1e-9;
 };
 
 // gtest prints a case by its model path.
@@ -30,17 +33,24 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.model; }
 
 std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE_DIR) + "/" + relative; }
 
+// The cases of the smooth-dynamics list (tools/make_goldens.sh) and the actuator list
+// (tools/make_actuation_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
-  std::ifstream in(Path("tests/conformance/cases.txt"));
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    Case c;
-    fields >> c.model >> c.golden >> c.steps >> c.state;
-    if (c.state == "-") c.state.clear();
-    cases.push_back(c);
+  for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt"}) {
+    std::ifstream in(Path(list));
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream fields(line);
+      Case c;
+      fields >> c.model >> c.golden >> c.steps >> c.state;
+      if (!(fields >> c.ctrl)) c.ctrl.clear();
+      if (!(fields >> c.tol)) c.tol = 1e-9;
+      if (c.state == "-") c.state.clear();
+      if (c.ctrl == "-") c.ctrl.clear();
+      cases.push_back(c);
+    }
   }
   return cases;
 }
@@ -66,6 +76,7 @@ TEST_P(Conformance, MatchesMuJoCo) {
   apps::RolloutOptions options;
   options.model = Path(c.model);
   if (!c.state.empty()) options.state = Path(c.state);
+  if (!c.ctrl.empty()) options.ctrl = Path(c.ctrl);
   options.steps = c.steps;
   options.every = 10;
   std::stringstream ours_text;
@@ -77,7 +88,7 @@ TEST_P(Conformance, MatchesMuJoCo) {
   for (const char* size : {"nq", "nv", "nu", "na", "ntendon", "nsensordata"}) {
     EXPECT_EQ(ours[0][size], golden[0][size]) << size;
   }
-  const double tol = 1e-9;
+  const double tol = c.tol;
   std::map<std::string, double> worst;
   for (size_t r = 1; r < golden.size(); r++) {
     for (auto& [name, ref] : golden[r].items()) {

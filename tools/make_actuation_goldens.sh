@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# make_actuation_goldens.sh — the actuator conformance cases (issue 3): MuJoCo's own
+# actuation test models, and our muscle and slider-crank benches, rolled out by MuJoCo
+# under ctrlgen.mjs controls.
+#
+# Usage:  tools/make_actuation_goldens.sh          (from any working directory)
+#
+# What it does (idempotent: tests/conformance/actuation is deleted and rebuilt):
+#   1. Copies the models of ../shared/corpus/mujoco/test/engine/testdata/actuation that
+#      need nothing beyond actuators (no contacts, equality, spatial tendons, sensors,
+#      fluid forces, limit constraints, gravity compensation) into
+#      tests/conformance/actuation/models, unchanged (their Apache-2.0 headers kept).
+#      Models that need one of those features only incidentally are derived with sed into
+#      <name>__<variant>.xml, with a comment saying what was removed (DERIVED below).
+#      Left out: actearly (spheres rest on the floor: contacts), activation (spatial tendon,
+#      contacts), tendon_dampratio (equality constraints), orientation (<orientation>
+#      actuators: newer than MuJoCo 3.5.1, the oracle cannot load it).
+#   2. Adds tests/models/{muscle_bench,slider_crank_bench}.xml in each integrator.
+#   3. For each model: node ctrlgen.mjs MODEL --steps 500 > ctrl/<name>.csv, then
+#          rollout.mjs MODEL --ctrl ctrl/<name>.csv --steps 500 --every 10
+#      writing goldens/<name>.jsonl.
+#   4. Writes tests/conformance/actuation_cases.txt, one line per case:
+#          <model xml> <golden jsonl> <steps> <state json or -> <ctrl csv> <tolerance>
+#
+# Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
+set -euo pipefail
+
+SCRIPT_DIR="$(cd "$(dirname "$0")" && pwd)"
+ROOT="$(cd "$SCRIPT_DIR/.." && pwd)"
+ORACLE="$(cd "$SCRIPT_DIR/../../shared/oracle" && pwd)"
+CORPUS="$(cd "$SCRIPT_DIR/../../shared/corpus/mujoco/test/engine/testdata/actuation" && pwd)"
+STEPS=500
+EVERY=10
+TOL=1e-8
+
+[ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
+
+cd "$ROOT"
+OUT=tests/conformance/actuation
+rm -rf "$OUT"
+mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
+
+# Adds a simlab comment right after the <mujoco> start tag.
+note() { sed -e "0,/<mujoco/s|\(<mujoco[^>]*>\)|\1\n  <!-- simlab: derived from the MuJoCo test model actuation/$1.xml: $2 -->|"; }
+
+# Runs sed on a corpus model and checks that it changed something.
+derive() {
+  local src="$1" variant="$2" what="$3"; shift 3
+  local dst="$OUT/models/${src}__${variant}.xml"
+  sed "$@" "$CORPUS/$src.xml" | note "$src" "$what" > "$dst"
+  ! cmp -s <(sed "$@" "$CORPUS/$src.xml") "$CORPUS/$src.xml" || { echo "derive $dst: no change" >&2; exit 1; }
+}
+
+# --- 1. corpus models ----------------------------------------------------------------------
+for name in damper dampratio; do cp "$CORPUS/$name.xml" "$OUT/models/$name.xml"; done
+derive sites nofluid "option density removed (fluid forces come later)" \
+  -e 's|<option density="1000">|<option>|'
+derive refsite_free smooth "frictionloss and sensors removed (they come later)" \
+  -e 's| frictionloss="0.1334"||g' -e '/<sensor>/,/<\/sensor>/d'
+derive refsite smooth "viscosity and gravity compensation removed, gravity off (they come later)" \
+  -e 's|<option viscosity="10" integrator="implicit">|<option integrator="implicit">|' \
+  -e 's|<flag contact="disable"/>|<flag contact="disable" gravity="disable"/>|' \
+  -e 's| actuatorgravcomp="true"||' -e 's| gravcomp="1"||g'
+derive joint_force_clamp nosensor "sensors removed (they come later)" \
+  -e '/<sensor>/,/<\/sensor>/d'
+derive tendon_force_clamp fixed "spatial tendons, their motors and the sensors removed (they come later)" \
+  -e '/<spatial/,/<\/spatial>/d' -e '/<motor tendon="spatial/d' -e '/<sensor>/,/<\/sensor>/d'
+derive actuator_group_disable nocontact "contacts disabled and joint ranges removed (contacts and limits come later)" \
+  -e 's|<option actuatorgroupdisable="1 2" cone="elliptic"/>|<option actuatorgroupdisable="1 2" cone="elliptic"><flag contact="disable"/></option>|' \
+  -e 's| range="[^"]*"||'
+
+# --- 2. our benches in every integrator ----------------------------------------------------
+for name in muscle_bench slider_crank_bench; do
+  for integ in Euler RK4 implicit implicitfast; do
+    sed -E "s/<option([ />])/<option integrator=\"$integ\"\1/" "tests/models/$name.xml" \
+      > "$OUT/models/${name}__${integ}.xml"
+  done
+done
+
+# --- 3-4. controls, goldens, case list -------------------------------------------------------
+CASES=tests/conformance/actuation_cases.txt
+: > "$CASES.tmp"
+for model in "$OUT"/models/*.xml; do
+  name="$(basename "$model" .xml)"
+  ctrl="$OUT/ctrl/$name.csv"
+  golden="$OUT/goldens/$name.jsonl"
+  echo "rollout $model"
+  node "$ORACLE/ctrlgen.mjs" "$model" --steps "$STEPS" --out "$ctrl"
+  node "$ORACLE/rollout.mjs" "$model" --ctrl "$ctrl" --steps "$STEPS" --every "$EVERY" --out "$golden"
+  grep -q '"ncon":0' "$golden" && ! grep -q '"ncon":[1-9]' "$golden" \
+    || { echo "$golden: MuJoCo found contacts" >&2; exit 1; }
+  ! grep -qE 'null|NaN|Infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
+  echo "$model $golden $STEPS - $ctrl $TOL" >> "$CASES.tmp"
+done
+mv "$CASES.tmp" "$CASES"
+echo "done: $(wc -l < "$CASES") cases"
