@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds (Release, build/), and runs the main job: a short
-# rollout of a model from models/, printed as a table.
+# rollout of a model from models/, printed as a table, then the lesson's actuator bench
+# read by `simlab explain` as instances of p = a u + b0 + b1 l + b2 l'.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install_deps.sh
@@ -8,3 +9,5 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j2 --target simlab
 model=${1:-models/double_pendulum.xml}
 ./build/simlab rollout "$model" --steps 500 --every 50 --table
+echo
+./build/simlab explain models/actuator_bench.xml
