@@ -19,6 +19,10 @@
 #   3. For each model: node ctrlgen.mjs MODEL --steps 500 > ctrl/<name>.csv, then
 #          rollout.mjs MODEL --ctrl ctrl/<name>.csv --steps 500 --every 10
 #      writing goldens/<name>.jsonl.
+#      Flag cases (FLAGS below): muscle_bench with <flag actuation="disable">, and with a
+#      ctrlrange and clampctrl on/off, under a wild schedule (ctrl/wild.csv: beyond every
+#      range, one NaN row, ten rows of 1e20) that MuJoCo answers with "bad ctrl" warnings
+#      and zeroed controls; 300 steps.
 #   4. Writes tests/conformance/actuation_cases.txt, one line per case:
 #          <model xml> <golden jsonl> <steps> <state json or -> <ctrl csv> <tolerance>
 #
@@ -92,5 +96,33 @@ for model in "$OUT"/models/*.xml; do
   ! grep -qE 'null|NaN|Infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
   echo "$model $golden $STEPS - $ctrl $TOL" >> "$CASES.tmp"
 done
+
+# --- flags: actuation off, clampctrl off/on, bad controls -----------------------------------
+node -e '
+  const rows = [];
+  for (let k = 0; k < 300; k++) {
+    const r = [0, 1, 2, 3, 4].map((i) => 1.5 * Math.sin(0.05 * k + i));
+    if (k === 100) r[2] = NaN;
+    if (k >= 150 && k < 160) r[0] = 1e20;
+    rows.push(r.map((x) => (Number.isNaN(x) ? "NaN" : String(x))).join(","));
+  }
+  require("fs").writeFileSync(process.argv[1], "# simlab: beyond every range, a NaN row (100), 1e20 rows (150-159)\n" + rows.join("\n") + "\n");
+' "$OUT/ctrl/wild.csv"
+BENCH=tests/models/muscle_bench.xml
+FLAGS_DIR="$OUT/flags"
+mkdir -p "$FLAGS_DIR"
+sed 's|<flag contact="disable"/>|<flag contact="disable" actuation="disable"/>|' "$BENCH" > "$FLAGS_DIR/muscle_bench__actuation_off.xml"
+sed 's|<muscle name="m1" joint="h1"|<muscle name="m1" joint="h1" ctrlrange="0 0.5"|' "$BENCH" > "$FLAGS_DIR/muscle_bench__clampctrl_on.xml"
+sed -e 's|<flag contact="disable"/>|<flag contact="disable" clampctrl="disable"/>|' \
+    -e 's|<muscle name="m1" joint="h1"|<muscle name="m1" joint="h1" ctrlrange="0 0.5"|' "$BENCH" \
+    > "$FLAGS_DIR/muscle_bench__clampctrl_off.xml"
+for model in "$FLAGS_DIR"/*.xml; do
+  ! cmp -s "$model" "$BENCH" || { echo "$model: sed changed nothing" >&2; exit 1; }
+  golden="$OUT/goldens/$(basename "$model" .xml).jsonl"
+  echo "rollout $model"
+  node "$ORACLE/rollout.mjs" "$model" --ctrl "$OUT/ctrl/wild.csv" --steps 300 --every "$EVERY" --out "$golden"
+  echo "$model $golden 300 - $OUT/ctrl/wild.csv $TOL" >> "$CASES.tmp"
+done
+
 mv "$CASES.tmp" "$CASES"
 echo "done: $(wc -l < "$CASES") cases"
