@@ -161,6 +161,10 @@ TEST(CompilerConformance, Radian) { CheckModel("radian", Local("radian.xml")); }
 TEST(CompilerConformance, Actuators) { CheckModel("actuators", Local("actuators.xml")); }
 TEST(CompilerConformance, Tendons) { CheckModel("tendons", Local("tendons.xml")); }
 TEST(CompilerConformance, Keyframes) { CheckModel("keyframes", Local("keyframes.xml")); }
+TEST(CompilerConformance, RefsiteDampratio) {
+  CheckModel("refsite_dampratio", Local("refsite_dampratio.xml"));
+}
+TEST(CompilerConformance, Muscles) { CheckModel("muscles", Local("muscles.xml")); }
 
 }  // namespace
 }  // namespace simlab

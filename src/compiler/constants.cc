@@ -188,6 +188,58 @@ double JointTransmission(const Model& m, int i, Vector* moment) {
   }
 }
 
+// The last dof shared by the dof chains of two bodies, or -1.
+int CommonDof(const Kinematics& k, const Model& m, int b0, int b1) {
+  int d0 = k.lastdof[b0], d1 = k.lastdof[b1];
+  while (d0 >= 0 && d1 >= 0 && d0 != d1) {
+    if (d0 < d1) {
+      d1 = m.dof_parentid[d1];
+    } else {
+      d0 = m.dof_parentid[d0];
+    }
+  }
+  return d0 >= 0 && d0 == d1 ? d0 : -1;
+}
+
+// Site transmission relative to a reference site (as the engine's, transmission.cc):
+// position and rotation vector of the site in the refsite frame.
+double RefSiteTransmission(const Model& m, const Kinematics& k, int i, Vector* moment) {
+  int s = m.actuator_trnid[2 * i], ref = m.actuator_trnid[2 * i + 1];
+  int bs = m.site_bodyid[s], br = m.site_bodyid[ref];
+  const double* gear = &m.actuator_gear[6 * i];
+  double pos[3], mat[9], rpos[3], rmat[9];
+  SitePose(m, k, s, pos, mat);
+  SitePose(m, k, ref, rpos, rmat);
+  Matrix jacp, jacr, refp, refr;
+  Jacobian(m, k, bs, pos, &jacp, &jacr);
+  Jacobian(m, k, br, rpos, &refp, &refr);
+  jacp -= refp;
+  jacr -= refr;
+  for (int d = CommonDof(k, m, bs, br); d >= 0; d = m.dof_parentid[d]) {
+    jacp.col(d).setZero();
+    jacr.col(d).setZero();
+  }
+  double length = 0, dif[3], local[3], force[3], torque[3], quat[4], rquat[4], vec[3];
+  math::Sub3(dif, pos, rpos);
+  math::MulMatTVec3(local, rmat, dif);
+  math::MulMatVec3(force, rmat, gear);
+  math::MulMatVec3(torque, rmat, gear + 3);
+  // Orientations composed as MuJoCo does (site_quat first), then their difference.
+  math::MulQuat(quat, &m.site_quat[4 * s], &k.xquat[4 * bs]);
+  math::MulQuat(rquat, &m.site_quat[4 * ref], &k.xquat[4 * br]);
+  math::SubQuat(vec, quat, rquat);
+  moment->setZero(m.nv);
+  if (gear[0] != 0 || gear[1] != 0 || gear[2] != 0) {
+    length += math::Dot3(local, gear);
+    *moment += jacp.transpose() * Eigen::Map<Eigen::Vector3d>(force);
+  }
+  if (gear[3] != 0 || gear[4] != 0 || gear[5] != 0) {
+    length += math::Dot3(vec, gear + 3);
+    *moment += jacr.transpose() * Eigen::Map<Eigen::Vector3d>(torque);
+  }
+  return length;
+}
+
 // Site transmission without a reference site: the gear is a wrench in the site frame.
 void SiteTransmission(const Model& m, const Kinematics& k, int i, Vector* moment) {
   int s = m.actuator_trnid[2 * i];
@@ -249,7 +301,10 @@ double Transmission(const Model& m, const Kinematics& k, int i, Vector* moment) 
       *moment = m.actuator_gear[6 * i] * jac;
       return length * m.actuator_gear[6 * i];
     }
-    case kTrnSite: SiteTransmission(m, k, i, moment); return 0;
+    case kTrnSite:
+      if (m.actuator_trnid[2 * i + 1] >= 0) return RefSiteTransmission(m, k, i, moment);
+      SiteTransmission(m, k, i, moment);
+      return 0;
     case kTrnSliderCrank: return SliderCrank(m, k, i, moment);
     default: return 0;  // body transmission: no contacts at compile time
   }
