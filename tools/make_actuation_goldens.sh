@@ -11,9 +11,9 @@
 #      fluid forces, limit constraints, gravity compensation) into
 #      tests/conformance/actuation/models, unchanged (their Apache-2.0 headers kept).
 #      Models that need one of those features only incidentally are derived with sed into
-#      <name>__<variant>.xml, with a comment saying what was removed (DERIVED below).
-#      Left out: actearly (spheres rest on the floor: contacts), activation (spatial tendon,
-#      contacts), tendon_dampratio (equality constraints), orientation (<orientation>
+#      <name>__<variant>.xml, with a comment saying what was removed (the derive calls below).
+#      Left out: activation (spatial tendon, muscle lengthrange by simulation, contacts),
+#      tendon_dampratio (equality constraints), orientation (<orientation>
 #      actuators: newer than MuJoCo 3.5.1, the oracle cannot load it).
 #   2. Adds tests/models/{muscle_bench,slider_crank_bench}.xml in each integrator.
 #   3. For each model: node ctrlgen.mjs MODEL --steps 500 > ctrl/<name>.csv, then
@@ -69,6 +69,8 @@ derive joint_force_clamp nosensor "sensors removed (they come later)" \
   -e '/<sensor>/,/<\/sensor>/d'
 derive tendon_force_clamp fixed "spatial tendons, their motors and the sensors removed (they come later)" \
   -e '/<spatial/,/<\/spatial>/d' -e '/<motor tendon="spatial/d' -e '/<sensor>/,/<\/sensor>/d'
+derive actearly smooth "contacts disabled (the spheres rest on the floor) and density removed (fluid forces); they come later" \
+  -e 's|<option density="1000" timestep="0.05" integrator="implicitfast" />|<option timestep="0.05" integrator="implicitfast"><flag contact="disable"/></option>|'
 derive actuator_group_disable nocontact "contacts disabled and joint ranges removed (contacts and limits come later)" \
   -e 's|<option actuatorgroupdisable="1 2" cone="elliptic"/>|<option actuatorgroupdisable="1 2" cone="elliptic"><flag contact="disable"/></option>|' \
   -e 's| range="[^"]*"||'
