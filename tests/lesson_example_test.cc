@@ -1,4 +1,4 @@
-// The lesson's example program on our engine: sections 1-3 of examples/l2_3_actuators.cc
+// The lesson's example program on our engine: sections 1-3 of examples/l2_3_actuators.cpp
 // print the lines the lesson prints (lines 54-68 of the lesson's text), digit for digit.
 //
 // The lesson's text has its runs of spaces collapsed to one, so lines are compared with
@@ -12,7 +12,7 @@
 #include <vector>
 
 #define SIMLAB_L2_3_NO_MAIN
-#include "../examples/l2_3_actuators.cc"
+#include "../examples/l2_3_actuators.cpp"
 
 namespace {
 
