@@ -17,16 +17,6 @@ namespace simlab::compiler {
 
 namespace {
 
-// The position stage of the engine for the model's current qpos.
-void PositionStage(const Model& m, Data& d) {
-  Kinematics(m, d);
-  ComPos(m, d);
-  Tendon(m, d);
-  MakeInertia(m, d);
-  FactorInertia(m, d);
-  Transmission(m, d);
-}
-
 // Tendon spring lengths left at -1 ("use the length at qpos_spring").
 void TendonSpringLengths(Model* m, const Data& at_qpos0) {
   Data d = at_qpos0;
@@ -75,7 +65,7 @@ void ComputeConstants(Model* m) {
 
   // Tendon lengths at qpos0 and spring lengths at qpos_spring.
   Data d = MakeData(*m);
-  PositionStage(*m, d);
+  FwdPosition(*m, d);
   for (int t = 0; t < m->ntendon; t++) m->tendon_length0[t] = d.ten_length[t];
   TendonSpringLengths(m, d);
 

@@ -12,6 +12,9 @@ namespace simlab {
 
 // ------------------------------------------------------------ position stage
 
+// The whole position stage, in order (forward.cc).
+void FwdPosition(const Model& m, Data& d);
+
 // xpos, xquat, xmat, xipos, ximat, xanchor, xaxis, geom and site poses (kinematics.cc).
 void Kinematics(const Model& m, Data& d);
 // subtree_com, cinert, cdof (kinematics.cc).

@@ -28,14 +28,6 @@ const char* const kWarningText[kNumWarnings] = {
 
 bool IsBad(double x) { return std::isnan(x) || x > kMaxVal || x < -kMaxVal; }
 
-void FwdPosition(const Model& m, Data& d) {
-  Kinematics(m, d);
-  ComPos(m, d);
-  Tendon(m, d);
-  MakeInertia(m, d);
-  FactorInertia(m, d);
-  Transmission(m, d);
-}
 
 void FwdVelocity(const Model& m, Data& d) {
   // Tendon and actuator velocities: their Jacobians times qvel.
@@ -93,6 +85,15 @@ void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
 }
 
 }  // namespace
+
+void FwdPosition(const Model& m, Data& d) {
+  Kinematics(m, d);
+  ComPos(m, d);
+  Tendon(m, d);
+  MakeInertia(m, d);
+  FactorInertia(m, d);
+  Transmission(m, d);
+}
 
 void RaiseWarning(Data& d, Warning w, int info) {
   if (d.warning[w].number == 0) {
