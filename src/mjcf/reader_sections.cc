@@ -120,7 +120,7 @@ void Reader::Option(const XmlElement& e) {
     o.disableactuator |= (1 << groups[i]);
   }
 
-  // Fluid forces are not implemented: refuse models that would need them.
+  // The engine has no fluid forces (density, viscosity, wind): refuse models that need them.
   if (o.density != 0 || o.viscosity != 0 || o.wind[0] != 0 || o.wind[1] != 0 ||
       o.wind[2] != 0) {
     NotSupported(e, "fluid forces (nonzero density, viscosity or wind)");
