@@ -88,25 +88,33 @@ bool ParseInt(const std::string& token, int* out) {
 
 }  // namespace
 
-int XmlElement::Numbers(const char* name, double* out, int n, bool exact) const {
+// Reads up to n (exactly n if `exact`) values of one kind; checks the count and every
+// token before writing anything. `kind` names the value in messages.
+template <typename T>
+int XmlElement::List(const char* name, T* out, int n, bool exact, const char* kind,
+                     bool (*parse)(const std::string&, T*)) const {
   if (!Has(name)) return 0;
   std::vector<std::string> tokens = Tokens(name);
-  // Check the count, then every token, before writing anything.
   int count = static_cast<int>(tokens.size());
   if (count == 0) Fail("attribute '" + std::string(name) + "' is empty");
   if (count > n || (exact && count < n)) {
     Fail("attribute '" + std::string(name) + "' expects " + std::to_string(n) +
-         (exact ? "" : " or fewer") + " number" + (n > 1 ? "s" : "") + ", got " +
+         (exact ? "" : " or fewer") + " " + kind + (n > 1 ? "s" : "") + ", got " +
          std::to_string(count));
   }
-  std::vector<double> values(count);
+  std::vector<T> values(count);
   for (int i = 0; i < count; i++) {
-    if (!ParseDouble(tokens[i], &values[i])) {
-      Fail("attribute '" + std::string(name) + "': '" + tokens[i] + "' is not a number");
+    if (!parse(tokens[i], &values[i])) {
+      Fail("attribute '" + std::string(name) + "': '" + tokens[i] + "' is not " +
+           (kind[0] == 'i' ? "an " : "a ") + kind);
     }
   }
   std::copy(values.begin(), values.end(), out);
   return count;
+}
+
+int XmlElement::Numbers(const char* name, double* out, int n, bool exact) const {
+  return List(name, out, n, exact, "number", ParseDouble);
 }
 
 void XmlElement::RequiredNumber(const char* name, double* out) const {
@@ -127,23 +135,7 @@ std::optional<std::vector<double>> XmlElement::Vector(const char* name) const {
 }
 
 int XmlElement::Ints(const char* name, int* out, int n, bool exact) const {
-  if (!Has(name)) return 0;
-  std::vector<std::string> tokens = Tokens(name);
-  int count = static_cast<int>(tokens.size());
-  if (count == 0) Fail("attribute '" + std::string(name) + "' is empty");
-  if (count > n || (exact && count < n)) {
-    Fail("attribute '" + std::string(name) + "' expects " + std::to_string(n) +
-         (exact ? "" : " or fewer") + " integer" + (n > 1 ? "s" : "") + ", got " +
-         std::to_string(count));
-  }
-  std::vector<int> values(count);
-  for (int i = 0; i < count; i++) {
-    if (!ParseInt(tokens[i], &values[i])) {
-      Fail("attribute '" + std::string(name) + "': '" + tokens[i] + "' is not an integer");
-    }
-  }
-  std::copy(values.begin(), values.end(), out);
-  return count;
+  return List(name, out, n, exact, "integer", ParseInt);
 }
 
 bool XmlElement::Int(const char* name, int* out) const { return Ints(name, out, 1) == 1; }

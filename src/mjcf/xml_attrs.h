@@ -73,6 +73,10 @@ class XmlElement {
 
  private:
   std::vector<std::string> Tokens(const char* name) const;
+  // The shared reader behind Numbers and Ints.
+  template <typename T>
+  int List(const char* name, T* out, int n, bool exact, const char* kind,
+           bool (*parse)(const std::string&, T*)) const;
 
   pugi::xml_node node_;
   Source src_;
