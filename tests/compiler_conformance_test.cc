@@ -118,6 +118,7 @@ void CheckModel(const std::string& name, const std::string& path) {
   EXPECT_EQ(m.nkey, sizes["nkey"].get<int>());
   EXPECT_EQ(m.nM, sizes["nM"].get<int>());
   EXPECT_EQ(m.nmocap, sizes["nmocap"].get<int>());
+  if (sizes.contains("neq")) EXPECT_EQ(m.neq, sizes["neq"].get<int>());
   if (::testing::Test::HasFailure()) return;
 
   // Every array we have and MuJoCo dumped.
@@ -165,6 +166,7 @@ TEST(CompilerConformance, RefsiteDampratio) {
   CheckModel("refsite_dampratio", Local("refsite_dampratio.xml"));
 }
 TEST(CompilerConformance, Muscles) { CheckModel("muscles", Local("muscles.xml")); }
+TEST(CompilerConformance, Equality) { CheckModel("equality", Local("equality.xml")); }
 
 }  // namespace
 }  // namespace simlab

@@ -121,7 +121,8 @@ TEST(MjcfErrors, MissingFile) {
 TEST(MjcfErrors, NotSupportedYet) {
   ExpectError("<mujoco>\n<sensor>\n<jointpos joint=\"j\"/>\n</sensor>\n</mujoco>",
               {"bad.xml:2:", "sensors is not supported yet"});
-  ExpectError("<mujoco>\n<equality/>\n</mujoco>", {"bad.xml:2:", "<equality> is not supported yet"});
+  ExpectError("<mujoco>\n<equality>\n<flex flex=\"f\"/>\n</equality>\n</mujoco>",
+              {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
   ExpectError("<mujoco>\n<asset>\n<mesh name=\"m\" file=\"m.stl\"/>\n</asset>\n</mujoco>",
               {"bad.xml:3:", "<mesh name=\"m\">", "not supported yet"});
   ExpectError("<mujoco>\n<option density=\"1.2\"/>\n</mujoco>", {"bad.xml:2:", "fluid", "not supported yet"});
@@ -132,6 +133,46 @@ TEST(MjcfErrors, NotSupportedYet) {
   ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"
               "<actuator>\n<muscle joint=\"j\"/>\n</actuator>\n</mujoco>",
               {"bad.xml:6:", "<muscle>", "lengthrange by simulation is not supported yet"});
+}
+
+// Equality constraints: lookups, the body/site forms, joint types, names (line 8 is
+// the constraint).
+TEST(MjcfErrors, Equality) {
+  const std::string head =
+      "<mujoco>\n<worldbody>\n"
+      "<body name=\"a\"><joint name=\"j\"/><joint name=\"s\" type=\"slide\"/><geom size=\".1\"/>"
+      "<site name=\"sa\"/></body>\n"
+      "<body name=\"b\"><joint name=\"ball\" type=\"ball\"/><geom size=\".1\"/></body>\n"
+      "</worldbody>\n<tendon><fixed name=\"t\"><joint joint=\"j\" coef=\"1\"/></fixed></tendon>\n"
+      "<equality>\n";
+  auto expect = [&](const std::string& element, const std::vector<std::string>& pieces) {
+    ExpectError(head + element + "\n</equality>\n</mujoco>", pieces);
+  };
+  expect("<connect body1=\"nope\" anchor=\"0 0 0\"/>", {"bad.xml:8:", "<connect>", "unknown body 'nope'"});
+  expect("<weld body1=\"a\" body2=\"nope\"/>", {"bad.xml:8:", "<weld>", "unknown body 'nope'"});
+  expect("<connect name=\"c\" site1=\"sa\" site2=\"nope\"/>",
+         {"bad.xml:8:", "<connect name=\"c\">", "unknown site 'nope'"});
+  expect("<connect body1=\"a\" site2=\"sa\" anchor=\"0 0 0\"/>",
+         {"bad.xml:8:", "<connect>", "body and site attributes cannot be mixed"});
+  expect("<weld site1=\"sa\" relpose=\"0 0 0 1 0 0 0\"/>", {"bad.xml:8:", "<weld>", "cannot be mixed"});
+  expect("<connect body1=\"a\"/>", {"bad.xml:8:", "<connect>", "a connect needs body1 and anchor"});
+  expect("<connect site1=\"sa\"/>", {"bad.xml:8:", "a connect needs body1 and anchor"});
+  expect("<weld site2=\"sa\"/>", {"bad.xml:8:", "<weld>", "a weld needs body1"});
+  expect("<connect anchor=\"0 0\" body1=\"a\"/>", {"bad.xml:8:", "'anchor'", "expects 3"});
+  expect("<joint joint2=\"j\"/>", {"bad.xml:8:", "<joint>", "missing required attribute 'joint1'"});
+  expect("<joint joint1=\"j\" joint2=\"ball\"/>", {"bad.xml:8:", "joint 'ball' is not a hinge or a slide"});
+  expect("<joint joint1=\"j\" joint2=\"j\"/>", {"bad.xml:8:", "joint 'j' is used twice"});
+  expect("<weld body1=\"world\"/>", {"bad.xml:8:", "body 'world' is used twice"});
+  expect("<tendon tendon1=\"nope\"/>", {"bad.xml:8:", "<tendon>", "unknown tendon 'nope'"});
+  expect("<joint joint1=\"j\" anchor=\"0 0 0\"/>", {"bad.xml:8:", "unknown attribute 'anchor'"});
+  expect("<joint joint1=\"j\" polycoef=\"1 2 3 4 5 6\"/>", {"bad.xml:8:", "'polycoef'"});
+  expect("<joint joint1=\"j\" class=\"nope\"/>", {"bad.xml:8:", "unknown default class 'nope'"});
+  expect("<distance/>", {"bad.xml:8:", "removed"});
+  expect("<gear/>", {"bad.xml:8:", "unknown element <gear> in <equality>"});
+  expect("<joint name=\"x\" joint1=\"j\"/>\n<joint name=\"x\" joint1=\"s\"/>",
+         {"bad.xml:9:", "repeated equality name 'x'"});
+  ExpectError("<mujoco>\n<default>\n<equality body1=\"a\"/>\n</default>\n</mujoco>",
+              {"bad.xml:3:", "unknown attribute 'body1'"});
 }
 
 TEST(MjcfErrors, MuscleParameters) {

@@ -17,7 +17,7 @@ import { fileURLToPath, pathToFileURL } from 'node:url';
 
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
-  'nkey', 'nM', 'nmocap'];
+  'nkey', 'nM', 'nmocap', 'neq'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -48,6 +48,8 @@ const ARRAYS = [
   'actuator_forcerange', 'actuator_actrange', 'actuator_gear', 'actuator_cranklength',
   'actuator_acc0', 'actuator_length0', 'actuator_lengthrange',
   'key_time', 'key_qpos', 'key_qvel', 'key_act', 'key_mpos', 'key_mquat', 'key_ctrl',
+  'eq_type', 'eq_obj1id', 'eq_obj2id', 'eq_objtype', 'eq_active0', 'eq_solref', 'eq_solimp',
+  'eq_data',
 ];
 const OPTIONS = ['timestep', 'impratio', 'tolerance', 'ls_tolerance', 'gravity', 'wind',
   'magnetic', 'o_margin', 'o_solref', 'o_solimp', 'o_friction', 'integrator', 'cone',

@@ -36,6 +36,7 @@ struct WarningStat {
   X(double, xfrc_applied, nbody, 6)             \
   X(double, mocap_pos, nmocap, 3)               \
   X(double, mocap_quat, nmocap, 4)              \
+  X(int, eq_active, neq, 1)                     \
   /* accelerations */                           \
   X(double, qacc, nv, 1)                        \
   X(double, act_dot, na, 1)                     \

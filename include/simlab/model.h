@@ -66,6 +66,9 @@ enum DynType : int {
 enum GainType : int { kGainFixed = 0, kGainAffine = 1, kGainMuscle = 2, kGainUser = 3 };
 enum BiasType : int { kBiasNone = 0, kBiasAffine = 1, kBiasMuscle = 2, kBiasUser = 3 };
 
+// Equality constraint types (mjtEq).
+enum EqType : int { kEqConnect = 0, kEqWeld = 1, kEqJoint = 2, kEqTendon = 3 };
+
 // Object types (mjtObj), used by name lookup.
 enum ObjType : int {
   kObjUnknown = 0, kObjBody = 1, kObjXBody = 2, kObjJoint = 3, kObjDof = 4, kObjGeom = 5,
@@ -81,6 +84,9 @@ inline constexpr int kNImp = 5;
 inline constexpr int kNDyn = 10;
 inline constexpr int kNGain = 10;
 inline constexpr int kNBias = 10;
+// Numbers per row of eq_data (mjNEQDATA): connect anchors (0-5), weld anchors, relative
+// quaternion and torquescale (0-10), joint/tendon polynomial coefficients (0-4).
+inline constexpr int kNEqData = 11;
 
 // Smallest value treated as nonzero (mjMINVAL) and the largest acceptable value in
 // state and accelerations before a simulation is declared divergent (mjMAXVAL).
@@ -210,6 +216,15 @@ struct Option {
   X(double, site_pos, nsite, 3)                    \
   X(double, site_quat, nsite, 4)                   \
   X(double, site_rgba, nsite, 4)                   \
+  /* equality constraints */                       \
+  X(int, eq_type, neq, 1)                          \
+  X(int, eq_obj1id, neq, 1)                        \
+  X(int, eq_obj2id, neq, 1)                        \
+  X(int, eq_objtype, neq, 1)                       \
+  X(int, eq_active0, neq, 1)                       \
+  X(double, eq_solref, neq, kNRef)                 \
+  X(double, eq_solimp, neq, kNImp)                 \
+  X(double, eq_data, neq, kNEqData)                \
   /* fixed and spatial tendons */                  \
   X(int, tendon_adr, ntendon, 1)                   \
   X(int, tendon_num, ntendon, 1)                   \
@@ -270,6 +285,7 @@ struct Option {
   X(jnt, njnt)                \
   X(geom, ngeom)              \
   X(site, nsite)              \
+  X(eq, neq)                  \
   X(tendon, ntendon)          \
   X(actuator, nu)             \
   X(sensor, nsensor)          \
@@ -287,6 +303,7 @@ struct Option {
   X(nsite)       /* sites */                                               \
   X(ntendon)     /* tendons */                                             \
   X(nwrap)       /* tendon path elements */                                \
+  X(neq)         /* equality constraints */                                \
   X(nsensor)     /* sensors */                                             \
   X(nsensordata) /* numbers of sensor output */                            \
   X(nkey)        /* keyframes */                                           \

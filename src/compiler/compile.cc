@@ -21,6 +21,7 @@ void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
   m->na = 0;
   for (const mjcf::ActuatorSpec& a : spec.actuators) m->na += ActuatorActDim(a);
   m->nkey = static_cast<int>(spec.keys.size());
+  m->neq = static_cast<int>(spec.equalities.size());
   m->nsensor = m->nsensordata = 0;
 }
 
@@ -41,12 +42,14 @@ Model Compile(const mjcf::ModelSpec& spec) {
   m.Allocate();
   LayoutTree(state, &m);
   CompileTendons(spec, state, &m);
+  CompileEqualities(spec, &m);
   CompileActuators(spec, state, &m);
   CompileKeyframes(spec, state, &m);
 
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
   ComputeConstants(&m);
+  EqualityConstants(&m);
   ComputeLengthRanges(spec, &m);
   return m;
 }

@@ -5,6 +5,7 @@
 //   inertia.cc   geom volumes and inertias, body inertia from geoms, mass bounds
 //   tendon.cc    fixed tendons
 //   actuator.cc  actuators: transmission targets, limits, activation layout
+//   equality.cc  equality constraints: objects, parameters, eq_data at qpos0
 //   keyframe.cc  keyframes, padded as MuJoCo does
 //   option.cc    physics options
 //   constants.cc quantities computed at qpos0 (subtree mass, lengths, acc0)
@@ -91,6 +92,9 @@ double GeomRBound(const GeomState& g);
 void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
+void CompileEqualities(const mjcf::ModelSpec& spec, Model* m);
+// eq_data computed from the body poses at qpos0 (connect and weld between bodies).
+void EqualityConstants(Model* m);
 int ActuatorActDim(const mjcf::ActuatorSpec& a);
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);

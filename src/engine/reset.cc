@@ -34,6 +34,8 @@ void ResetData(const Model& m, Data& d) {
   // ...except the configuration and the mocap poses, which come from the model.
   d.qpos = m.qpos0;
   ResetMocap(m, d);
+  // Equality constraints start as the model declares them (active or not).
+  d.eq_active = m.eq_active0;
   // Scratch memory for the stages: enough for the largest (the RNE derivative).
   size_t block = static_cast<size_t>(6) * m.nv;
   size_t need = 3 * m.nbody * block + m.nv * block + block + 16 * (m.nq + m.nv + m.na + m.nbody + m.nu) + 64;

@@ -12,7 +12,7 @@ namespace {
 
 // Top-level sections that MuJoCo accepts but simlab does not implement yet.
 bool IsUnsupportedSection(const std::string& tag) {
-  for (const char* name : {"extension", "deformable", "equality", "include"}) {
+  for (const char* name : {"extension", "deformable", "include"}) {
     if (tag == name) return true;
   }
   return false;
@@ -75,7 +75,7 @@ void Reader::Root(pugi::xml_node root) {
   static const char* kSections[] = {"compiler", "option",  "size",     "visual",
                                     "statistic", "default", "custom",   "asset",
                                     "contact",  "tendon",  "actuator", "keyframe",
-                                    "worldbody", "sensor"};
+                                    "worldbody", "sensor", "equality"};
   for (pugi::xml_node child : root.children()) {
     if (child.type() != pugi::node_element) continue;
     XmlElement e = Element(child);
@@ -99,6 +99,7 @@ void Reader::Root(pugi::xml_node root) {
   each("custom", [&](const XmlElement& e) { Custom(e); });
   each("asset", [&](const XmlElement& e) { Asset(e); });
   each("contact", [&](const XmlElement& e) { Contact(e); });
+  each("equality", [&](const XmlElement& e) { Equality(e); });
   each("tendon", [&](const XmlElement& e) { Tendon(e); });
   each("actuator", [&](const XmlElement& e) { Actuator(e); });
   each("keyframe", [&](const XmlElement& e) { Keyframe(e); });
@@ -155,7 +156,9 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
       Camera(c, true);
     } else if (tag == "light") {
       Light(c, true);
-    } else if (tag == "mesh" || tag == "material" || tag == "pair" || tag == "equality") {
+    } else if (tag == "equality") {
+      ReadEquality(c, &def->equality, true);
+    } else if (tag == "mesh" || tag == "material" || tag == "pair") {
       // Settings for features that do not change the compiled fields we produce.
       continue;
     } else if (tag == "general" || tag == "motor" || tag == "position" ||

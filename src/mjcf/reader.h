@@ -45,6 +45,9 @@ class Reader {
   void Tendon(const XmlElement& e);
   void Actuator(const XmlElement& e);
   void Keyframe(const XmlElement& e);
+  // equality constraints (reader_equality.cc)
+  void Equality(const XmlElement& e);
+  void ReadEquality(const XmlElement& e, EqualitySpec* eq, bool in_default) const;
   void Camera(const XmlElement& e, bool in_default) const;
   void Light(const XmlElement& e, bool in_default) const;
 

@@ -205,6 +205,20 @@ struct ActuatorSpec {
   double delay = 0;
 };
 
+// An equality constraint (MuJoCo's mjsEquality). `data` starts at MuJoCo's shared
+// default, which is why a weld's anchor slot reads 0 1 0 and torquescale is 1.
+struct EqualitySpec {
+  Source src;
+  int type = kEqConnect;
+  int objtype = kObjUnknown;  // body or site, for connect and weld
+  std::string name1;
+  std::string name2;          // empty: the world body, or no second joint/tendon
+  bool active = true;
+  std::array<double, kNRef> solref = {0.02, 1};
+  std::array<double, kNImp> solimp = {0.9, 0.95, 0.001, 0.5, 2};
+  std::array<double, kNEqData> data = {0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+};
+
 struct KeySpec {
   Source src;
   double time = 0;
@@ -220,6 +234,7 @@ struct DefaultClass {
   SiteSpec site;
   TendonSpec tendon;
   ActuatorSpec actuator;
+  EqualitySpec equality;
 };
 
 // <compiler> settings that affect the compiled model.
@@ -256,6 +271,7 @@ struct ModelSpec {
   BodySpec world;
   std::vector<TendonSpec> tendons;
   std::vector<ActuatorSpec> actuators;
+  std::vector<EqualitySpec> equalities;
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
 };
