@@ -33,11 +33,13 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.model; }
 
 std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE_DIR) + "/" + relative; }
 
-// The cases of the smooth-dynamics list (tools/make_goldens.sh) and the actuator list
-// (tools/make_actuation_goldens.sh).
+// The cases of the smooth-dynamics list (tools/make_goldens.sh), the actuator list
+// (tools/make_actuation_goldens.sh) and the spatial tendon list
+// (tests/conformance/tendon/make_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
-  for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt"}) {
+  for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
+                           "tests/conformance/tendon_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {

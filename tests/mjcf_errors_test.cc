@@ -127,7 +127,6 @@ TEST(MjcfErrors, NotSupportedYet) {
               {"bad.xml:3:", "<mesh name=\"m\">", "not supported yet"});
   ExpectError("<mujoco>\n<option density=\"1.2\"/>\n</mujoco>", {"bad.xml:2:", "fluid", "not supported yet"});
   ExpectError("<mujoco>\n<compiler fusestatic=\"true\"/>\n</mujoco>", {"bad.xml:2:", "fusestatic", "not supported yet"});
-  ExpectError("<mujoco>\n<tendon>\n<spatial/>\n</tendon>\n</mujoco>", {"bad.xml:3:", "spatial tendons is not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body>\n<composite/>\n</body>\n</worldbody>\n</mujoco>",
               {"bad.xml:4:", "<composite> is not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"

@@ -19,6 +19,18 @@ enum Warning : int {
   kWarnBadQvel, kWarnBadQacc, kWarnBadCtrl, kNumWarnings
 };
 
+// Kinds of constraint row (mjtConstraint) and states of a row in the solution
+// (mjtConstraintState), with MuJoCo's values.
+enum ConstraintType : int {
+  kCnstrEquality = 0, kCnstrFrictionDof = 1, kCnstrFrictionTendon = 2, kCnstrLimitJoint = 3,
+  kCnstrLimitTendon = 4, kCnstrContactFrictionless = 5, kCnstrContactPyramidal = 6,
+  kCnstrContactElliptic = 7
+};
+enum ConstraintState : int {
+  kStateSatisfied = 0, kStateQuadratic = 1, kStateLinearNeg = 2, kStateLinearPos = 3,
+  kStateCone = 4
+};
+
 struct WarningStat {
   int lastinfo = 0;  // info from the last time the warning was raised
   int number = 0;    // how many times it was raised
@@ -90,18 +102,46 @@ struct WarningStat {
   X(double, qH, nM, 1)                          \
   X(double, qHDiagInv, nv, 1)
 
+// Constraint rows: X(type, name, cols), nefc rows each (cols = 0 means nv columns).
+#define SIMLAB_DATA_EFC_FIELDS(X)                                                   \
+  X(int, efc_type, 1)           /* mjtConstraint: equality, friction, limit, contact */ \
+  X(int, efc_id, 1)             /* id of the element that made the row */             \
+  X(double, efc_J, 0)           /* constraint Jacobian, dense nefc x nv */            \
+  X(double, efc_pos, 1)         /* position (distance or error) */                    \
+  X(double, efc_margin, 1)      /* inclusion margin */                                \
+  X(double, efc_frictionloss, 1)/* friction loss of friction rows */                 \
+  X(double, efc_diagApprox, 1)  /* approximation of diag(J M^-1 J^T) */              \
+  X(double, efc_KBIP, 4)        /* stiffness, damping, impedance, impedance slope */  \
+  X(double, efc_D, 1)           /* constraint mass 1/R */                             \
+  X(double, efc_R, 1)           /* regularizer */                                     \
+  X(double, efc_vel, 1)         /* J qvel */                                          \
+  X(double, efc_aref, 1)        /* reference acceleration */                          \
+  X(double, efc_b, 1)           /* J qacc_smooth - aref */                            \
+  X(double, efc_force, 1)       /* constraint force in constraint space */            \
+  X(int, efc_state, 1)          /* mjtConstraintState of the solution */
+
 struct Data {
   double time = 0;
   double energy[2] = {0, 0};  // potential, kinetic (when the energy flag is enabled)
   int ncon = 0;               // contacts
   int nefc = 0;               // constraint rows
-  int solver_niter = 0;       // iterations of the last constraint solve
+  int solver_niter = 0;       // iterations of the last constraint solve (all islands)
+  int ne = 0;                 // equality rows (first in the efc arrays)
+  int nf = 0;                 // friction rows (after the equalities)
+  int nl = 0;                 // limit rows (after the friction rows; contacts follow)
+  int nisland = 0;            // constraint islands of the last solve
   WarningStat warning[kNumWarnings];
   int nreset = 0;             // resets after a divergence (bad qpos, qvel or qacc)
 
 #define SIMLAB_X(type, name, rows, cols) std::vector<type> name;
   SIMLAB_DATA_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+
+  // Constraint rows, nefc of them, in MuJoCo's efc_* layout (resized by the position stage).
+#define SIMLAB_X(type, name, cols) std::vector<type> name;
+  SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
+#undef SIMLAB_X
+  std::vector<double> efc_AR;  // nefc x nefc: J M^-1 J^T + diag(R), for the PGS solver
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData.
   std::vector<double> stack;

@@ -88,6 +88,12 @@ inline constexpr int kNBias = 10;
 // quaternion and torquescale (0-10), joint/tendon polynomial coefficients (0-4).
 inline constexpr int kNEqData = 11;
 
+// Tendon path element types (mjtWrap).
+enum WrapType : int {
+  kWrapNone = 0, kWrapJoint = 1, kWrapPulley = 2, kWrapSite = 3, kWrapSphere = 4,
+  kWrapCylinder = 5
+};
+
 // Smallest value treated as nonzero (mjMINVAL) and the largest acceptable value in
 // state and accelerations before a simulation is declared divergent (mjMAXVAL).
 inline constexpr double kMinVal = 1e-15;
@@ -125,6 +131,15 @@ struct Option {
   int disableactuator = 0;
 };
 
+// Model statistics (mjStatistic): meaninertia scales the constraint solver's tolerance.
+struct Statistic {
+  double meaninertia = 1;  // mean diagonal of M at qpos0, unless the model sets it
+  double meanmass = 1;
+  double meansize = 1;
+  double extent = 1;
+  std::array<double, 3> center = {0, 0, 0};
+};
+
 // ---------------------------------------------------------------- the field table
 //
 // X(type, name, rows, cols): an array of rows*cols elements, rows being a size member.
@@ -154,6 +169,8 @@ struct Option {
   X(double, body_subtreemass, nbody, 1)            \
   X(double, body_inertia, nbody, 3)                \
   X(double, body_gravcomp, nbody, 1)               \
+  X(int, body_simple, nbody, 1)                    \
+  X(double, body_invweight0, nbody, 2)             \
   /* joints */                                     \
   X(int, jnt_type, njnt, 1)                        \
   X(int, jnt_qposadr, njnt, 1)                     \
@@ -182,6 +199,7 @@ struct Option {
   X(double, dof_frictionloss, nv, 1)               \
   X(double, dof_armature, nv, 1)                   \
   X(double, dof_damping, nv, 1)                    \
+  X(double, dof_invweight0, nv, 1)                 \
   /* inertia matrix sparsity: row i of the lower     \
      triangle holds i's ancestor dofs, then i */     \
   X(int, M_rownnz, nv, 1)                          \
@@ -243,6 +261,7 @@ struct Option {
   X(double, tendon_frictionloss, ntendon, 1)       \
   X(double, tendon_lengthspring, ntendon, 2)       \
   X(double, tendon_length0, ntendon, 1)            \
+  X(double, tendon_invweight0, ntendon, 1)         \
   X(int, wrap_type, nwrap, 1)                      \
   X(int, wrap_objid, nwrap, 1)                     \
   X(double, wrap_prm, nwrap, 1)                    \
@@ -330,6 +349,7 @@ struct Model {
 #undef SIMLAB_X
 
   Option opt;
+  Statistic stat;
   std::string model_name;
 
   // arrays, from the table

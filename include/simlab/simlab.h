@@ -44,6 +44,12 @@ void Forward(const Model& m, Data& d);
 // One step of the model's integrator (as mj_step).
 void Step(const Model& m, Data& d);
 
+// Step in two halves, so that inputs can depend on the positions and velocities:
+// Step1 computes everything up to the velocity stage; set ctrl or qfrc_applied; Step2
+// finishes the step (RK4 models integrate with Euler here, as in MuJoCo).
+void Step1(const Model& m, Data& d);
+void Step2(const Model& m, Data& d);
+
 // Id of a named object, or -1 (as mj_name2id).
 int NameToId(const Model& m, ObjType type, const std::string& name);
 

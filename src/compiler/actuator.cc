@@ -1,5 +1,6 @@
 // Actuators: transmission targets, inherited ranges, limits and the activation layout.
 // The force law itself (gain, bias, dynamics parameters) was set by the reader.
+#include <algorithm>
 #include <string>
 
 #include "compiler/compiler.h"
@@ -128,6 +129,39 @@ void CheckMuscle(const mjcf::ActuatorSpec& a) {
   }
 }
 
+// damping and armature (MuJoCo 3.7+): only a joint or tendon target can take them.
+void DampingArmature(const mjcf::ActuatorSpec& a, int i, Model* m) {
+  bool has_damping = a.damping[0] != 0 || a.damping[1] != 0 || a.damping[2] != 0;
+  bool joint_or_tendon =
+      a.trntype == kTrnJoint || a.trntype == kTrnJointInParent || a.trntype == kTrnTendon;
+  if (has_damping && !joint_or_tendon) {
+    ThrowAt(a.src, "damping requires a joint or tendon transmission");
+  }
+  if (a.armature != 0 && !joint_or_tendon) {
+    ThrowAt(a.src, "armature requires a joint or tendon transmission");
+  }
+  m->actuator_damping[i] = a.damping[0];
+  for (int k = 0; k < kNPoly; k++) m->actuator_dampingpoly[kNPoly * i + k] = a.damping[1 + k];
+  m->actuator_armature[i] = a.armature;
+}
+
+// jnt_actuatorid, tendon_actuatorid: the one actuator giving the target damping or
+// armature, -2 when several do (the engine then sums over all of them), else -1.
+void TargetActuatorIds(Model* m) {
+  std::fill(m->jnt_actuatorid.begin(), m->jnt_actuatorid.end(), -1);
+  std::fill(m->tendon_actuatorid.begin(), m->tendon_actuatorid.end(), -1);
+  for (int i = 0; i < m->nu; i++) {
+    bool contributes = m->actuator_damping[i] != 0 || m->actuator_armature[i] != 0;
+    for (int k = 0; k < kNPoly; k++) contributes |= m->actuator_dampingpoly[kNPoly * i + k] != 0;
+    if (!contributes) continue;
+    int* slot = nullptr;
+    int type = m->actuator_trntype[i], target = m->actuator_trnid[2 * i];
+    if (type == kTrnJoint || type == kTrnJointInParent) slot = &m->jnt_actuatorid[target];
+    if (type == kTrnTendon) slot = &m->tendon_actuatorid[target];
+    if (slot) *slot = *slot == -1 ? i : -2;
+  }
+}
+
 }  // namespace
 
 // Activation states per actuator (checked): actdim, else 1 with dynamics.
@@ -176,7 +210,9 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     for (int k = 0; k < kNDyn; k++) m->actuator_dynprm[kNDyn * i + k] = a.dynprm[k];
     for (int k = 0; k < kNGain; k++) m->actuator_gainprm[kNGain * i + k] = a.gainprm[k];
     for (int k = 0; k < kNBias; k++) m->actuator_biasprm[kNBias * i + k] = a.biasprm[k];
+    DampingArmature(a, i, m);
   }
+  TargetActuatorIds(m);
 }
 
 }  // namespace simlab::compiler

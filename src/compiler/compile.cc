@@ -1,4 +1,5 @@
 // The compiler's driver, and the public loading functions.
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -49,8 +50,13 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
   ComputeConstants(&m);
+  ComputeInvWeights(&m);
   EqualityConstants(&m);
   ComputeLengthRanges(spec, &m);
+
+  // Statistics the model gives replace the computed ones (after the length ranges,
+  // which MuJoCo simulates with the computed meaninertia).
+  if (!std::isnan(spec.meaninertia)) m.stat.meaninertia = spec.meaninertia;
   return m;
 }
 

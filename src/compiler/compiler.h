@@ -100,6 +100,8 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void SetTotalMass(double total, Model* m);
 void ComputeConstants(Model* m);
+// body_simple, body/dof/tendon_invweight0 and stat.meaninertia at qpos0 (invweight.cc).
+void ComputeInvWeights(Model* m);
 // actuator_lengthrange where the <compiler><lengthrange> options ask for it (lengthrange.cc).
 void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m);
 

@@ -65,7 +65,7 @@ void ComputeConstants(Model* m) {
 
   // Tendon lengths at qpos0 and spring lengths at qpos_spring.
   Data d = MakeData(*m);
-  FwdPosition(*m, d);
+  FwdPositionSmooth(*m, d);
   for (int t = 0; t < m->ntendon; t++) m->tendon_length0[t] = d.ten_length[t];
   TendonSpringLengths(m, d);
 

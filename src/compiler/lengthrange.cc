@@ -4,18 +4,24 @@
 // Per actuator selected by `mode` (default: muscles only):
 //   useexisting: a valid lengthrange given in the model is kept;
 //   uselimit:    a limited joint or tendon target lends its range;
-//   otherwise MuJoCo finds the range by simulation: pushing the actuator each way with
-//   a constant acceleration until it rests against the limits. That needs the limit
-//   constraints, which the engine does not have yet, so such a model is rejected.
+//   otherwise the range is found by simulation, as MuJoCo does: from qpos0, push the
+//   actuator's transmission with a force that gives a fixed acceleration, with
+//   velocities damped, contacts, gravity, springs, dampers, friction loss and actuation
+//   off, until the mechanism rests against its limits; the length seen over the last
+//   `interval` seconds gives the bound on that side.
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "compiler/compiler.h"
+#include "engine/engine.h"
 #include "mjcf/error.h"
+#include "simlab/simlab.h"
 
 namespace simlab::compiler {
 
 namespace {
-
 // Whether the lengthrange mode selects actuator i.
 bool Selected(const mjcf::LengthRangeSpec& opt, const Model& m, int i) {
   bool muscle = m.actuator_gaintype[i] == kGainMuscle || m.actuator_biastype[i] == kBiasMuscle;
@@ -44,18 +50,85 @@ bool RangeFromLimit(const Model& m, int i, double* range) {
   return true;
 }
 
+// One simulation step pushing actuator i towards side 0 (shorter) or 1 (longer);
+// returns its length after the step (MuJoCo's evalAct).
+double PushStep(const Model& m, Data& d, const mjcf::LengthRangeSpec& opt, int i, int side) {
+  int nv = m.nv;
+  double decay = std::exp(-m.opt.timestep / std::max(0.01, opt.timeconst));
+  for (double& v : d.qvel) v *= decay;
+  Step1(m, d);
+
+  // qfrc_applied along the moment, scaled so that M^-1 qfrc has norm accel.
+  const double* moment = &d.actuator_moment[static_cast<size_t>(i) * nv];
+  std::copy(moment, moment + nv, d.qfrc_applied.begin());
+  SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qfrc_applied.data());
+  double norm = 0;
+  for (double f : d.qfrc_applied) norm += f * f;
+  double scale = (2 * side - 1) * opt.accel / std::max(kMinVal, std::sqrt(norm));
+  for (int v = 0; v < nv; v++) d.qfrc_applied[v] = moment[v] * scale;
+  norm = 0;
+  for (double f : d.qfrc_applied) norm += f * f;
+  norm = std::sqrt(norm);
+  if (opt.maxforce > 0 && norm > opt.maxforce) {
+    for (double& f : d.qfrc_applied) f *= opt.maxforce / std::max(kMinVal, norm);
+  }
+  Step2(m, d);
+  return d.actuator_length[i];
+}
+
+// Simulates both sides for actuator i of `sim`; writes lengthrange or throws.
+void SimulateRange(const mjcf::ModelSpec& spec, const Model& sim, int i, double* range) {
+  const mjcf::LengthRangeSpec& opt = spec.compiler.lengthrange;
+  const mjcf::Source& src = spec.actuators[i].src;
+  double lmin[2] = {0, 0}, lmax[2] = {0, 0};
+  Data d = MakeData(sim);
+  for (int side = 0; side < 2; side++) {
+    ResetData(sim, d);
+    bool seen = false;
+    while (d.time < opt.inttotal) {
+      double len = PushStep(sim, d, opt, i, side);
+      if (d.time == 0) mjcf::ThrowAt(src, "unstable lengthrange simulation");
+      if (d.time > opt.inttotal - opt.interval) {
+        if (len < lmin[side] || !seen) lmin[side] = len;
+        if (len > lmax[side] || !seen) lmax[side] = len;
+        seen = true;
+      }
+    }
+    range[side] = side == 0 ? lmin[0] : lmax[1];
+  }
+
+  // The two bounds must be ordered, and each side must have settled.
+  double width = range[1] - range[0];
+  if (width <= 0) {
+    mjcf::ThrowAt(src, "invalid lengthrange (" + std::to_string(range[0]) + ", " +
+                           std::to_string(range[1]) + ") found by simulation");
+  }
+  for (int side = 0; side < 2; side++) {
+    if (lmax[side] - lmin[side] > opt.tolrange * width) {
+      mjcf::ThrowAt(src, "the lengthrange simulation did not converge (" +
+                             std::string(side ? "longer" : "shorter") +
+                             " side); give the actuator a lengthrange or limit its joint");
+    }
+  }
+}
+
 }  // namespace
 
 void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m) {
   const mjcf::LengthRangeSpec& opt = spec.compiler.lengthrange;
+
+  // The simulation model: only constraints (limits, equalities) and inertia act.
+  Model sim = *m;
+  sim.opt.disableflags = kDisableFrictionloss | kDisableContact | kDisableSpring |
+                         kDisableDamper | kDisableGravity | kDisableActuation;
+  if (opt.timestep > 0) sim.opt.timestep = opt.timestep;
+
   for (int i = 0; i < m->nu; i++) {
     double* range = &m->actuator_lengthrange[2 * i];
     if (!Selected(opt, *m, i)) continue;
     if (opt.useexisting && range[0] < range[1]) continue;
     if (opt.uselimit && RangeFromLimit(*m, i, range)) continue;
-    mjcf::ThrowAt(spec.actuators[i].src,
-                  "computing the actuator lengthrange by simulation is not supported yet "
-                  "(it needs limit constraints); set lengthrange on the actuator");
+    SimulateRange(spec, sim, i, range);
   }
 }
 

@@ -1,4 +1,6 @@
-// Fixed tendons: a linear combination of joint positions, L = sum coef_i q_i.
+// Tendons. Fixed: a linear combination of joint positions, L = sum coef_i q_i.
+// Spatial: a path through sites, wrapping around sphere and cylinder geoms, split by
+// pulleys (MuJoCo mjCTendon/mjCWrap): ids and the validity rules of the path.
 #include <string>
 
 #include "compiler/compiler.h"
@@ -53,31 +55,106 @@ void TendonFields(const mjcf::CompilerSpec& c, const mjcf::TendonSpec& t, int i,
   m->tendon_names[i] = t.src.name;
 }
 
+// Name lists of the tree objects a path can refer to.
+struct PathNames {
+  std::vector<std::string> joints, sites, geoms;
+};
+
+// Model ids of one path element (MuJoCo's wrap_type, wrap_objid, wrap_prm).
+void ResolveWrap(const mjcf::WrapSpec& w, const PathNames& names, const CompileState& state,
+                 int adr, Model* m) {
+  int type = w.type, objid = -1;
+  double prm = w.prm;
+  switch (w.type) {
+    case kWrapJoint:
+      objid = FindName(names.joints, w.target);
+      if (objid < 0) ThrowAt(w.src, "unknown joint '" + w.target + "'");
+      break;
+    case kWrapSite:
+      objid = FindName(names.sites, w.target);
+      if (objid < 0) ThrowAt(w.src, "unknown site '" + w.target + "'");
+      break;
+    case kWrapPulley:
+      if (w.prm < 0) ThrowAt(w.src, "pulley has a negative divisor");
+      break;
+    default: {
+      // A geom: its type decides sphere or cylinder wrapping; prm holds the side site.
+      objid = FindName(names.geoms, w.target);
+      if (objid < 0) ThrowAt(w.src, "unknown geom '" + w.target + "'");
+      int geom_type = state.geoms[objid].spec->type;
+      if (geom_type != kGeomSphere && geom_type != kGeomCylinder) {
+        ThrowAt(w.src, "geom '" + w.target + "' is not a sphere or cylinder");
+      }
+      type = geom_type == kGeomCylinder ? kWrapCylinder : kWrapSphere;
+      prm = -1;
+      if (!w.sidesite.empty()) {
+        prm = FindName(names.sites, w.sidesite);
+        if (prm < 0) ThrowAt(w.src, "unknown side site '" + w.sidesite + "'");
+      }
+    }
+  }
+  m->wrap_type[adr] = type;
+  m->wrap_objid[adr] = objid;
+  m->wrap_prm[adr] = prm;
+}
+
+// MuJoCo's rules for a spatial path (types already resolved at [adr, adr + n)).
+void CheckSpatialPath(const mjcf::TendonSpec& t, int adr, int n, const Model& m) {
+  if (t.armature < 0) ThrowAt(t.src, "tendon armature cannot be negative");
+  auto type = [&](int k) { return m.wrap_type[adr + k]; };
+  for (int k = 0; k < n; k++) {
+    const mjcf::Source& src = t.wraps[k].src;
+    bool pulley_before = k == 0 || type(k - 1) == kWrapPulley;
+    bool pulley_after = k == n - 1 || type(k + 1) == kWrapPulley;
+    switch (type(k)) {
+      case kWrapPulley:
+        if (k > 0 && type(k - 1) == kWrapPulley) ThrowAt(src, "consecutive pulleys");
+        if (k == n - 1) ThrowAt(src, "the tendon path ends with a pulley");
+        break;
+      case kWrapSite:
+        if (pulley_before && pulley_after) ThrowAt(src, "a site needs a neighbor that is not a pulley");
+        if (k < n - 1 && type(k + 1) == kWrapSite &&
+            m.wrap_objid[adr + k] == m.wrap_objid[adr + k + 1]) {
+          ThrowAt(src, "site is repeated");
+        }
+        break;
+      case kWrapSphere:
+      case kWrapCylinder:
+        if (k == 0 || k == n - 1 || type(k - 1) != kWrapSite || type(k + 1) != kWrapSite) {
+          ThrowAt(src, "a wrapping geom must be between two sites");
+        }
+        if (t.armature > 0) ThrowAt(src, "geom wrapping is not supported with tendon armature");
+        break;
+      default: ThrowAt(src, "a joint cannot be part of a spatial tendon");
+    }
+  }
+}
+
 }  // namespace
 
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
-  std::vector<std::string> joint_names;
-  for (const JointState& j : state.joints) joint_names.push_back(j.spec->src.name);
+  PathNames names;
+  for (const JointState& j : state.joints) names.joints.push_back(j.spec->src.name);
+  for (const SiteState& s : state.sites) names.sites.push_back(s.spec->src.name);
+  for (const GeomState& g : state.geoms) names.geoms.push_back(g.spec->src.name);
   int adr = 0;
   for (int i = 0; i < m->ntendon; i++) {
     const mjcf::TendonSpec& t = spec.tendons[i];
     if (t.wraps.empty()) ThrowAt(t.src, "a tendon path cannot be empty");
+    if (t.spatial && t.wraps.size() < 2) {
+      ThrowAt(t.src, "a spatial tendon path needs at least two objects");
+    }
+    if (t.spatial && t.width <= 0) ThrowAt(t.src, "a spatial tendon must have positive width");
     if (!t.src.name.empty() && FindName(m->tendon_names, t.src.name) >= 0) {
       ThrowAt(t.src, "repeated tendon name '" + t.src.name + "'");
     }
-    TendonFields(spec.compiler, t, i, m);
 
-    // Path: one joint wrap per coefficient.
+    // Path: joints with coefficients, or sites, geoms and pulleys.
     m->tendon_adr[i] = adr;
     m->tendon_num[i] = static_cast<int>(t.wraps.size());
-    for (const mjcf::WrapSpec& w : t.wraps) {
-      int jid = FindName(joint_names, w.joint);
-      if (jid < 0) ThrowAt(w.src, "unknown joint '" + w.joint + "'");
-      m->wrap_type[adr] = 1;  // mjWRAP_JOINT
-      m->wrap_objid[adr] = jid;
-      m->wrap_prm[adr] = w.coef;
-      adr++;
-    }
+    for (const mjcf::WrapSpec& w : t.wraps) ResolveWrap(w, names, state, adr++, m);
+    if (t.spatial) CheckSpatialPath(t, m->tendon_adr[i], m->tendon_num[i], *m);
+    TendonFields(spec.compiler, t, i, m);
   }
 }
 

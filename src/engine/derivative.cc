@@ -4,7 +4,9 @@
 //   qDeriv = d(qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel     (nv x nv, dense)
 //
 // Actuators: moment^T (d p / d l') moment where p is affine in l' (bias b2, gain a2 times
-// the input) or a muscle (the force-velocity curve's slope times the input). Passive: -diag(dof damping) - J^T b J for tendon damping. Bias: the
+// the input) or a muscle (the force-velocity curve's slope times the input). Passive:
+// -diag(dof damping) - J^T b J for tendon damping, actuator damping included (the slope
+// of the polynomial damping force at the current velocity). Bias: the
 // velocity derivative of RNE, propagated body by body (Dcvel, Dcdofdot, Dcacc, Dcfrc:
 // 6 x nv blocks per body or dof).
 #include <algorithm>
@@ -58,13 +60,19 @@ void ActuatorDerivative(const Model& m, Data& d) {
   }
 }
 
+// Dampers of dofs and tendons, with their actuators' damping: -d(v b(v))/dv.
 void PassiveDerivative(const Model& m, Data& d) {
   if (m.opt.disableflags & kDisableDamper) return;
-  for (int v = 0; v < m.nv; v++) d.qDeriv[v * m.nv + v] -= m.dof_damping[v];
+  for (int v = 0; v < m.nv; v++) {
+    double poly[kNPoly] = {0, 0};
+    double damping = m.dof_damping[v] + ActuatorDamping(m, false, m.dof_jntid[v], poly);
+    d.qDeriv[v * m.nv + v] -= DampingSlope(damping, poly, d.qvel[v]);
+  }
   for (int i = 0; i < m.ntendon; i++) {
-    if (m.tendon_damping[i] != 0) {
-      AddJtBJ(m, d, &d.ten_J[static_cast<size_t>(i) * m.nv], -m.tendon_damping[i]);
-    }
+    double poly[kNPoly] = {0, 0};
+    double damping = m.tendon_damping[i] + ActuatorDamping(m, true, i, poly);
+    double slope = DampingSlope(damping, poly, d.ten_velocity[i]);
+    if (slope != 0) AddJtBJ(m, d, &d.ten_J[static_cast<size_t>(i) * m.nv], -slope);
   }
 }
 

@@ -14,6 +14,8 @@ namespace simlab {
 
 // The whole position stage, in order (forward.cc).
 void FwdPosition(const Model& m, Data& d);
+// The position stage without constraint rows (what the compiler needs at qpos0).
+void FwdPositionSmooth(const Model& m, Data& d);
 
 // xpos, xquat, xmat, xipos, ximat, xanchor, xaxis, geom and site poses (kinematics.cc).
 void Kinematics(const Model& m, Data& d);
@@ -78,6 +80,9 @@ void Constraint(const Model& m, Data& d);
 void FactorSparse(const Model& m, double* mat, double* diag_inv);
 // x <- (L^T D L)^-1 x with a factorization from FactorSparse (inertia.cc).
 void SolveSparse(const Model& m, const double* ld, const double* diag_inv, double* x);
+// The same solve for any matrix in that layout with nv rows (an island's block of M).
+void SolveSparseLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
+                       const double* ld, const double* diag_inv, double* x);
 
 // ------------------------------------------------------------ integration (integrator.cc)
 

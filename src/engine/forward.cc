@@ -1,12 +1,15 @@
 // The pipeline (MuJoCo engine_forward.c). Forward computes everything that follows
 // from the current state; Step checks the state, runs Forward, then integrates.
 //
-//   position:     Kinematics, ComPos, Tendon, MakeInertia, FactorInertia, Transmission
-//   velocity:     tendon/actuator velocities, ComVel, Passive, Rne (bias forces)
+//   position:     Kinematics, ComPos, Tendon, MakeInertia, FactorInertia, Transmission,
+//                 then the constraint rows (MakeConstraint, ProjectConstraint)
+//   velocity:     tendon/actuator velocities, ComVel, Passive, constraint reference
+//                 accelerations, Rne (bias forces)
 //   acceleration: Actuation, SmoothAcceleration, Constraint
 #include <cmath>
 #include <cstdio>
 
+#include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/stack.h"
 #include "simlab/simlab.h"
@@ -46,6 +49,7 @@ void FwdVelocity(const Model& m, Data& d) {
   }
   ComVel(m, d);
   Passive(m, d);
+  ReferenceConstraint(m, d);
   Rne(m, d, false, d.qfrc_bias.data());
 }
 
@@ -86,13 +90,19 @@ void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
 
 }  // namespace
 
-void FwdPosition(const Model& m, Data& d) {
+void FwdPositionSmooth(const Model& m, Data& d) {
   Kinematics(m, d);
   ComPos(m, d);
   Tendon(m, d);
   MakeInertia(m, d);
   FactorInertia(m, d);
   Transmission(m, d);
+}
+
+void FwdPosition(const Model& m, Data& d) {
+  FwdPositionSmooth(m, d);
+  MakeConstraint(m, d);
+  ProjectConstraint(m, d);
 }
 
 void RaiseWarning(Data& d, Warning w, int info) {
@@ -134,6 +144,28 @@ void Step(const Model& m, Data& d) {
     case kIntegratorImplicit:
     case kIntegratorImplicitFast: ImplicitIntegrate(m, d); break;
     default: Euler(m, d);
+  }
+}
+
+void Step1(const Model& m, Data& d) {
+  CheckState(m, d, d.qpos, kWarnBadQpos);
+  CheckState(m, d, d.qvel, kWarnBadQvel);
+  FwdPosition(m, d);
+  FwdVelocity(m, d);
+}
+
+void Step2(const Model& m, Data& d) {
+  Actuation(m, d);
+  SmoothAcceleration(m, d);
+  Constraint(m, d);
+  if (CheckState(m, d, d.qacc, kWarnBadQacc) && !(m.opt.disableflags & kDisableAutoreset)) {
+    Forward(m, d);
+  }
+  // RK4 needs the whole step; split stepping integrates it with Euler, as MuJoCo does.
+  if (m.opt.integrator == kIntegratorImplicit || m.opt.integrator == kIntegratorImplicitFast) {
+    ImplicitIntegrate(m, d);
+  } else {
+    Euler(m, d);
   }
 }
 

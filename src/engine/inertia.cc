@@ -9,6 +9,7 @@
 // are prefixes of their descendants' rows, the L^T D L factorization (eliminating the
 // last dof first) creates no fill-in.
 #include "engine/engine.h"
+#include "math/dot.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -69,21 +70,25 @@ void FactorSparse(const Model& m, double* mat, double* diag_inv) {
 }
 
 void SolveSparse(const Model& m, const double* ld, const double* diag_inv, double* x) {
+  SolveSparseLayout(m.nv, m.M_rownnz.data(), m.M_rowadr.data(), m.M_colind.data(), ld, diag_inv,
+                    x);
+}
+
+void SolveSparseLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
+                       const double* ld, const double* diag_inv, double* x) {
   // x <- L^-T x
-  for (int i = m.nv - 1; i >= 0; i--) {
+  for (int i = nv - 1; i >= 0; i--) {
     double xi = x[i];
     if (xi == 0) continue;
-    int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
-    for (int adr = m.M_rowadr[i]; adr < end; adr++) x[m.M_colind[adr]] -= ld[adr] * xi;
+    int end = rowadr[i] + rownnz[i] - 1;
+    for (int adr = rowadr[i]; adr < end; adr++) x[colind[adr]] -= ld[adr] * xi;
   }
   // x <- D^-1 x
-  for (int i = 0; i < m.nv; i++) x[i] *= diag_inv[i];
+  for (int i = 0; i < nv; i++) x[i] *= diag_inv[i];
   // x <- L^-1 x
-  for (int i = 0; i < m.nv; i++) {
-    int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
-    double sum = 0;
-    for (int adr = m.M_rowadr[i]; adr < end; adr++) sum += ld[adr] * x[m.M_colind[adr]];
-    x[i] -= sum;
+  for (int i = 0; i < nv; i++) {
+    int n = rownnz[i] - 1;
+    if (n > 0) x[i] -= math::DotSparse(ld + rowadr[i], x, n, colind + rowadr[i]);
   }
 }
 

@@ -69,6 +69,8 @@ void Euler(const Model& m, Data& d) {
   bool damping = false;
   if (!(m.opt.disableflags & (kDisableEulerdamp | kDisableDamper))) {
     damping = std::any_of(m.dof_damping.begin(), m.dof_damping.end(), [](double b) { return b > 0; });
+    // Actuator damping on a joint counts too (MuJoCo 3.7+).
+    for (int v = 0; v < m.nv; v++) damping = damping || m.jnt_actuatorid[m.dof_jntid[v]] != -1;
   }
 
   if (!damping) {
@@ -77,7 +79,9 @@ void Euler(const Model& m, Data& d) {
     // qH = M + h diag(damping), factor, solve with the total force.
     d.qH = d.M;
     for (int v = 0; v < m.nv; v++) {
-      d.qH[m.M_rowadr[v] + m.M_rownnz[v] - 1] += m.opt.timestep * m.dof_damping[v];
+      double poly[kNPoly] = {0, 0};
+      double b = m.dof_damping[v] + ActuatorDamping(m, false, m.dof_jntid[v], poly);
+      d.qH[m.M_rowadr[v] + m.M_rownnz[v] - 1] += m.opt.timestep * DampingSlope(b, poly, d.qvel[v]);
     }
     FactorSparse(m, d.qH.data(), d.qHDiagInv.data());
     for (int v = 0; v < m.nv; v++) qacc[v] = d.qfrc_smooth[v] + d.qfrc_constraint[v];

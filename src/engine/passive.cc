@@ -1,7 +1,13 @@
 // Passive forces (MuJoCo mj_passive): joint springs toward qpos_spring, dof dampers,
 // tendon springs (with a dead band [lower, upper]) and dampers.
-#include "engine/engine.h"
+//
+// Actuator damping (MuJoCo 3.7+) joins the damping of its joint or tendon, scaled by
+// gear^2, with higher-order terms: force = -v (b + p0 |v| + p1 v^2).
 #include <algorithm>
+#include <cmath>
+
+#include "engine/actuator_target.h"
+#include "engine/engine.h"
 
 #include "math/math.h"
 
@@ -35,11 +41,13 @@ void JointSpring(const Model& m, Data& d, int j) {
   }
 }
 
-// Spring and damper of tendon i, mapped to joint space by its Jacobian.
+// Spring and damper of tendon i (its own and its actuators' damping), mapped to joint
+// space by its Jacobian.
 void TendonSpringDamper(const Model& m, Data& d, int i, bool spring, bool damper) {
   double stiffness = spring ? m.tendon_stiffness[i] : 0;
-  double damping = damper ? m.tendon_damping[i] : 0;
-  if (stiffness == 0 && damping == 0) return;
+  double poly[kNPoly] = {0, 0};
+  double damping = damper ? m.tendon_damping[i] + ActuatorDamping(m, true, i, poly) : 0;
+  if (stiffness == 0 && damping == 0 && poly[0] == 0 && poly[1] == 0) return;
   double length = d.ten_length[i];
   double lower = m.tendon_lengthspring[2 * i], upper = m.tendon_lengthspring[2 * i + 1];
   double f_spring = 0;
@@ -48,7 +56,8 @@ void TendonSpringDamper(const Model& m, Data& d, int i, bool spring, bool damper
   } else if (length < lower) {
     f_spring = stiffness * (lower - length);
   }
-  double f_damper = -damping * d.ten_velocity[i];
+  double vel = d.ten_velocity[i];
+  double f_damper = -vel * DampingCoefficient(damping, poly, vel);
   const double* jac = &d.ten_J[static_cast<size_t>(i) * m.nv];
   for (int v = 0; v < m.nv; v++) {
     if (f_spring != 0) d.qfrc_spring[v] += jac[v] * f_spring;
@@ -57,6 +66,33 @@ void TendonSpringDamper(const Model& m, Data& d, int i, bool spring, bool damper
 }
 
 }  // namespace
+
+double ActuatorDamping(const Model& m, bool tendon, int id, double poly[kNPoly]) {
+  double damping = 0;
+  ForTargetActuators(m, tendon, id, [&](int i, double gear2) {
+    damping += m.actuator_damping[i] * gear2;
+    for (int k = 0; k < kNPoly; k++) poly[k] += m.actuator_dampingpoly[kNPoly * i + k] * gear2;
+  });
+  return damping;
+}
+
+double DampingCoefficient(double linear, const double poly[kNPoly], double v) {
+  double speed = std::abs(v), power = 1, coef = linear;
+  for (int k = 0; k < kNPoly; k++) {
+    power *= speed;
+    coef += poly[k] * power;
+  }
+  return coef;
+}
+
+double DampingSlope(double linear, const double poly[kNPoly], double v) {
+  double speed = std::abs(v), power = 1, slope = linear;
+  for (int k = 0; k < kNPoly; k++) {
+    power *= speed;
+    slope += (k + 2) * poly[k] * power;
+  }
+  return slope;
+}
 
 void Passive(const Model& m, Data& d) {
   std::fill(d.qfrc_spring.begin(), d.qfrc_spring.end(), 0.0);
@@ -74,7 +110,10 @@ void Passive(const Model& m, Data& d) {
   }
   if (damper) {
     for (int v = 0; v < m.nv; v++) {
-      if (m.dof_damping[v] != 0) d.qfrc_damper[v] = -m.dof_damping[v] * d.qvel[v];
+      double poly[kNPoly] = {0, 0};
+      double damping = m.dof_damping[v] + ActuatorDamping(m, false, m.dof_jntid[v], poly);
+      if (damping == 0 && poly[0] == 0 && poly[1] == 0) continue;
+      d.qfrc_damper[v] = -d.qvel[v] * DampingCoefficient(damping, poly, d.qvel[v]);
     }
   }
 

@@ -30,6 +30,7 @@ void ResetData(const Model& m, Data& d) {
   d.time = 0;
   d.energy[0] = d.energy[1] = 0;
   d.ncon = d.nefc = d.solver_niter = 0;
+  d.ne = d.nf = d.nl = d.nisland = 0;
   for (auto& w : d.warning) w = WarningStat{};
   // ...except the configuration and the mocap poses, which come from the model.
   d.qpos = m.qpos0;

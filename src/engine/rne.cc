@@ -105,4 +105,23 @@ void Rne(const Model& m, Data& d, bool flg_acc, double* result) {
   }
 }
 
+// Tendon armature a turns the tendon's acceleration J qacc + Jdot qvel into a force
+// along J; the Jdot qvel part is a bias (MuJoCo mj_tendonBias).
+void TendonBias(const Model& m, Data& d, double* qfrc) {
+  StackFrame frame(d);
+  double* jdot = nullptr;
+  for (int i = 0; i < m.ntendon; i++) {
+    double armature = m.tendon_armature[i] + ActuatorArmature(m, true, i);
+    if (armature == 0) continue;
+    if (!jdot) jdot = frame.Alloc(m.nv);
+    TendonJacobianDot(m, d, i, jdot);
+    double rate = 0;
+    for (int v = 0; v < m.nv; v++) rate += jdot[v] * d.qvel[v];
+    double coef = armature * rate;
+    if (coef == 0) continue;
+    const double* jac = &d.ten_J[static_cast<size_t>(i) * m.nv];
+    for (int v = 0; v < m.nv; v++) qfrc[v] += jac[v] * coef;
+  }
+}
+
 }  // namespace simlab

@@ -70,6 +70,7 @@ class Reader {
   void ReadGeom(const XmlElement& e, GeomSpec* geom, bool in_default) const;
   void ReadSite(const XmlElement& e, SiteSpec* site, bool in_default) const;
   void ReadTendon(const XmlElement& e, TendonSpec* tendon, bool in_default) const;
+  WrapSpec ReadWrap(const XmlElement& e, bool spatial) const;
   void ReadActuator(const XmlElement& e, ActuatorSpec* act, bool in_default) const;
   void ReadTransmission(const XmlElement& e, ActuatorSpec* act) const;
   void ReadShortcut(const XmlElement& e, ActuatorSpec* act) const;

@@ -127,7 +127,15 @@ Maybe ReadMaybe(const XmlElement& e, const char* name) {
 // ---------------------------------------------------------------- common attributes
 
 void Reader::ReadActuator(const XmlElement& e, ActuatorSpec* a, bool in_default) const {
-  e.CheckAttributes(ActuatorAttributes(e.tag(), in_default));
+  // Every kind but adhesion passes damping and armature to its joint or tendon.
+  std::vector<const char*> allowed = ActuatorAttributes(e.tag(), in_default);
+  if (e.tag() != "adhesion") {
+    allowed.push_back("damping");
+    allowed.push_back("armature");
+  }
+  e.CheckAttributes(allowed);
+  e.Numbers("damping", a->damping, false);
+  e.Number("armature", &a->armature);
   if (!in_default) a->src = e.src();
   e.Int("group", &a->group);
   e.Int("nsample", &a->nsample);

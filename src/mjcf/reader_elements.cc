@@ -142,6 +142,12 @@ void Reader::ReadTendon(const XmlElement& e, TendonSpec* t, bool in_default) con
     e.CheckAttributes({"group", "limited", "range", "solreflimit", "solimplimit",
                        "solreffriction", "solimpfriction", "frictionloss", "springlength",
                        "width", "material", "margin", "stiffness", "damping", "rgba", "user"});
+  } else if (t->spatial) {
+    e.CheckAttributes({"name", "class", "group", "limited", "actuatorfrclimited", "range",
+                       "actuatorfrcrange", "solreflimit", "solimplimit", "solreffriction",
+                       "solimpfriction", "frictionloss", "springlength", "width", "material",
+                       "margin", "stiffness", "damping", "armature", "rgba", "user"});
+    t->src = e.src();
   } else {
     e.CheckAttributes({"name", "class", "group", "limited", "actuatorfrclimited", "range",
                        "actuatorfrcrange", "solreflimit", "solimplimit", "solreffriction",
@@ -152,8 +158,7 @@ void Reader::ReadTendon(const XmlElement& e, TendonSpec* t, bool in_default) con
   e.Int("group", &t->group);
   e.Tri("limited", &t->limited);
   e.Tri("actuatorfrclimited", &t->actfrclimited);
-  double width = 0;
-  e.Number("width", &width);
+  e.Number("width", &t->width);
   e.Numbers("solreflimit", t->solref_limit, false);
   e.Numbers("solimplimit", t->solimp_limit, false);
   e.Numbers("solreffriction", t->solref_friction, false);

@@ -222,7 +222,7 @@ void Reader::Statistic(const XmlElement& e) {
   e.CheckAttributes({"meaninertia", "meanmass", "meansize", "extent", "center"});
   double v = 0;
   std::array<double, 3> center;
-  e.Number("meaninertia", &v);
+  if (e.Number("meaninertia", &v)) spec_->meaninertia = v;
   e.Number("meanmass", &v);
   e.Number("meansize", &v);
   if (e.Number("extent", &v) && v <= 0) e.Fail("extent must be strictly positive");

@@ -274,6 +274,8 @@ struct ModelSpec {
   std::vector<EqualitySpec> equalities;
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
+  // <statistic>: values given by the model (undefined: computed by the compiler).
+  double meaninertia = kUndefined;
 };
 
 }  // namespace simlab::mjcf

@@ -1,0 +1,449 @@
+// Constraint rows (MuJoCo mj_makeConstraint, engine_core_constraint.c): one row per scalar
+// condition, in MuJoCo's order: equalities, friction losses, limits (contacts come with
+// the collision stage). Each row has a Jacobian J (dense, nv columns), a position error
+// efc_pos, a margin and a type/id naming the element that made it.
+//
+// The rows are then given their softness: diagApprox (an estimate of J M^-1 J^T from the
+// inverse weights the compiler stores), the impedance from solimp, the regularizer
+// R = (1 - imp) / imp * diagApprox and the spring-damper numbers of solref (efc_KBIP).
+#include <algorithm>
+#include <cmath>
+
+#include "engine/constraint.h"
+#include "engine/engine.h"
+#include "engine/stack.h"
+#include "math/dot.h"
+#include "math/math.h"
+
+namespace simlab {
+
+namespace {
+
+constexpr double kMinImp = 0.0001;  // mjMINIMP
+constexpr double kMaxImp = 0.9999;  // mjMAXIMP
+
+// ---------------------------------------------------------------- adding rows
+
+// Grows every efc array by `size` rows.
+void GrowRows(const Model& m, Data& d, int size) {
+  size_t n = static_cast<size_t>(d.nefc + size);
+#define SIMLAB_X(type, name, cols) d.name.resize(n * ((cols) == 0 ? m.nv : (cols)));
+  SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
+#undef SIMLAB_X
+}
+
+// Appends `size` rows with Jacobian `jac` (size x nv). Rows other than contacts whose
+// Jacobian is all zero are skipped: they cannot act on anything (MuJoCo does the same).
+void AddRows(const Model& m, Data& d, const double* jac, const double* pos, double margin,
+             double frictionloss, int size, ConstraintType type, int id) {
+  int nv = m.nv;
+  bool contact = type >= kCnstrContactFrictionless;
+  if (!contact && std::all_of(jac, jac + size * nv, [](double x) { return x == 0; })) return;
+
+  int first = d.nefc;
+  GrowRows(m, d, size);
+  std::copy(jac, jac + size * nv, d.efc_J.begin() + static_cast<size_t>(first) * nv);
+  for (int r = 0; r < size; r++) {
+    d.efc_pos[first + r] = pos ? pos[r] : 0;
+    d.efc_margin[first + r] = margin;
+    d.efc_frictionloss[first + r] = frictionloss;
+    d.efc_type[first + r] = type;
+    d.efc_id[first + r] = id;
+  }
+  d.nefc += size;
+  if (type == kCnstrEquality) d.ne += size;
+  if (type == kCnstrFrictionDof || type == kCnstrFrictionTendon) d.nf += size;
+  if (type == kCnstrLimitJoint || type == kCnstrLimitTendon) d.nl += size;
+}
+
+// ---------------------------------------------------------------- equality rows
+
+// The body and world point of side j of a connect or weld (site or body-anchor form).
+// `anchor` is the body-frame anchor used in the body form.
+int EqualityPoint(const Model& m, const Data& d, int eq, int j, const double* anchor,
+                  double* point) {
+  int obj = j == 0 ? m.eq_obj1id[eq] : m.eq_obj2id[eq];
+  if (m.eq_objtype[eq] == kObjSite) {
+    math::Copy3(point, &d.site_xpos[3 * obj]);
+    return m.site_bodyid[obj];
+  }
+  math::MulMatVec3(point, &d.xmat[9 * obj], anchor);
+  math::AddScaled3(point, &d.xpos[3 * obj], 1);
+  return obj;
+}
+
+// Connect: the two anchor points coincide (3 rows).
+void ConnectRows(const Model& m, Data& d, int eq, double* jac, double* jac1) {
+  const double* data = &m.eq_data[kNEqData * eq];
+  double pos[2][3];
+  int body0 = EqualityPoint(m, d, eq, 0, data, pos[0]);
+  int body1 = EqualityPoint(m, d, eq, 1, data + 3, pos[1]);
+  double err[3];
+  math::Sub3(err, pos[0], pos[1]);
+
+  // J = J(body0 at point0) - J(body1 at point1)
+  Jacobian(m, d, jac, nullptr, pos[0], body0);
+  Jacobian(m, d, jac1, nullptr, pos[1], body1);
+  for (int k = 0; k < 3 * m.nv; k++) jac[k] -= jac1[k];
+  AddRows(m, d, jac, err, 0, 0, 3, kCnstrEquality, eq);
+}
+
+// Weld: the two frames coincide, up to relpose (3 translation + 3 rotation rows).
+void WeldRows(const Model& m, Data& d, int eq, double* jac, double* jac1) {
+  int nv = m.nv;
+  const double* data = &m.eq_data[kNEqData * eq];
+  double pos[2][3];
+  int body0 = EqualityPoint(m, d, eq, 0, data + 3, pos[0]);
+  int body1 = EqualityPoint(m, d, eq, 1, data, pos[1]);
+  double err[6];
+  math::Sub3(err, pos[0], pos[1]);
+
+  // Translation and rotation Jacobian differences, rows 0-2 and 3-5.
+  Jacobian(m, d, jac, jac + 3 * nv, pos[0], body0);
+  Jacobian(m, d, jac1, jac1 + 3 * nv, pos[1], body1);
+  for (int k = 0; k < 6 * nv; k++) jac[k] -= jac1[k];
+
+  // Orientation error: the vector part of conj(q1) * q0 (* relpose in the body form).
+  double q0[4], q1[4], q1neg[4], qerr[4];
+  if (m.eq_objtype[eq] == kObjSite) {
+    math::MulQuat(q0, &d.xquat[4 * body0], &m.site_quat[4 * m.eq_obj1id[eq]]);
+    math::MulQuat(q1, &d.xquat[4 * body1], &m.site_quat[4 * m.eq_obj2id[eq]]);
+  } else {
+    math::MulQuat(q0, &d.xquat[4 * body0], data + 6);
+    math::CopyQuat(q1, &d.xquat[4 * body1]);
+  }
+  math::NegQuat(q1neg, q1);
+  math::MulQuat(qerr, q1neg, q0);
+  double torquescale = data[10];
+  math::Scale3(err + 3, qerr + 1, torquescale);
+
+  // Rotation rows: 0.5 * conj(q1) * (omega0 - omega1) * q0, per dof, times torquescale.
+  for (int v = 0; v < nv; v++) {
+    double axis[4] = {0, jac[3 * nv + v], jac[4 * nv + v], jac[5 * nv + v]};
+    double tmp[4], rot[4];
+    math::MulQuat(tmp, q1neg, axis);
+    math::MulQuat(rot, tmp, q0);
+    for (int k = 0; k < 3; k++) jac[(3 + k) * nv + v] = 0.5 * rot[1 + k] * torquescale;
+  }
+  AddRows(m, d, jac, err, 0, 0, 6, kCnstrEquality, eq);
+}
+
+// Joint or tendon coupling: x1 - x1_0 = poly(x2 - x2_0), or x1 = x1_0 + data[0] alone.
+void CouplingRow(const Model& m, Data& d, int eq, double* jac, double* jac1) {
+  int nv = m.nv;
+  const double* data = &m.eq_data[kNEqData * eq];
+  bool joint = m.eq_type[eq] == kEqJoint;
+  int ids[2] = {m.eq_obj1id[eq], m.eq_obj2id[eq]};
+  double value[2] = {0, 0}, ref[2] = {0, 0};
+  double* jacs[2] = {jac, jac1};
+  for (int j = 0; j < (ids[1] >= 0 ? 2 : 1); j++) {
+    std::fill(jacs[j], jacs[j] + nv, 0.0);
+    if (joint) {
+      int qadr = m.jnt_qposadr[ids[j]];
+      value[j] = d.qpos[qadr];
+      ref[j] = m.qpos0[qadr];
+      jacs[j][m.jnt_dofadr[ids[j]]] = 1;
+    } else {
+      value[j] = d.ten_length[ids[j]];
+      ref[j] = m.tendon_length0[ids[j]];
+      std::copy_n(&d.ten_J[static_cast<size_t>(ids[j]) * nv], nv, jacs[j]);
+    }
+  }
+  double err = value[0] - ref[0] - data[0];
+  if (ids[1] >= 0) {
+    double x = value[1] - ref[1];
+    err -= x * (data[1] + x * (data[2] + x * (data[3] + x * data[4])));
+    double slope = data[1] + x * (2 * data[2] + x * (3 * data[3] + x * 4 * data[4]));
+    for (int v = 0; v < nv; v++) jac[v] -= slope * jac1[v];
+  }
+  AddRows(m, d, jac, &err, 0, 0, 1, kCnstrEquality, eq);
+}
+
+void EqualityRows(const Model& m, Data& d) {
+  if ((m.opt.disableflags & kDisableEquality) || m.neq == 0) return;
+  StackFrame frame(d);
+  double* jac = frame.Alloc(6 * m.nv);
+  double* jac1 = frame.Alloc(6 * m.nv);
+  for (int eq = 0; eq < m.neq; eq++) {
+    if (!d.eq_active[eq]) continue;
+    switch (m.eq_type[eq]) {
+      case kEqConnect: ConnectRows(m, d, eq, jac, jac1); break;
+      case kEqWeld: WeldRows(m, d, eq, jac, jac1); break;
+      default: CouplingRow(m, d, eq, jac, jac1); break;
+    }
+  }
+}
+
+// ---------------------------------------------------------------- friction and limits
+
+// One row per dof and per tendon with a friction loss.
+void FrictionRows(const Model& m, Data& d) {
+  if (m.opt.disableflags & kDisableFrictionloss) return;
+  StackFrame frame(d);
+  double* jac = frame.Alloc(m.nv);
+  for (int v = 0; v < m.nv; v++) {
+    if (m.dof_frictionloss[v] == 0) continue;
+    std::fill(jac, jac + m.nv, 0.0);
+    jac[v] = 1;
+    AddRows(m, d, jac, nullptr, 0, m.dof_frictionloss[v], 1, kCnstrFrictionDof, v);
+  }
+  for (int t = 0; t < m.ntendon; t++) {
+    if (m.tendon_frictionloss[t] <= 0) continue;
+    AddRows(m, d, &d.ten_J[static_cast<size_t>(t) * m.nv], nullptr, 0,
+            m.tendon_frictionloss[t], 1, kCnstrFrictionTendon, t);
+  }
+}
+
+// Lower and upper limit of a scalar quantity with Jacobian `grad`: a row for each side
+// closer than the margin, pointing into the allowed range.
+void ScalarLimitRows(const Model& m, Data& d, double value, const double* range, double margin,
+                     const double* grad, double* jac, ConstraintType type, int id) {
+  for (int side = -1; side <= 1; side += 2) {
+    double dist = side * (range[(side + 1) / 2] - value);
+    if (dist >= margin) continue;
+    for (int v = 0; v < m.nv; v++) jac[v] = -side * grad[v];
+    AddRows(m, d, jac, &dist, margin, 0, 1, type, id);
+  }
+}
+
+// Ball joint limit: the rotation angle stays below the larger range value.
+void BallLimitRow(const Model& m, Data& d, int j, double* jac) {
+  int adr = m.jnt_qposadr[j];
+  double quat[4];
+  math::CopyQuat(quat, &d.qpos[adr]);
+  math::NormalizeQuat(quat);
+  double axis[3];
+  math::QuatToVel(axis, quat, 1);
+  double angle = math::Normalize3(axis);
+  double dist = std::max(m.jnt_range[2 * j], m.jnt_range[2 * j + 1]) - angle;
+  double margin = m.jnt_margin[j];
+  if (dist >= margin) return;
+  std::fill(jac, jac + m.nv, 0.0);
+  math::Scale3(jac + m.jnt_dofadr[j], axis, -1);
+  AddRows(m, d, jac, &dist, margin, 0, 1, kCnstrLimitJoint, j);
+}
+
+void LimitRows(const Model& m, Data& d) {
+  if (m.opt.disableflags & kDisableLimit) return;
+  StackFrame frame(d);
+  double* jac = frame.Alloc(m.nv);
+  double* unit = frame.Alloc(m.nv);
+  for (int j = 0; j < m.njnt; j++) {
+    if (!m.jnt_limited[j]) continue;
+    int type = m.jnt_type[j];
+    if (type == kJointBall) BallLimitRow(m, d, j, jac);
+    if (type != kJointSlide && type != kJointHinge) continue;
+    int dof = m.jnt_dofadr[j];
+    unit[dof] = 1;
+    ScalarLimitRows(m, d, d.qpos[m.jnt_qposadr[j]], &m.jnt_range[2 * j], m.jnt_margin[j], unit,
+                    jac, kCnstrLimitJoint, j);
+    unit[dof] = 0;
+  }
+  for (int t = 0; t < m.ntendon; t++) {
+    if (!m.tendon_limited[t]) continue;
+    ScalarLimitRows(m, d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t],
+                    &d.ten_J[static_cast<size_t>(t) * m.nv], jac, kCnstrLimitTendon, t);
+  }
+}
+
+// ---------------------------------------------------------------- softness
+
+// Body of side j of a connect or weld.
+int EqualityBody(const Model& m, int eq, int j) {
+  int obj = j == 0 ? m.eq_obj1id[eq] : m.eq_obj2id[eq];
+  return m.eq_objtype[eq] == kObjSite ? m.site_bodyid[obj] : obj;
+}
+
+// Inverse weight of one side of a joint or tendon coupling.
+double CouplingWeight(const Model& m, int eq, int obj) {
+  return m.eq_type[eq] == kEqJoint ? m.dof_invweight0[m.jnt_dofadr[obj]]
+                                   : m.tendon_invweight0[obj];
+}
+
+// efc_diagApprox: the inverse weights of what each row moves (MuJoCo mj_diagApprox).
+void DiagApprox(const Model& m, Data& d) {
+  for (int i = 0; i < d.nefc; i++) {
+    int id = d.efc_id[i];
+    double& diag = d.efc_diagApprox[i];
+    switch (d.efc_type[i]) {
+      case kCnstrEquality: {
+        if (m.eq_type[id] == kEqConnect || m.eq_type[id] == kEqWeld) {
+          // Rows 0-2 translate, rows 3-5 of a weld rotate.
+          int rows = m.eq_type[id] == kEqWeld ? 6 : 3;
+          int b0 = EqualityBody(m, id, 0), b1 = EqualityBody(m, id, 1);
+          for (int r = 0; r < rows; r++) {
+            int rot = r >= 3;
+            d.efc_diagApprox[i + r] =
+                m.body_invweight0[2 * b0 + rot] + m.body_invweight0[2 * b1 + rot];
+          }
+          i += rows - 1;
+        } else {
+          diag = CouplingWeight(m, id, m.eq_obj1id[id]);
+          if (m.eq_obj2id[id] >= 0) diag += CouplingWeight(m, id, m.eq_obj2id[id]);
+        }
+        break;
+      }
+      case kCnstrFrictionDof: diag = m.dof_invweight0[id]; break;
+      case kCnstrLimitJoint: diag = m.dof_invweight0[m.jnt_dofadr[id]]; break;
+      default: diag = m.tendon_invweight0[id]; break;  // tendon friction and limits
+    }
+  }
+}
+
+// solref and solimp of row i, made safe as MuJoCo does (getsolparam).
+void SolverParams(const Model& m, const Data& d, int i, double* solref, double* solimp) {
+  int id = d.efc_id[i];
+  const double* ref = nullptr;
+  const double* imp = nullptr;
+  switch (d.efc_type[i]) {
+    case kCnstrEquality: ref = &m.eq_solref[kNRef * id]; imp = &m.eq_solimp[kNImp * id]; break;
+    case kCnstrLimitJoint: ref = &m.jnt_solref[kNRef * id]; imp = &m.jnt_solimp[kNImp * id]; break;
+    case kCnstrFrictionDof: ref = &m.dof_solref[kNRef * id]; imp = &m.dof_solimp[kNImp * id]; break;
+    case kCnstrLimitTendon:
+      ref = &m.tendon_solref_lim[kNRef * id];
+      imp = &m.tendon_solimp_lim[kNImp * id];
+      break;
+    default:
+      ref = &m.tendon_solref_fri[kNRef * id];
+      imp = &m.tendon_solimp_fri[kNImp * id];
+      break;
+  }
+  std::copy_n(ref, kNRef, solref);
+  std::copy_n(imp, kNImp, solimp);
+
+  // Mixed standard/direct solref falls back to the default; time constants are kept at
+  // least two time steps unless refsafe is disabled.
+  if ((solref[0] > 0) != (solref[1] > 0)) {
+    solref[0] = 0.02;
+    solref[1] = 1;
+  }
+  if (!(m.opt.disableflags & kDisableRefsafe) && solref[0] > 0) {
+    solref[0] = std::max(solref[0], 2 * m.opt.timestep);
+  }
+  solimp[0] = std::clamp(solimp[0], kMinImp, kMaxImp);
+  solimp[1] = std::clamp(solimp[1], kMinImp, kMaxImp);
+  solimp[2] = std::max(0.0, solimp[2]);
+  solimp[3] = std::clamp(solimp[3], kMinImp, kMaxImp);
+  solimp[4] = std::max(1.0, solimp[4]);
+}
+
+// a^b, exact for the common powers 1 and 2.
+double Power(double a, double b) {
+  if (b == 1) return a;
+  if (b == 2) return a * a;
+  return std::pow(a, b);
+}
+
+}  // namespace
+
+// The impedance d(r) of solimp at violation r = pos - margin, and its slope.
+void Impedance(const double* solimp, double pos, double margin, double* imp, double* slope) {
+  double dmin = solimp[0], dmax = solimp[1], width = solimp[2];
+  double mid = solimp[3], power = solimp[4];
+  *slope = 0;
+  if (dmin == dmax || width <= kMinVal) {
+    *imp = 0.5 * (dmin + dmax);
+    return;
+  }
+  double x = (pos - margin) / width;
+  double sign = x < 0 ? -1 : 1;
+  x = std::abs(x);
+  if (x >= 1 || x <= 0) {
+    *imp = x >= 1 ? dmax : dmin;
+    return;
+  }
+
+  // The sigmoid: linear, or two power curves meeting at the midpoint.
+  double y, dy;
+  if (power == 1) {
+    y = x;
+    dy = 1;
+  } else if (x <= mid) {
+    double a = 1 / Power(mid, power - 1);
+    y = a * Power(x, power);
+    dy = power * a * Power(x, power - 1);
+  } else {
+    double b = 1 / Power(1 - mid, power - 1);
+    y = 1 - b * Power(1 - x, power);
+    dy = power * b * Power(1 - x, power - 1);
+  }
+  *imp = dmin + y * (dmax - dmin);
+  *slope = dy * sign * (dmax - dmin) / width;
+}
+
+namespace {
+
+// Position and dimension of the constraint starting at row i: connect and weld use the
+// norm of their error vector for the impedance of all their rows.
+int RowGroup(const Model& m, const Data& d, int i, double* pos) {
+  *pos = d.efc_pos[i];
+  if (d.efc_type[i] != kCnstrEquality) return 1;
+  int type = m.eq_type[d.efc_id[i]];
+  int dim = type == kEqWeld ? 6 : type == kEqConnect ? 3 : 1;
+  if (dim > 1) {
+    double s = 0;
+    for (int r = 0; r < dim; r++) s += d.efc_pos[i + r] * d.efc_pos[i + r];
+    *pos = std::sqrt(s);
+  }
+  return dim;
+}
+
+// efc_R, efc_D, efc_KBIP from solref/solimp; diagApprox then matches R (mj_makeImpedance).
+void MakeImpedance(const Model& m, Data& d) {
+  for (int i = 0; i < d.nefc;) {
+    double solref[kNRef], solimp[kNImp], pos, imp, slope;
+    SolverParams(m, d, i, solref, solimp);
+    int dim = RowGroup(m, d, i, &pos);
+    Impedance(solimp, pos, d.efc_margin[i], &imp, &slope);
+    for (int r = i; r < i + dim; r++) {
+      d.efc_R[r] = std::max(kMinVal, (1 - imp) * d.efc_diagApprox[r] / imp);
+      double* kbip = &d.efc_KBIP[4 * r];
+      bool friction = d.efc_type[r] == kCnstrFrictionDof || d.efc_type[r] == kCnstrFrictionTendon;
+      double dmax2 = solimp[1] * solimp[1];
+      // Stiffness: standard (timeconst, dampratio) or direct (-stiffness, -damping) form.
+      if (friction) {
+        kbip[0] = 0;
+      } else if (solref[0] > 0) {
+        kbip[0] = 1 / std::max(kMinVal, dmax2 * solref[0] * solref[0] * solref[1] * solref[1]);
+      } else {
+        kbip[0] = -solref[0] / std::max(kMinVal, dmax2);
+      }
+      kbip[1] = solref[1] > 0 ? 2 / std::max(kMinVal, solimp[1] * solref[0])
+                              : -solref[1] / std::max(kMinVal, solimp[1]);
+      kbip[2] = imp;
+      kbip[3] = slope;
+    }
+    i += dim;
+  }
+  for (int i = 0; i < d.nefc; i++) {
+    d.efc_D[i] = 1 / d.efc_R[i];
+    double imp = d.efc_KBIP[4 * i + 2];
+    d.efc_diagApprox[i] = d.efc_R[i] * imp / (1 - imp);
+  }
+}
+
+}  // namespace
+
+void MakeConstraint(const Model& m, Data& d) {
+  d.ne = d.nf = d.nl = d.nefc = 0;
+  GrowRows(m, d, 0);
+  if (m.opt.disableflags & kDisableConstraint) return;
+  EqualityRows(m, d);
+  FrictionRows(m, d);
+  LimitRows(m, d);
+  if (d.nefc == 0) return;
+  DiagApprox(m, d);
+  MakeImpedance(m, d);
+}
+
+void ReferenceConstraint(const Model& m, Data& d) {
+  int nv = m.nv;
+  for (int i = 0; i < d.nefc; i++) {
+    double vel = math::Dot(&d.efc_J[static_cast<size_t>(i) * nv], d.qvel.data(), nv);
+    d.efc_vel[i] = vel;
+    const double* kbip = &d.efc_KBIP[4 * i];
+    d.efc_aref[i] = -kbip[1] * vel - kbip[0] * kbip[2] * (d.efc_pos[i] - d.efc_margin[i]);
+  }
+}
+
+}  // namespace simlab

@@ -1,0 +1,45 @@
+// Dot products of long vectors, summed in a fixed order: four interleaved partial sums,
+// combined as (s0 + s2) + (s1 + s3), then the remainder. MuJoCo sums this way (its
+// vectorized and scalar builds agree), and a constraint solver that stops at a tolerance
+// amplifies the last bit of difference, so the engine uses the same order.
+#ifndef SIMLAB_MATH_DOT_H_
+#define SIMLAB_MATH_DOT_H_
+
+namespace simlab::math {
+
+// a . b over n entries; a remainder of 2 or 3 entries is summed first, then added.
+inline double Dot(const double* a, const double* b, int n) {
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  int i = 0;
+  for (; i <= n - 4; i += 4) {
+    s0 += a[i] * b[i];
+    s1 += a[i + 1] * b[i + 1];
+    s2 += a[i + 2] * b[i + 2];
+    s3 += a[i + 3] * b[i + 3];
+  }
+  double s = (s0 + s2) + (s1 + s3);
+  int rest = n - i;
+  if (rest == 3) s += a[i] * b[i] + a[i + 1] * b[i + 1] + a[i + 2] * b[i + 2];
+  if (rest == 2) s += a[i] * b[i] + a[i + 1] * b[i + 1];
+  if (rest == 1) s += a[i] * b[i];
+  return s;
+}
+
+// a . x[ind] over n entries of a; the remainder is added one entry at a time.
+inline double DotSparse(const double* a, const double* x, int n, const int* ind) {
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  int i = 0;
+  for (; i <= n - 4; i += 4) {
+    s0 += a[i] * x[ind[i]];
+    s1 += a[i + 1] * x[ind[i + 1]];
+    s2 += a[i + 2] * x[ind[i + 2]];
+    s3 += a[i + 3] * x[ind[i + 3]];
+  }
+  double s = (s0 + s2) + (s1 + s3);
+  for (; i < n; i++) s += a[i] * x[ind[i]];
+  return s;
+}
+
+}  // namespace simlab::math
+
+#endif  // SIMLAB_MATH_DOT_H_

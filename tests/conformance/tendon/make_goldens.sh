@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# make_goldens.sh — the spatial tendon conformance cases: the models in base/ (no limits,
+# friction loss or contacts) in each integrator, rolled out by MuJoCo 3.5.1 (the oracle).
+#
+# Usage:  tests/conformance/tendon/make_goldens.sh      (from any working directory)
+#
+# For every base/<name>.xml and integrator I in (Euler RK4 implicit implicitfast):
+#   models/<name>__I.xml   = the base with integrator="I" added to its <option> tag;
+#   ctrl/<name>.csv        = node ctrlgen.mjs MODEL --steps 500 (models with actuators);
+#   goldens/<name>__I.jsonl = rollout.mjs MODEL --steps 500 --every 10
+#                             [--state base/<name>.state.json] [--ctrl ctrl/<name>.csv]
+# and writes tests/conformance/tendon_cases.txt (format of tests/conformance/cases.txt:
+# model, golden, steps, state or -, ctrl or -, tolerance).
+# Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
+set -euo pipefail
+
+HERE="$(cd "$(dirname "$0")" && pwd)"
+ROOT="$(cd "$HERE/../../.." && pwd)"
+ORACLE="$(cd "$ROOT/../shared/oracle" && pwd)"
+STEPS=500
+EVERY=10
+TOL=1e-9
+[ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
+
+cd "$ROOT"
+OUT=tests/conformance/tendon
+rm -rf "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
+mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
+CASES=tests/conformance/tendon_cases.txt
+: > "$CASES"
+for base in "$OUT"/base/*.xml; do
+  name="$(basename "$base" .xml)"
+  state="$OUT/base/$name.state.json"
+  [ -f "$state" ] || state=-
+  ctrl=-
+  if grep -q "<actuator>" "$base"; then
+    ctrl="$OUT/ctrl/$name.csv"
+    node "$ORACLE/ctrlgen.mjs" "$base" --steps "$STEPS" --out "$ctrl"
+  fi
+  for integrator in Euler RK4 implicit implicitfast; do
+    model="$OUT/models/${name}__$integrator.xml"
+    golden="$OUT/goldens/${name}__$integrator.jsonl"
+    grep -q '<option timestep=' "$base" || { echo "$base: no <option timestep=...>" >&2; exit 1; }
+    sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
+    args=(--steps "$STEPS" --every "$EVERY" --out "$golden")
+    [ "$state" = - ] || args+=(--state "$state")
+    [ "$ctrl" = - ] || args+=(--ctrl "$ctrl")
+    node "$ORACLE/rollout.mjs" "$model" "${args[@]}"
+    grep -q -i 'nan\|null' "$golden" && { echo "$golden: NaN or null" >&2; exit 1; }
+    echo "$model $golden $STEPS $state $ctrl $TOL" >> "$CASES"
+  done
+done
+echo "wrote $(wc -l < "$CASES") cases to $CASES"
