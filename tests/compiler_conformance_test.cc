@@ -166,6 +166,13 @@ TEST(CompilerConformance, RefsiteDampratio) {
   CheckModel("refsite_dampratio", Local("refsite_dampratio.xml"));
 }
 TEST(CompilerConformance, Muscles) { CheckModel("muscles", Local("muscles.xml")); }
+TEST(CompilerConformance, SpatialTendons) {
+  // wrap_type/objid/prm (side sites, divisors), tendon_length0 and lengthspring.
+  for (const char* name : {"wrap_sphere", "wrap_cylinder", "pulley", "armature"}) {
+    CheckModel(std::string("tendon_") + name,
+               std::string(SIMLAB_SOURCE_DIR) + "/tests/conformance/tendon/base/" + name + ".xml");
+  }
+}
 TEST(CompilerConformance, Equality) { CheckModel("equality", Local("equality.xml")); }
 
 }  // namespace
