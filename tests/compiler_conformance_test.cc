@@ -173,6 +173,20 @@ TEST(CompilerConformance, SpatialTendons) {
                std::string(SIMLAB_SOURCE_DIR) + "/tests/conformance/tendon/base/" + name + ".xml");
   }
 }
+// Composition: <include> and <attach> (models under compiler_models/compose/).
+TEST(CompilerConformance, ComposeAttach) {
+  CheckModel("compose_attach", Local("compose_attach.xml"));
+}
+TEST(CompilerConformance, ComposeInclude) {
+  CheckModel("compose_include", Local("compose_include.xml"));
+}
+// The lesson's gripper, alone and attached to the gantry.
+TEST(CompilerConformance, Gripper) {
+  CheckModel("gripper", std::string(SIMLAB_SOURCE_DIR) + "/models/gripper.xml");
+}
+TEST(CompilerConformance, GantryGripper) {
+  CheckModel("gantry_gripper", std::string(SIMLAB_SOURCE_DIR) + "/models/gantry_gripper.xml");
+}
 TEST(CompilerConformance, Equality) { CheckModel("equality", Local("equality.xml")); }
 
 }  // namespace

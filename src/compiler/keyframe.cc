@@ -1,9 +1,11 @@
 // Keyframes: missing values take the model's defaults (qpos0, zeros, mocap body
 // poses); short values are padded as MuJoCo pads them, from the values as written.
+#include <functional>
 #include <string>
 
 #include "compiler/compiler.h"
 #include "math/math.h"
+#include "mjcf/compose.h"
 #include "mjcf/error.h"
 
 namespace simlab::compiler {
@@ -50,11 +52,11 @@ struct RawReference {
 RawReference MakeRawReference(const CompileState& state, const Model& m) {
   RawReference raw;
   for (const JointState& j : state.joints) {
-    const mjcf::BodySpec& body = *state.bodies[j.body].spec;
     switch (j.spec->type) {
       case kJointFree:
-        raw.qpos.insert(raw.qpos.end(), body.pos.begin(), body.pos.end());
-        raw.qpos.insert(raw.qpos.end(), body.quat.begin(), body.quat.end());
+        // MuJoCo 3.5.1 pads a free joint with the origin and the unit quaternion,
+        // not with its body's pose.
+        raw.qpos.insert(raw.qpos.end(), {0, 0, 0, 1, 0, 0, 0});
         break;
       case kJointBall: raw.qpos.insert(raw.qpos.end(), {1, 0, 0, 0}); break;
       default: raw.qpos.push_back(j.spec->ref); break;
@@ -69,6 +71,57 @@ RawReference MakeRawReference(const CompileState& state, const Model& m) {
     for (int k = 0; k < 4; k++) raw.mquat[4 * id + k] = b.spec->quat[k];
   }
   return raw;
+}
+
+// ---------------------------------------------------------------- attached keyframes
+
+template <typename T>
+int IndexOfSpec(const std::vector<T>& items, const void* spec) {
+  for (size_t i = 0; i < items.size(); i++) {
+    if (items[i].spec == spec) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// Writes each element's values at its address in a row.
+template <typename Element>
+void Overlay(const std::vector<std::pair<Element, std::vector<double>>>& values,
+             const std::function<int(Element)>& address, double* row) {
+  for (const auto& [element, numbers] : values) {
+    int adr = address(element);
+    if (adr < 0) continue;
+    for (size_t i = 0; i < numbers.size(); i++) row[adr + i] = numbers[i];
+  }
+}
+
+// A keyframe that came with an attached model: its rows hold the compiled defaults,
+// and the elements that carry values for it write them in their places.
+void OverlayAttachedKey(const mjcf::AttachedKey& key, const CompileState& state, int k,
+                        Model* m) {
+  using JointPtr = const mjcf::JointSpec*;
+  using BodyPtr = const mjcf::BodySpec*;
+  auto mocap = [&](BodyPtr b) {
+    int id = IndexOfSpec(state.bodies, b);
+    return id < 0 ? -1 : m->body_mocapid[id];
+  };
+  std::function<int(JointPtr)> qposadr = [&](JointPtr j) {
+    int id = IndexOfSpec(state.joints, j);
+    return id < 0 ? -1 : m->jnt_qposadr[id];
+  };
+  std::function<int(JointPtr)> dofadr = [&](JointPtr j) {
+    int id = IndexOfSpec(state.joints, j);
+    return id < 0 ? -1 : m->jnt_dofadr[id];
+  };
+  std::function<int(int)> actadr = [&](int a) { return m->actuator_actadr[a]; };
+  std::function<int(int)> ctrladr = [](int a) { return a; };
+  std::function<int(BodyPtr)> mposadr = [&](BodyPtr b) { return mocap(b) < 0 ? -1 : 3 * mocap(b); };
+  std::function<int(BodyPtr)> mquatadr = [&](BodyPtr b) { return mocap(b) < 0 ? -1 : 4 * mocap(b); };
+  Overlay(key.qpos, qposadr, &m->key_qpos[k * m->nq]);
+  Overlay(key.qvel, dofadr, &m->key_qvel[k * m->nv]);
+  Overlay(key.act, actadr, &m->key_act[k * m->na]);
+  Overlay(key.ctrl, ctrladr, &m->key_ctrl[k * m->nu]);
+  Overlay(key.mpos, mposadr, &m->key_mpos[k * 3 * m->nmocap]);
+  Overlay(key.mquat, mquatadr, &m->key_mquat[k * 4 * m->nmocap]);
 }
 
 }  // namespace
@@ -97,6 +150,7 @@ void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     FillRow(key, "ctrl", key.ctrl, m->nu, nullptr, nullptr, &m->key_ctrl[k * m->nu]);
     FillRow(key, "mpos", key.mpos, 3 * nm, mpos.data(), raw.mpos.data(), &m->key_mpos[k * 3 * nm]);
     FillRow(key, "mquat", key.mquat, 4 * nm, mquat.data(), raw.mquat.data(), &m->key_mquat[k * 4 * nm]);
+    if (key.attached) OverlayAttachedKey(*key.attached, state, k, m);
     NormalizeQuats(*m, &m->key_qpos[k * m->nq]);
   }
 }

@@ -12,7 +12,7 @@ namespace {
 
 // Top-level sections that MuJoCo accepts but simlab does not implement yet.
 bool IsUnsupportedSection(const std::string& tag) {
-  for (const char* name : {"extension", "deformable", "include"}) {
+  for (const char* name : {"extension", "deformable"}) {
     if (tag == name) return true;
   }
   return false;
@@ -23,6 +23,12 @@ bool IsUnsupportedSection(const std::string& tag) {
 // ---------------------------------------------------------------- entry point
 
 ModelSpec ReadMjcf(const std::string& text, const std::string& file) {
+  ParsedModel model;
+  ReadModel(text, file, &model);
+  return std::move(model.spec);
+}
+
+void ReadModel(const std::string& text, const std::string& file, ParsedModel* out) {
   // Parse the XML; a syntax error names the line where pugixml stopped.
   LineIndex lines(text);
   pugi::xml_document doc;
@@ -39,16 +45,19 @@ ModelSpec ReadMjcf(const std::string& text, const std::string& file) {
     e.Fail("the root element must be <mujoco>");
   }
 
-  // Walk the document into a spec.
-  ModelSpec spec;
-  spec.file = file;
-  Reader reader(file, lines, &spec);
+  // Paste in included files, then walk the document into a spec.
+  NodeOrigins origins;
+  ExpandIncludes(root, file, lines, &origins);
+  out->spec.file = file;
+  Reader reader(file, lines, &out->spec, &origins);
   reader.Root(root);
-  return spec;
+  out->classes = std::move(reader.classes_);
+  out->own_keys = reader.own_keys_;
 }
 
-Reader::Reader(const std::string& file, const LineIndex& lines, ModelSpec* spec)
-    : file_(file), lines_(lines), spec_(spec) {
+Reader::Reader(const std::string& file, const LineIndex& lines, ModelSpec* spec,
+               const NodeOrigins* origins)
+    : file_(file), lines_(lines), spec_(spec), origins_(origins) {
   auto main = std::make_unique<DefaultClass>();
   main->name = "main";
   classes_["main"] = std::move(main);
@@ -108,12 +117,7 @@ void Reader::Root(pugi::xml_node root) {
     Body(e, &spec_->world, nullptr, classes_.at("main").get());
   });
 
-  // <size nkey> asks for at least that many keyframes.
-  while (static_cast<int>(spec_->keys.size()) < spec_->nkey) {
-    KeySpec key;
-    key.src = {file_, 0, "key", ""};
-    spec_->keys.push_back(key);
-  }
+  FinishKeys();
 }
 
 // ---------------------------------------------------------------- default classes
@@ -230,8 +234,10 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     Frame(c, body, frame, def);
   } else if (tag == "body") {
     ChildBody(c, body, frame, def);
+  } else if (tag == "attach") {
+    Attach(c, body, frame);
   } else if (tag == "plugin" || tag == "composite" || tag == "flexcomp" ||
-             tag == "attach" || tag == "replicate" || tag == "include") {
+             tag == "replicate") {
     NotSupported(c);
   } else {
     Unknown(c);

@@ -13,22 +13,30 @@
 
 #include <pugixml.hpp>
 
+#include "mjcf/compose.h"
 #include "mjcf/spec.h"
 #include "mjcf/xml_attrs.h"
 
 namespace simlab::mjcf {
 
-// Parses MJCF text; `file` names it in error messages.
+// Parses MJCF text; `file` names it in error messages and its folder is where
+// included and attached files are found.
 ModelSpec ReadMjcf(const std::string& text, const std::string& file);
+
+// The same, keeping the default classes (for models that get attached).
+void ReadModel(const std::string& text, const std::string& file, ParsedModel* out);
 
 // The reader's state while walking one document.
 class Reader {
  public:
-  Reader(const std::string& file, const LineIndex& lines, ModelSpec* spec);
+  Reader(const std::string& file, const LineIndex& lines, ModelSpec* spec,
+         const NodeOrigins* origins = nullptr);
   void Root(pugi::xml_node root);
 
  private:
-  XmlElement Element(pugi::xml_node node) const { return XmlElement(node, file_, lines_); }
+  friend void ReadModel(const std::string& text, const std::string& file, ParsedModel* out);
+  // The element with its file and line (from `origins_` if it was included).
+  XmlElement Element(pugi::xml_node node) const;
   [[noreturn]] void NotSupported(const XmlElement& e, const std::string& what = "") const;
   [[noreturn]] void Unknown(const XmlElement& e) const;
 
@@ -75,10 +83,25 @@ class Reader {
   void ReadTransmission(const XmlElement& e, ActuatorSpec* act) const;
   void ReadShortcut(const XmlElement& e, ActuatorSpec* act) const;
 
+  // composition: <asset><model> and <attach> (compose.cc)
+  void AssetModel(const XmlElement& e);
+  void Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame);
+  void AttachClasses(const ParsedModel& child, const std::string& prefix);
+  void HoldKeys(const XmlElement& e, const ParsedModel& child, const std::string& prefix);
+  void CarryKeys(const Attachment& att);
+  // Keyframes in MuJoCo's order: the file's own, blanks up to <size nkey>, attached ones.
+  void FinishKeys();
+
   std::string file_;
   const LineIndex& lines_;
   ModelSpec* spec_;
   std::map<std::string, std::unique_ptr<DefaultClass>> classes_;
+  const NodeOrigins* origins_ = nullptr;
+  std::map<std::string, std::shared_ptr<const ParsedModel>> models_;
+  std::vector<KeySpec> attached_keys_;
+  std::map<const void*, HeldValues> held_;        // by element of a child model
+  std::map<std::string, AttachedKey> carried_;    // by keyframe name
+  int own_keys_ = 0;
 };
 
 }  // namespace simlab::mjcf

@@ -271,8 +271,9 @@ void Reader::Asset(const XmlElement& e) {
                          "specular", "shininess", "reflectance", "metallic", "roughness",
                          "rgba"});
       FindClass(c, "class");
-    } else if (c.tag() == "mesh" || c.tag() == "hfield" || c.tag() == "skin" ||
-               c.tag() == "model") {
+    } else if (c.tag() == "model") {
+      AssetModel(c);
+    } else if (c.tag() == "mesh" || c.tag() == "hfield" || c.tag() == "skin") {
       NotSupported(c, "<" + c.tag() + "> assets");
     } else {
       Unknown(c);
@@ -305,26 +306,53 @@ void Reader::Tendon(const XmlElement& e) {
   for (pugi::xml_node n : e.node().children()) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
-    if (c.tag() == "spatial") NotSupported(c, "spatial tendons");
-    if (c.tag() != "fixed") Unknown(c);
+    if (c.tag() != "fixed" && c.tag() != "spatial") Unknown(c);
     const DefaultClass* cls = FindClass(c, "class");
     TendonSpec tendon = cls ? cls->tendon : classes_.at("main")->tendon;
+    tendon.spatial = c.tag() == "spatial";
     ReadTendon(c, &tendon, false);
 
-    // The path: joints with coefficients.
+    // The path, in order.
     for (pugi::xml_node w : n.children()) {
       if (w.type() != pugi::node_element) continue;
-      XmlElement we = Element(w);
-      if (we.tag() != "joint") Unknown(we);
-      we.CheckAttributes({"joint", "coef"});
-      WrapSpec wrap;
-      wrap.src = we.src();
-      we.RequiredText("joint", &wrap.joint);
-      we.RequiredNumber("coef", &wrap.coef);
-      tendon.wraps.push_back(wrap);
+      tendon.wraps.push_back(ReadWrap(Element(w), tendon.spatial));
     }
     spec_->tendons.push_back(std::move(tendon));
   }
+}
+
+// One path element: <joint> in a fixed tendon; <site>, <geom>, <pulley> in a spatial one.
+WrapSpec Reader::ReadWrap(const XmlElement& we, bool spatial) const {
+  // Per element: where it may appear, its type, and its target, number and side-site
+  // attributes (null where it has none).
+  struct WrapKind {
+    const char* tag;
+    bool spatial;
+    int type;
+    const char* target;
+    const char* number;
+    const char* side;
+  };
+  static const WrapKind kKinds[] = {{"joint", false, kWrapJoint, "joint", "coef", nullptr},
+                                    {"site", true, kWrapSite, "site", nullptr, nullptr},
+                                    {"geom", true, kWrapSphere, "geom", nullptr, "sidesite"},
+                                    {"pulley", true, kWrapPulley, nullptr, "divisor", nullptr}};
+  for (const WrapKind& k : kKinds) {
+    if (we.tag() != k.tag || spatial != k.spatial) continue;
+    std::vector<const char*> allowed;
+    for (const char* attr : {k.target, k.number, k.side}) {
+      if (attr) allowed.push_back(attr);
+    }
+    we.CheckAttributes(allowed);
+    WrapSpec wrap;
+    wrap.src = we.src();
+    wrap.type = k.type;
+    if (k.target) we.RequiredText(k.target, &wrap.target);
+    if (k.number) we.RequiredNumber(k.number, &wrap.prm);
+    if (k.side) we.Text(k.side, &wrap.sidesite);
+    return wrap;
+  }
+  Unknown(we);
 }
 
 void Reader::Actuator(const XmlElement& e) {

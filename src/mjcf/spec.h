@@ -122,6 +122,18 @@ struct SiteSpec {
   FramePtr frame;
 };
 
+struct BodySpec;
+
+// A body's child bodies. They are owned, and copying the list copies the subtrees
+// (an attached model's bodies are copies of the child model's).
+struct BodyList : std::vector<std::unique_ptr<BodySpec>> {
+  BodyList() = default;
+  BodyList(BodyList&&) = default;
+  BodyList& operator=(BodyList&&) = default;
+  BodyList(const BodyList& other);
+  BodyList& operator=(const BodyList& other);
+};
+
 struct BodySpec {
   Source src;
   std::array<double, 3> pos = {0, 0, 0};
@@ -145,19 +157,34 @@ struct BodySpec {
   std::vector<JointSpec> joints;
   std::vector<GeomSpec> geoms;
   std::vector<SiteSpec> sites;
-  std::vector<std::unique_ptr<BodySpec>> bodies;
+  BodyList bodies;
 };
+
+inline BodyList::BodyList(const BodyList& other) : std::vector<std::unique_ptr<BodySpec>>() {
+  for (const auto& body : other) push_back(std::make_unique<BodySpec>(*body));
+}
+
+inline BodyList& BodyList::operator=(const BodyList& other) {
+  if (this != &other) *this = BodyList(other);
+  return *this;
+}
 
 // ---------------------------------------------------------------- other sections
 
+// One element of a tendon path: a joint with its coefficient (fixed tendons), or a
+// site, a wrapping geom with its optional side site, or a pulley with its divisor.
 struct WrapSpec {
   Source src;
-  std::string joint;
-  double coef = 0;
+  int type = kWrapJoint;  // kWrapSphere stands for any geom until the compiler looks
+  std::string target;     // joint, site or geom name
+  std::string sidesite;
+  double prm = 0;         // joint coefficient or pulley divisor
 };
 
 struct TendonSpec {
   Source src;
+  bool spatial = false;
+  double width = 0.003;
   int group = 0;
   int limited = kAuto;
   int actfrclimited = kFalse;  // MuJoCo 3.5 leaves this one at false, not auto
@@ -203,6 +230,9 @@ struct ActuatorSpec {
   double inheritrange = 0;
   int nsample = 0;
   double delay = 0;
+  // damping at the transmission target: linear, then |v| v and v^3 terms (MuJoCo 3.7+)
+  std::array<double, 1 + kNPoly> damping = {0, 0, 0};
+  double armature = 0;
 };
 
 // An equality constraint (MuJoCo's mjsEquality). `data` starts at MuJoCo's shared
@@ -219,10 +249,16 @@ struct EqualitySpec {
   std::array<double, kNEqData> data = {0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1};
 };
 
+// A keyframe that came with an attached model (defined in mjcf/compose.h).
+struct AttachedKey;
+
 struct KeySpec {
   Source src;
   double time = 0;
   std::vector<double> qpos, qvel, act, ctrl, mpos, mquat;
+  // Set for a keyframe of an attached model: its values come from there, the rest of
+  // the row from the compiled model's defaults.
+  std::shared_ptr<const AttachedKey> attached;
 };
 
 // A default class: the starting values of each element kind.

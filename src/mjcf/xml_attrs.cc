@@ -37,6 +37,13 @@ XmlElement::XmlElement(pugi::xml_node node, const std::string& file, const LineI
   src_.name = node.attribute("name").value();
 }
 
+XmlElement::XmlElement(pugi::xml_node node, const std::string& file, int line) : node_(node) {
+  src_.file = file;
+  src_.line = line;
+  src_.tag = node.name();
+  src_.name = node.attribute("name").value();
+}
+
 void XmlElement::Fail(const std::string& what) const { ThrowAt(src_, what); }
 
 void XmlElement::CheckAttributes(const std::vector<const char*>& allowed) const {

@@ -33,6 +33,8 @@ using Keyword = std::pair<const char*, int>;
 class XmlElement {
  public:
   XmlElement(pugi::xml_node node, const std::string& file, const LineIndex& lines);
+  // An element whose place is known already (one copied in from an included file).
+  XmlElement(pugi::xml_node node, const std::string& file, int line);
 
   pugi::xml_node node() const { return node_; }
   const std::string& tag() const { return src_.tag; }
