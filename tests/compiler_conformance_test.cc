@@ -180,6 +180,9 @@ TEST(CompilerConformance, ComposeAttach) {
 TEST(CompilerConformance, ComposeInclude) {
   CheckModel("compose_include", Local("compose_include.xml"));
 }
+TEST(CompilerConformance, ComposeNested) {
+  CheckModel("compose_nested", Local("compose_nested.xml"));
+}
 // The lesson's gripper, alone and attached to the gantry.
 TEST(CompilerConformance, Gripper) {
   CheckModel("gripper", std::string(SIMLAB_SOURCE_DIR) + "/models/gripper.xml");

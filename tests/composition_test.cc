@@ -151,6 +151,9 @@ TEST(Attach, PrefixesNamesAsMuJoCo) {
               "tests/models/compose/compose_attach.names.json");
   ExpectNames(LoadXml(Source("models/gantry_gripper.xml")),
               "tests/models/compose/gantry_gripper.names.json");
+  // A model that attaches a model: prefixes compose ("a/leaf-twist").
+  ExpectNames(LoadXml(Source("tests/compiler_models/compose_nested.xml")),
+              "tests/models/compose/compose_nested.names.json");
 }
 
 TEST(Attach, ChildDefaultsApplyToItsOwnElements) {
