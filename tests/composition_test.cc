@@ -196,6 +196,12 @@ TEST(Attach, BadAttachmentsAreRefused) {
     ExpectError(files.Write("main.xml", "<mujoco>\n" + c.xml + "\n</mujoco>\n"),
                 {"main.xml:", c.expect});
   }
+  // An error inside the attached model names its own file and line.
+  files.Write("bad_child.xml", "<mujoco>\n  <worldbody>\n    <body name=\"b\" size=\"1\"/>\n"
+                               "  </worldbody>\n</mujoco>\n");
+  ExpectError(files.Write("main.xml", "<mujoco>\n<asset><model name=\"c\" file=\"bad_child.xml\"/>"
+                                      "</asset>\n</mujoco>\n"),
+              {"bad_child.xml:3:", "unknown attribute 'size'"});
 }
 
 // ---------------------------------------------------------------- keyframes
