@@ -1,7 +1,7 @@
 // Lesson 2.3 on simlab: actuator force laws, clamping, activation dynamics, coupling.
 //
 // INPUT    models/actuator_bench.xml (four hinges, one actuator each: motor, position,
-//          velocity, filter); the gantry gripper for section 4, once it exists.
+//          velocity, filter); models/gantry_gripper.xml for section 4.
 // PROCESS  (1) put every joint at a known angle and velocity, set the controls, run
 //          Forward, and compare actuator_force with the law p = a u + b0 + b1 l + b2 l'
 //          (with gear g, l = g q); (2) push a control past ctrlrange and a force past
@@ -180,11 +180,22 @@ inline void Activation(const std::string& models_dir, std::ostream& out) {
   }
 }
 
-// Section 4 needs the gantry gripper, whose fingers are kept symmetric by an equality
-// constraint; it is not printed until equality constraints exist.
-inline void Coupling(std::ostream& out) {
-  out << " (not yet: this section needs the gantry gripper model, which arrives with "
-         "equality constraints)\n";
+// Section 4: from the gantry gripper's home keyframe, command a grip half-opening of
+// 0.03 m and step 1000 times. The tendon drives the average of the fingers, the joint
+// equality keeps them equal: both settle at 0.03 m, equal to five decimals.
+inline void Coupling(const std::string& models_dir, std::ostream& out) {
+  simlab::Model m = simlab::LoadXml(models_dir + "/gantry_gripper.xml");
+  simlab::Data d = simlab::MakeData(m);
+  simlab::ResetDataKeyframe(m, d, 0);
+  d.ctrl[simlab::NameToId(m, simlab::kObjActuator, "gripper/grip")] = 0.03;
+  for (int i = 0; i < 1000; i++) simlab::Step(m, d);
+  auto joint_qpos = [&](const char* name) {
+    return d.qpos[m.jnt_qposadr[simlab::NameToId(m, simlab::kObjJoint, name)]];
+  };
+  out << Format(" grip command 0.03 m: finger_left %.5f m, finger_right %.5f m, "
+                "tendon length %.5f m\n",
+                joint_qpos("gripper/finger_left"), joint_qpos("gripper/finger_right"),
+                d.ten_length[0]);
 }
 
 // The whole program, section by section.
@@ -196,7 +207,7 @@ inline void RunLesson(const std::string& models_dir, std::ostream& out) {
   out << "filter activation, time constant 0.1 s, control stepped to 1 at t = 0:\n";
   Activation(models_dir, out);
   out << "gripper coupling (tendon + joint equality):\n";
-  Coupling(out);
+  Coupling(models_dir, out);
 }
 
 }  // namespace l2_3

@@ -136,6 +136,10 @@ void CheckModel(const std::string& name, const std::string& path) {
   }
   CompareInertialFrames(name, m, arrays);
   CompareOptions(name, m, golden["opt"]);
+  if (golden.contains("stat")) {
+    double meaninertia = golden["stat"]["meaninertia"].get<double>();
+    EXPECT_TRUE(Near(m.stat.meaninertia, meaninertia)) << name << " meaninertia";
+  }
   EXPECT_GT(compared, 100) << name;
   std::cout << "[ compiler ] " << name << ": " << compared << " fields, worst |diff| " << worst
             << " in " << worst_field << "\n";
@@ -191,6 +195,11 @@ TEST(CompilerConformance, GantryGripper) {
   CheckModel("gantry_gripper", std::string(SIMLAB_SOURCE_DIR) + "/models/gantry_gripper.xml");
 }
 TEST(CompilerConformance, Equality) { CheckModel("equality", Local("equality.xml")); }
+// Muscle lengthranges MuJoCo finds by simulation: a limited hinge, and arm26's tendons.
+TEST(CompilerConformance, LengthRangeBySimulation) {
+  CheckModel("lengthrange_sim", Local("lengthrange_sim.xml"));
+}
+TEST(CompilerConformance, Arm26) { CheckModel("arm26", Corpus("tendon_arm/arm26.xml")); }
 
 }  // namespace
 }  // namespace simlab

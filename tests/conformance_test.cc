@@ -39,7 +39,8 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
   for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
-                           "tests/conformance/tendon_cases.txt"}) {
+                           "tests/conformance/tendon_cases.txt",
+                           "tests/conformance/constraint_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {

@@ -125,13 +125,12 @@ TEST(MjcfErrors, NotSupportedYet) {
               {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
   ExpectError("<mujoco>\n<asset>\n<mesh name=\"m\" file=\"m.stl\"/>\n</asset>\n</mujoco>",
               {"bad.xml:3:", "<mesh name=\"m\">", "not supported yet"});
-  ExpectError("<mujoco>\n<option density=\"1.2\"/>\n</mujoco>", {"bad.xml:2:", "fluid", "not supported yet"});
   ExpectError("<mujoco>\n<compiler fusestatic=\"true\"/>\n</mujoco>", {"bad.xml:2:", "fusestatic", "not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body>\n<composite/>\n</body>\n</worldbody>\n</mujoco>",
               {"bad.xml:4:", "<composite> is not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"
               "<actuator>\n<muscle joint=\"j\"/>\n</actuator>\n</mujoco>",
-              {"bad.xml:6:", "<muscle>", "lengthrange by simulation is not supported yet"});
+              {"bad.xml:6:", "<muscle>", "lengthrange simulation did not converge"});
 }
 
 // Equality constraints: lookups, the body/site forms, joint types, names (line 8 is

@@ -23,12 +23,12 @@ const ARRAYS = [
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
   'body_dofnum', 'body_dofadr', 'body_treeid', 'body_geomnum', 'body_geomadr',
   'body_sameframe', 'body_pos', 'body_quat', 'body_ipos', 'body_iquat', 'body_mass',
-  'body_subtreemass', 'body_inertia', 'body_gravcomp',
+  'body_subtreemass', 'body_inertia', 'body_gravcomp', 'body_simple', 'body_invweight0',
   'jnt_type', 'jnt_qposadr', 'jnt_dofadr', 'jnt_bodyid', 'jnt_group', 'jnt_limited',
   'jnt_actfrclimited', 'jnt_actgravcomp', 'jnt_solref', 'jnt_solimp', 'jnt_pos', 'jnt_axis',
   'jnt_stiffness', 'jnt_range', 'jnt_actfrcrange', 'jnt_margin',
   'dof_bodyid', 'dof_jntid', 'dof_parentid', 'dof_treeid', 'dof_Madr', 'dof_solref',
-  'dof_solimp', 'dof_frictionloss', 'dof_armature', 'dof_damping',
+  'dof_solimp', 'dof_frictionloss', 'dof_armature', 'dof_damping', 'dof_invweight0',
   'M_rownnz', 'M_rowadr', 'M_colind',
   'geom_type', 'geom_contype', 'geom_conaffinity', 'geom_condim', 'geom_bodyid', 'geom_group',
   'geom_priority', 'geom_sameframe', 'geom_solmix', 'geom_solref', 'geom_solimp', 'geom_size',
@@ -40,6 +40,7 @@ const ARRAYS = [
   'tendon_solimp_lim', 'tendon_solref_fri', 'tendon_solimp_fri', 'tendon_range',
   'tendon_actfrcrange', 'tendon_margin', 'tendon_stiffness', 'tendon_damping',
   'tendon_armature', 'tendon_frictionloss', 'tendon_lengthspring', 'tendon_length0',
+  'tendon_invweight0',
   'wrap_type', 'wrap_objid', 'wrap_prm',
   'actuator_trntype', 'actuator_dyntype', 'actuator_gaintype', 'actuator_biastype',
   'actuator_trnid', 'actuator_actadr', 'actuator_actnum', 'actuator_group',
@@ -94,5 +95,6 @@ for (const o of OPTIONS) {
   if (v === undefined) continue;
   out.opt[o] = typeof v === 'object' ? Array.from(v, Number) : Number(v);
 }
+out.stat = { meaninertia: Number(model.stat.meaninertia) };
 const text = JSON.stringify(out);
 if (outPath) fs.writeFileSync(outPath, text + '\n'); else process.stdout.write(text + '\n');

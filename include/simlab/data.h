@@ -69,6 +69,10 @@ struct WarningStat {
   X(double, cinert, nbody, 10)                  \
   X(double, ten_length, ntendon, 1)             \
   X(double, ten_J, ntendon, nv)                 \
+  X(int, ten_wrapadr, ntendon, 1)               \
+  X(int, ten_wrapnum, ntendon, 1)               \
+  X(int, wrap_obj, nwrap, 2)                    \
+  X(double, wrap_xpos, nwrap, 6)                \
   X(double, actuator_length, nu, 1)             \
   X(double, actuator_moment, nu, nv)            \
   X(double, crb, nbody, 10)                     \
@@ -84,6 +88,7 @@ struct WarningStat {
   X(double, qfrc_bias, nv, 1)                   \
   X(double, qfrc_spring, nv, 1)                 \
   X(double, qfrc_damper, nv, 1)                 \
+  X(double, qfrc_fluid, nv, 1)                  \
   X(double, qfrc_passive, nv, 1)                \
   /* acceleration-dependent */                  \
   X(double, actuator_force, nu, 1)              \

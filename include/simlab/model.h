@@ -87,6 +87,8 @@ inline constexpr int kNBias = 10;
 // Numbers per row of eq_data (mjNEQDATA): connect anchors (0-5), weld anchors, relative
 // quaternion and torquescale (0-10), joint/tendon polynomial coefficients (0-4).
 inline constexpr int kNEqData = 11;
+inline constexpr int kNPoly = 2;  // higher-order damping terms (MuJoCo 3.7+ mjNPOLY)
+inline constexpr int kNFluid = 12;  // geom_fluid row (mjNFLUID): flag, 5 coefs, added mass, inertia
 
 // Tendon path element types (mjtWrap).
 enum WrapType : int {
@@ -188,6 +190,7 @@ struct Statistic {
   X(double, jnt_range, njnt, 2)                    \
   X(double, jnt_actfrcrange, njnt, 2)              \
   X(double, jnt_margin, njnt, 1)                   \
+  X(int, jnt_actuatorid, njnt, 1)                  \
   /* degrees of freedom */                         \
   X(int, dof_bodyid, nv, 1)                        \
   X(int, dof_jntid, nv, 1)                         \
@@ -225,6 +228,7 @@ struct Statistic {
   X(double, geom_margin, ngeom, 1)                 \
   X(double, geom_gap, ngeom, 1)                    \
   X(double, geom_rgba, ngeom, 4)                   \
+  X(double, geom_fluid, ngeom, kNFluid)            \
   /* sites */                                      \
   X(int, site_type, nsite, 1)                      \
   X(int, site_bodyid, nsite, 1)                    \
@@ -262,6 +266,7 @@ struct Statistic {
   X(double, tendon_lengthspring, ntendon, 2)       \
   X(double, tendon_length0, ntendon, 1)            \
   X(double, tendon_invweight0, ntendon, 1)         \
+  X(int, tendon_actuatorid, ntendon, 1)            \
   X(int, wrap_type, nwrap, 1)                      \
   X(int, wrap_objid, nwrap, 1)                     \
   X(double, wrap_prm, nwrap, 1)                    \
@@ -289,6 +294,9 @@ struct Statistic {
   X(double, actuator_acc0, nu, 1)                  \
   X(double, actuator_length0, nu, 1)               \
   X(double, actuator_lengthrange, nu, 2)           \
+  X(double, actuator_damping, nu, 1)               \
+  X(double, actuator_dampingpoly, nu, kNPoly)      \
+  X(double, actuator_armature, nu, 1)              \
   /* keyframes */                                  \
   X(double, key_time, nkey, 1)                     \
   X(double, key_qpos, nkey, nq)                    \

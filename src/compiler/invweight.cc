@@ -25,7 +25,7 @@ bool AxisAligned(const double* axis) {
 // a static child of it), has no child bodies and its joints sit at its origin on aligned
 // axes with at most one rotation first; 2 when those joints are all slides.
 void SimpleBodies(Model* m) {
-  for (int i = 1; i < m->nbody; i++) {
+  for (int i = 0; i < m->nbody; i++) {
     int parent = m->body_parentid[i];
     bool simple = m->body_sameframe[i] == 1 &&
                   (m->body_rootid[i] == i ||

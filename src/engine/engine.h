@@ -21,8 +21,20 @@ void FwdPositionSmooth(const Model& m, Data& d);
 void Kinematics(const Model& m, Data& d);
 // subtree_com, cinert, cdof (kinematics.cc).
 void ComPos(const Model& m, Data& d);
-// ten_length, ten_J (tendon.cc).
+// ten_length, ten_J, ten_wrapadr, ten_wrapnum, wrap_obj, wrap_xpos (tendon.cc).
 void Tendon(const Model& m, Data& d);
+// jdot (nv) = d ten_J(i) / dt; zero for fixed tendons (tendon.cc).
+void TendonJacobianDot(const Model& m, Data& d, int i, double* jdot);
+// qfrc += ten_J^T armature (d ten_J/dt . qvel): the bias of tendon armature (rne.cc).
+void TendonBias(const Model& m, Data& d, double* qfrc);
+// Armature an actuator (several: summed) adds to a joint or tendon, times gear^2 (inertia.cc).
+double ActuatorArmature(const Model& m, bool tendon, int id);
+// Linear damping an actuator adds to a joint or tendon, times gear^2; its |v| v and v^3
+// coefficients are added to poly (passive.cc).
+double ActuatorDamping(const Model& m, bool tendon, int id, double poly[kNPoly]);
+// The damping force is -v (b + p0 |v| + p1 v^2); its slope in v (passive.cc).
+double DampingCoefficient(double linear, const double poly[kNPoly], double v);
+double DampingSlope(double linear, const double poly[kNPoly], double v);
 // crb and the joint-space inertia M (CSR lower triangle) and qM (inertia.cc).
 void MakeInertia(const Model& m, Data& d);
 // qLD, qLDiagInv: the L^T D L factorization of M (inertia.cc).
@@ -50,6 +62,10 @@ void MulJacTVec(const Model& m, const double* jac, const double* vec, double* re
 void ComVel(const Model& m, Data& d);
 // qfrc_spring, qfrc_damper, qfrc_passive (passive.cc).
 void Passive(const Model& m, Data& d);
+// qfrc_fluid (inertia-box or ellipsoid model), added into qfrc_passive (fluid.cc).
+void FluidForces(const Model& m, Data& d);
+// Semi-axes of the ellipsoid that stands for a geom in the fluid model (fluid.cc).
+void GeomSemiAxes(int type, const double* size, double* semiaxes);
 // result = inverse dynamics without (flg_acc false) or with qacc (rne.cc).
 void Rne(const Model& m, Data& d, bool flg_acc, double* result);
 
@@ -96,6 +112,8 @@ void ImplicitIntegrate(const Model& m, Data& d);
 
 // qDeriv = d(qfrc_actuator + qfrc_passive [- qfrc_bias]) / d qvel (derivative.cc).
 void SmoothVelocityDerivative(const Model& m, Data& d, bool with_bias);
+// qDeriv += d qfrc_fluid / d qvel (fluid.cc).
+void FluidDerivative(const Model& m, Data& d);
 
 // ------------------------------------------------------------ forward (forward.cc)
 

@@ -51,6 +51,7 @@ void FwdVelocity(const Model& m, Data& d) {
   Passive(m, d);
   ReferenceConstraint(m, d);
   Rne(m, d, false, d.qfrc_bias.data());
+  TendonBias(m, d, d.qfrc_bias.data());
 }
 
 // Resets when the state holds a NaN or a huge value; returns true if it did.

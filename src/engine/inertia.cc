@@ -2,12 +2,14 @@
 //
 // Composite rigid body algorithm (Featherstone; MuJoCo mj_crb): crb = the inertia of
 // each body's subtree, accumulated leaves to root; then for every dof i and each
-// ancestor dof j, M(i,j) = cdof_j . (crb_body(i) cdof_i). Armature adds to the diagonal.
+// ancestor dof j, M(i,j) = cdof_j . (crb_body(i) cdof_i). Armature adds to the diagonal
+// (the joint's own and its actuators' times gear^2), tendon armature adds a J^T J.
 //
 // M is stored as its lower triangle in compressed rows (M_rowadr, M_rownnz,
 // M_colind): row i holds i's ancestor dofs, diagonal last. Because rows of ancestors
 // are prefixes of their descendants' rows, the L^T D L factorization (eliminating the
 // last dof first) creates no fill-in.
+#include "engine/actuator_target.h"
 #include "engine/engine.h"
 #include "math/dot.h"
 #include "math/math.h"
@@ -15,6 +17,34 @@
 namespace simlab {
 
 using namespace math;
+
+namespace {
+
+// M += armature J^T J for each tendon with armature (its own and its actuators'),
+// kept to M's sparsity (MuJoCo mj_tendonArmature).
+void TendonArmature(const Model& m, Data& d) {
+  for (int t = 0; t < m.ntendon; t++) {
+    double armature = m.tendon_armature[t] + ActuatorArmature(m, true, t);
+    if (armature == 0) continue;
+    const double* jac = &d.ten_J[static_cast<size_t>(t) * m.nv];
+    for (int i = 0; i < m.nv; i++) {
+      if (jac[i] == 0) continue;
+      for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {
+        d.M[adr] += armature * jac[i] * jac[m.M_colind[adr]];
+      }
+    }
+  }
+}
+
+}  // namespace
+
+double ActuatorArmature(const Model& m, bool tendon, int id) {
+  double armature = 0;
+  ForTargetActuators(m, tendon, id, [&](int i, double gear2) {
+    armature += m.actuator_armature[i] * gear2;
+  });
+  return armature;
+}
 
 void MakeInertia(const Model& m, Data& d) {
   // crb = cinert, accumulated from children to parents.
@@ -30,7 +60,7 @@ void MakeInertia(const Model& m, Data& d) {
   for (int i = 0; i < m.nv; i++) {
     int adr = m.M_rowadr[i] + m.M_rownnz[i] - 1;
     for (int k = m.M_rowadr[i]; k < adr; k++) d.M[k] = 0;
-    d.M[adr] = m.dof_armature[i];
+    d.M[adr] = m.dof_armature[i] + ActuatorArmature(m, false, m.dof_jntid[i]);
     double f[6];
     MulInertVec(f, &d.crb[10 * m.dof_bodyid[i]], &d.cdof[6 * i]);
     for (int j = i; j >= 0; j = m.dof_parentid[j]) {
@@ -39,6 +69,8 @@ void MakeInertia(const Model& m, Data& d) {
                     c[5] * f[5];
     }
   }
+
+  TendonArmature(m, d);
 
   // qM: the same numbers in MuJoCo's legacy layout (diagonal first, then ancestors).
   for (int i = 0; i < m.nv; i++) {
