@@ -35,12 +35,14 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 
 // The cases of the smooth-dynamics list (tools/make_goldens.sh), the actuator list
 // (tools/make_actuation_goldens.sh) and the spatial tendon list
-// (tests/conformance/tendon/make_goldens.sh).
+// (tests/conformance/tendon/make_goldens.sh); the fluid-force list
+// (tests/conformance/fluid/make_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
   for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
                            "tests/conformance/tendon_cases.txt",
-                           "tests/conformance/constraint_cases.txt"}) {
+                           "tests/conformance/constraint_cases.txt",
+                           "tests/conformance/fluid_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {
@@ -78,7 +80,12 @@ TEST_P(Conformance, MatchesMuJoCo) {
   // Our rollout, with the options the golden was made with.
   apps::RolloutOptions options;
   options.model = Path(c.model);
-  if (!c.state.empty()) options.state = Path(c.state);
+  // The state column names a state file, or "key:K" for a reset to keyframe K.
+  if (c.state.rfind("key:", 0) == 0) {
+    options.key = std::stoi(c.state.substr(4));
+  } else if (!c.state.empty()) {
+    options.state = Path(c.state);
+  }
   if (!c.ctrl.empty()) options.ctrl = Path(c.ctrl);
   options.steps = c.steps;
   options.every = 10;

@@ -20,6 +20,7 @@
 #   3. For each model: node ctrlgen.mjs MODEL --steps 500 > ctrl/<name>.csv, then
 #          rollout.mjs MODEL --ctrl ctrl/<name>.csv --steps 500 --every 10
 #      writing goldens/<name>.jsonl; checks that MuJoCo found no contacts.
+#   5. models/gantry_gripper.xml with contacts disabled, from keyframe 0, 1000 steps.
 #   4. Writes tests/conformance/constraint_cases.txt, one line per case:
 #          <model xml> <golden jsonl> <steps> <state json or -> <ctrl csv> <tolerance>
 #      Tolerance 1e-8 relative, except the CG equality bench (1e-6, see below).
@@ -96,5 +97,19 @@ for model in "$OUT"/models/*.xml; do
   case "$name" in constraint_equality__CG__*) tol=1e-6 ;; esac
   echo "$model $golden $STEPS - $ctrl $tol" >> "$CASES.tmp"
 done
+# --- 5. the lesson's gantry gripper without contacts, from keyframe 0, 1000 steps ------------
+# (its attached gripper file must sit beside it: both are copied)
+mkdir -p "$OUT/gantry"
+cp models/gripper.xml "$OUT/gantry/gripper.xml"
+sed 's|<compiler autolimits="true"/>|&\n  <option><flag contact="disable"/></option>|' \
+  models/gantry_gripper.xml > "$OUT/gantry/gantry_gripper__nocontact.xml"
+model="$OUT/gantry/gantry_gripper__nocontact.xml"
+ctrl="$OUT/ctrl/gantry_gripper__nocontact.csv"
+golden="$OUT/goldens/gantry_gripper__nocontact.jsonl"
+echo "rollout $model"
+node "$ORACLE/ctrlgen.mjs" "$model" --steps 1000 --out "$ctrl"
+node "$ORACLE/rollout.mjs" "$model" --key 0 --ctrl "$ctrl" --steps 1000 --every "$EVERY" --out "$golden"
+echo "$model $golden 1000 key:0 $ctrl $TOL" >> "$CASES.tmp"
+
 mv "$CASES.tmp" "$CASES"
 echo "done: $(wc -l < "$CASES") cases"
