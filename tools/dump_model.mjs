@@ -33,7 +33,7 @@ const ARRAYS = [
   'geom_type', 'geom_contype', 'geom_conaffinity', 'geom_condim', 'geom_bodyid', 'geom_group',
   'geom_priority', 'geom_sameframe', 'geom_solmix', 'geom_solref', 'geom_solimp', 'geom_size',
   'geom_rbound', 'geom_pos', 'geom_quat', 'geom_friction', 'geom_margin', 'geom_gap',
-  'geom_rgba',
+  'geom_rgba', 'geom_fluid',
   'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
   'site_quat', 'site_rgba',
   'tendon_adr', 'tendon_num', 'tendon_limited', 'tendon_actfrclimited', 'tendon_solref_lim',
@@ -53,7 +53,8 @@ const ARRAYS = [
   'eq_data',
 ];
 const OPTIONS = ['timestep', 'impratio', 'tolerance', 'ls_tolerance', 'gravity', 'wind',
-  'magnetic', 'o_margin', 'o_solref', 'o_solimp', 'o_friction', 'integrator', 'cone',
+  'magnetic', 'density', 'viscosity', 'o_margin', 'o_solref', 'o_solimp', 'o_friction',
+  'integrator', 'cone',
   'jacobian', 'solver', 'iterations', 'ls_iterations', 'noslip_iterations', 'disableflags',
   'enableflags', 'disableactuator'];
 

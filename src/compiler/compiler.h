@@ -3,6 +3,7 @@
 //
 //   body.cc      the tree: bodies, joints, dofs, geoms, sites, in depth-first order
 //   inertia.cc   geom volumes and inertias, body inertia from geoms, mass bounds
+//   fluid.cc     geom_fluid: the ellipsoid fluid model's added mass and inertia
 //   tendon.cc    fixed tendons
 //   actuator.cc  actuators: transmission targets, limits, activation layout
 //   equality.cc  equality constraints: objects, parameters, eq_data at qpos0
@@ -89,6 +90,8 @@ void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>
                       BodyState* body);
 void BoundMassInertia(const mjcf::CompilerSpec& c, BodyState* body);
 double GeomRBound(const GeomState& g);
+// The geom's row of geom_fluid (the ellipsoid fluid model's coefficients; fluid.cc).
+void GeomFluid(const GeomState& g, double* fluid);
 void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);

@@ -62,6 +62,7 @@ void ActuatorDerivative(const Model& m, Data& d) {
 
 // Dampers of dofs and tendons, with their actuators' damping: -d(v b(v))/dv.
 void PassiveDerivative(const Model& m, Data& d) {
+  FluidDerivative(m, d);
   if (m.opt.disableflags & kDisableDamper) return;
   for (int v = 0; v < m.nv; v++) {
     double poly[kNPoly] = {0, 0};

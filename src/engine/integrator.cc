@@ -176,12 +176,16 @@ void SolveImplicitFull(const Model& m, Data& d, const double* qfrc, double* qacc
   }
 }
 
-// qacc = (M - h qDeriv restricted to M's sparsity)^-1 qfrc, by L^T D L.
+// qacc = (M - h qDeriv restricted to M's sparsity)^-1 qfrc, by L^T D L. MuJoCo's M
+// stores no off-diagonal entries in the rows of simple bodies' dofs, so their qDeriv
+// couplings (fluid drag on a free body, say) are dropped there.
 void SolveImplicitFast(const Model& m, Data& d, const double* qfrc, double* qacc) {
   double h = m.opt.timestep;
   for (int i = 0; i < m.nv; i++) {
+    bool simple = m.body_simple[m.dof_bodyid[i]] != 0;
     for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {
-      d.qH[adr] = d.M[adr] - h * d.qDeriv[i * m.nv + m.M_colind[adr]];
+      int j = m.M_colind[adr];
+      d.qH[adr] = simple && j != i ? d.M[adr] : d.M[adr] - h * d.qDeriv[i * m.nv + j];
     }
   }
   FactorSparse(m, d.qH.data(), d.qHDiagInv.data());

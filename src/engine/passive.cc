@@ -121,6 +121,7 @@ void Passive(const Model& m, Data& d) {
   for (int i = 0; i < m.ntendon; i++) TendonSpringDamper(m, d, i, spring, damper);
 
   for (int v = 0; v < m.nv; v++) d.qfrc_passive[v] = d.qfrc_spring[v] + d.qfrc_damper[v];
+  FluidForces(m, d);
 }
 
 }  // namespace simlab

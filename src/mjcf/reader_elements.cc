@@ -98,11 +98,10 @@ void Reader::ReadGeom(const XmlElement& e, GeomSpec* g, bool in_default) const {
   double fitscale = 1;
   e.Number("fitscale", &fitscale);
   e.Numbers("rgba", g->rgba);
-  int fluidshape = 0;
+  int fluidshape = g->fluid_ellipsoid ? 1 : 0;
   e.Enum("fluidshape", &fluidshape, {{"none", 0}, {"ellipsoid", 1}});
-  if (fluidshape) NotSupported(e, "fluidshape=\"ellipsoid\"");
-  std::array<double, 5> fluidcoef;
-  e.Numbers("fluidcoef", fluidcoef, false);
+  g->fluid_ellipsoid = fluidshape == 1;
+  e.Numbers("fluidcoef", g->fluidcoef, false);
   e.Vector("user");
   e.Number("mass", &g->mass);
   e.Number("density", &g->density);

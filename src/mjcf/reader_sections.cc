@@ -120,11 +120,6 @@ void Reader::Option(const XmlElement& e) {
     o.disableactuator |= (1 << groups[i]);
   }
 
-  // The engine has no fluid forces (density, viscosity, wind): refuse models that need them.
-  if (o.density != 0 || o.viscosity != 0 || o.wind[0] != 0 || o.wind[1] != 0 ||
-      o.wind[2] != 0) {
-    NotSupported(e, "fluid forces (nonzero density, viscosity or wind)");
-  }
   for (pugi::xml_node n : e.node().children()) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);

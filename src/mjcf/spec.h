@@ -104,6 +104,10 @@ struct GeomSpec {
   std::array<double, 4> quat = {1, 0, 0, 0};
   Orientation alt;
   std::array<double, 4> rgba = {0.5, 0.5, 0.5, 1};
+  // Ellipsoid fluid model: on/off, then blunt drag, slender drag, angular drag, Kutta
+  // lift and Magnus lift coefficients.
+  bool fluid_ellipsoid = false;
+  std::array<double, 5> fluidcoef = {0.5, 0.25, 1.5, 1.0, 1.0};
   std::string mesh;
   std::string hfield;
   FramePtr frame;
