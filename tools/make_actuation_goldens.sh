@@ -40,6 +40,7 @@ TOL=1e-8
 [ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
 
 cd "$ROOT"
+source "$SCRIPT_DIR/oracle_case.sh"
 OUT=tests/conformance/actuation
 rm -rf "$OUT"
 mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
@@ -87,16 +88,7 @@ done
 CASES=tests/conformance/actuation_cases.txt
 : > "$CASES.tmp"
 for model in "$OUT"/models/*.xml; do
-  name="$(basename "$model" .xml)"
-  ctrl="$OUT/ctrl/$name.csv"
-  golden="$OUT/goldens/$name.jsonl"
-  echo "rollout $model"
-  node "$ORACLE/ctrlgen.mjs" "$model" --steps "$STEPS" --out "$ctrl"
-  node "$ORACLE/rollout.mjs" "$model" --ctrl "$ctrl" --steps "$STEPS" --every "$EVERY" --out "$golden"
-  grep -q '"ncon":0' "$golden" && ! grep -q '"ncon":[1-9]' "$golden" \
-    || { echo "$golden: MuJoCo found contacts" >&2; exit 1; }
-  ! grep -qE 'null|NaN|Infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
-  echo "$model $golden $STEPS - $ctrl $TOL" >> "$CASES.tmp"
+  oracle_case "$model" "$STEPS" - "$TOL" "$CASES.tmp"
 done
 
 # --- flags: actuation off, clampctrl off/on, bad controls -----------------------------------

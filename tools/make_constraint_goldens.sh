@@ -39,6 +39,7 @@ TOL=1e-8
 [ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
 
 cd "$ROOT"
+source "$SCRIPT_DIR/oracle_case.sh"
 OUT=tests/conformance/constraint
 rm -rf "$OUT"
 mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
@@ -83,19 +84,12 @@ CASES=tests/conformance/constraint_cases.txt
 : > "$CASES.tmp"
 for model in "$OUT"/models/*.xml; do
   name="$(basename "$model" .xml)"
-  ctrl="$OUT/ctrl/$name.csv"
-  golden="$OUT/goldens/$name.jsonl"
-  echo "rollout $model"
-  node "$ORACLE/ctrlgen.mjs" "$model" --steps "$STEPS" --out "$ctrl"
-  node "$ORACLE/rollout.mjs" "$model" --ctrl "$ctrl" --steps "$STEPS" --every "$EVERY" --out "$golden"
-  ! grep -q '"ncon":[1-9]' "$golden" || { echo "$golden: MuJoCo found contacts" >&2; exit 1; }
-  ! grep -qE 'null|NaN|Infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
   # CG stops once its scaled gradient is below opt.tolerance: roundoff-level differences in
   # its input (from the smooth dynamics) move that stopping point, and a slowly converging
   # CG (the weld of the equality bench) then differs by up to ~1e-7; compared at 1e-6.
   tol="$TOL"
   case "$name" in constraint_equality__CG__*) tol=1e-6 ;; esac
-  echo "$model $golden $STEPS - $ctrl $tol" >> "$CASES.tmp"
+  oracle_case "$model" "$STEPS" - "$tol" "$CASES.tmp"
 done
 # --- 5. the lesson's gantry gripper without contacts, from keyframe 0, 1000 steps ------------
 # (its attached gripper file must sit beside it: both are copied)
@@ -103,13 +97,7 @@ mkdir -p "$OUT/gantry"
 cp models/gripper.xml "$OUT/gantry/gripper.xml"
 sed 's|<compiler autolimits="true"/>|&\n  <option><flag contact="disable"/></option>|' \
   models/gantry_gripper.xml > "$OUT/gantry/gantry_gripper__nocontact.xml"
-model="$OUT/gantry/gantry_gripper__nocontact.xml"
-ctrl="$OUT/ctrl/gantry_gripper__nocontact.csv"
-golden="$OUT/goldens/gantry_gripper__nocontact.jsonl"
-echo "rollout $model"
-node "$ORACLE/ctrlgen.mjs" "$model" --steps 1000 --out "$ctrl"
-node "$ORACLE/rollout.mjs" "$model" --key 0 --ctrl "$ctrl" --steps 1000 --every "$EVERY" --out "$golden"
-echo "$model $golden 1000 key:0 $ctrl $TOL" >> "$CASES.tmp"
+oracle_case "$OUT/gantry/gantry_gripper__nocontact.xml" 1000 key:0 "$TOL" "$CASES.tmp"
 
 mv "$CASES.tmp" "$CASES"
 echo "done: $(wc -l < "$CASES") cases"
