@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rollout.h"
+#include "load_error.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -52,22 +53,9 @@ class Files {
   fs::path dir_;
 };
 
-// The message of the error that loading `path` throws ("" if it loads).
-std::string LoadError(const std::string& path) {
-  try {
-    LoadXml(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // Loading `path` fails with a message that contains each of `parts`.
 void ExpectError(const std::string& path, const std::vector<std::string>& parts) {
-  std::string msg = LoadError(path);
-  for (const std::string& part : parts) {
-    EXPECT_NE(msg.find(part), std::string::npos) << "missing '" << part << "' in: " << msg;
-  }
+  test_util::ExpectMessageParts(test_util::FileLoadError(path), parts, path);
 }
 
 // ---------------------------------------------------------------- <include>

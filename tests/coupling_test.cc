@@ -65,10 +65,10 @@ TEST(Coupling, StifferSolrefReducesDriftUnderLoad) {
   double soft = FingerDrift(m, 2.0);
   m.eq_solref[kNRef * eq] = 0.005;  // time constant 0.02 s -> 0.005 s
   double stiff = FingerDrift(m, 2.0);
-  EXPECT_GT(soft, 1e-5);             // a visible drift under a 2 N load
-  EXPECT_LT(stiff, 0.25 * soft);     // stiffer: much smaller
+  EXPECT_GT(soft, 1e-5);          // a visible drift under a 2 N load...
+  EXPECT_LT(stiff, 0.25 * soft);  // ...much smaller with the stiffer equality
   m.eq_solref[kNRef * eq] = 0.02;
-  EXPECT_EQ(FingerDrift(m, 2.0), soft);  // deterministic: same model, same drift
+  EXPECT_LT(FingerDrift(m, 0.0), 0.1 * soft);  // and it is the load that opens the gap
 }
 
 }  // namespace

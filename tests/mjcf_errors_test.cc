@@ -8,28 +8,15 @@
 
 #include <gtest/gtest.h>
 
+#include "load_error.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
 namespace {
 
-// Loads `xml` as "bad.xml" and returns the error message ("" if it loaded).
-std::string LoadError(const std::string& xml) {
-  try {
-    LoadXmlString(xml, "bad.xml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-// The message contains every expected piece.
+// Loading `xml` as "bad.xml" fails with a message containing every expected piece.
 void ExpectError(const std::string& xml, const std::vector<std::string>& pieces) {
-  std::string msg = LoadError(xml);
-  ASSERT_FALSE(msg.empty()) << "expected an error for:\n" << xml;
-  for (const std::string& p : pieces) {
-    EXPECT_NE(msg.find(p), std::string::npos) << "missing '" << p << "' in: " << msg;
-  }
+  test_util::ExpectMessageParts(test_util::XmlLoadError(xml), pieces, xml);
 }
 
 TEST(MjcfErrors, NotXml) { ExpectError("this is not xml", {"bad.xml:1:", "malformed XML"}); }

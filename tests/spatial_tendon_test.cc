@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "engine/engine.h"
+#include "load_error.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -97,15 +98,6 @@ INSTANTIATE_TEST_SUITE_P(Models, TendonPaths,
 
 // ---------------------------------------------------------------- compile errors
 
-std::string LoadError(const std::string& xml) {
-  try {
-    LoadXmlString(xml, "bad.xml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // A world with two bodies, sites, a sphere and a box, and the given tendon section.
 std::string WithTendon(const std::string& tendon) {
   return "<mujoco>\n<worldbody>\n<site name=\"w\"/>\n"
@@ -152,7 +144,7 @@ TEST(SpatialTendonErrors, PathRules) {
       {"<fixed width=\"1\"><joint joint=\"j\" coef=\"1\"/></fixed>", "bad.xml:7:", "width"},
   };
   for (const Case& c : cases) {
-    std::string msg = LoadError(WithTendon(c.tendon));
+    std::string msg = test_util::XmlLoadError(WithTendon(c.tendon));
     EXPECT_NE(msg.find(c.line), std::string::npos) << c.tendon << " -> " << msg;
     EXPECT_NE(msg.find(c.what), std::string::npos) << c.tendon << " -> " << msg;
   }
@@ -262,12 +254,12 @@ TEST(ActuatorDamping, PolynomialForceByHand) {
 TEST(ActuatorDamping, Errors) {
   std::string site = "<mujoco>\n<worldbody>\n<body><joint/><geom size=\".1\"/><site name=\"s\"/></body>\n"
                      "</worldbody>\n<actuator>\n";
-  std::string msg = LoadError(site + "<motor site=\"s\" damping=\"1\"/>\n</actuator>\n</mujoco>");
+  std::string msg = test_util::XmlLoadError(site + "<motor site=\"s\" damping=\"1\"/>\n</actuator>\n</mujoco>");
   EXPECT_NE(msg.find("bad.xml:6:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("damping requires a joint or tendon transmission"), std::string::npos) << msg;
-  msg = LoadError(site + "<motor site=\"s\" armature=\"1\"/>\n</actuator>\n</mujoco>");
+  msg = test_util::XmlLoadError(site + "<motor site=\"s\" armature=\"1\"/>\n</actuator>\n</mujoco>");
   EXPECT_NE(msg.find("armature requires a joint or tendon transmission"), std::string::npos) << msg;
-  msg = LoadError(site + "<adhesion body=\"world\" damping=\"1\"/>\n</actuator>\n</mujoco>");
+  msg = test_util::XmlLoadError(site + "<adhesion body=\"world\" damping=\"1\"/>\n</actuator>\n</mujoco>");
   EXPECT_NE(msg.find("damping"), std::string::npos) << msg;
 }
 

@@ -29,50 +29,33 @@
 # Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
 set -euo pipefail
 
-SCRIPT_DIR="$(cd "$(dirname "$0")" && pwd)"
-ROOT="$(cd "$SCRIPT_DIR/.." && pwd)"
-ORACLE="$(cd "$SCRIPT_DIR/../../shared/oracle" && pwd)"
-CORPUS="$(cd "$SCRIPT_DIR/../../shared/corpus/mujoco/test/engine/testdata/actuation" && pwd)"
+source "$(dirname "$0")/oracle_case.sh"
+CORPUS="$(cd "$ROOT/../shared/corpus/mujoco/test/engine/testdata/actuation" && pwd)"
 STEPS=500
-EVERY=10
 TOL=1e-8
 
-[ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
-
 cd "$ROOT"
-source "$SCRIPT_DIR/oracle_case.sh"
 OUT=tests/conformance/actuation
 rm -rf "$OUT"
 mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
 
-# Adds a simlab comment right after the <mujoco> start tag.
-note() { sed -e "0,/<mujoco/s|\(<mujoco[^>]*>\)|\1\n  <!-- simlab: derived from the MuJoCo test model actuation/$1.xml: $2 -->|"; }
-
-# Runs sed on a corpus model and checks that it changed something.
-derive() {
-  local src="$1" variant="$2" what="$3"; shift 3
-  local dst="$OUT/models/${src}__${variant}.xml"
-  sed "$@" "$CORPUS/$src.xml" | note "$src" "$what" > "$dst"
-  ! cmp -s <(sed "$@" "$CORPUS/$src.xml") "$CORPUS/$src.xml" || { echo "derive $dst: no change" >&2; exit 1; }
-}
-
 # --- 1. corpus models ----------------------------------------------------------------------
 for name in damper dampratio; do cp "$CORPUS/$name.xml" "$OUT/models/$name.xml"; done
-derive sites nofluid "option density removed (fluid forces come later)" \
+derive "$CORPUS" sites nofluid "option density removed (fluid forces come later)" \
   -e 's|<option density="1000">|<option>|'
-derive refsite_free smooth "frictionloss and sensors removed (they come later)" \
+derive "$CORPUS" refsite_free smooth "frictionloss and sensors removed (they come later)" \
   -e 's| frictionloss="0.1334"||g' -e '/<sensor>/,/<\/sensor>/d'
-derive refsite smooth "viscosity and gravity compensation removed, gravity off (they come later)" \
+derive "$CORPUS" refsite smooth "viscosity and gravity compensation removed, gravity off (they come later)" \
   -e 's|<option viscosity="10" integrator="implicit">|<option integrator="implicit">|' \
   -e 's|<flag contact="disable"/>|<flag contact="disable" gravity="disable"/>|' \
   -e 's| actuatorgravcomp="true"||' -e 's| gravcomp="1"||g'
-derive joint_force_clamp nosensor "sensors removed (they come later)" \
+derive "$CORPUS" joint_force_clamp nosensor "sensors removed (they come later)" \
   -e '/<sensor>/,/<\/sensor>/d'
-derive tendon_force_clamp fixed "spatial tendons, their motors and the sensors removed (they come later)" \
+derive "$CORPUS" tendon_force_clamp fixed "spatial tendons, their motors and the sensors removed (they come later)" \
   -e '/<spatial/,/<\/spatial>/d' -e '/<motor tendon="spatial/d' -e '/<sensor>/,/<\/sensor>/d'
-derive actearly smooth "contacts disabled (the spheres rest on the floor) and density removed (fluid forces); they come later" \
+derive "$CORPUS" actearly smooth "contacts disabled (the spheres rest on the floor) and density removed (fluid forces); they come later" \
   -e 's|<option density="1000" timestep="0.05" integrator="implicitfast" />|<option timestep="0.05" integrator="implicitfast"><flag contact="disable"/></option>|'
-derive actuator_group_disable nocontact "contacts disabled and joint ranges removed (contacts and limits come later)" \
+derive "$CORPUS" actuator_group_disable nocontact "contacts disabled and joint ranges removed (contacts and limits come later)" \
   -e 's|<option actuatorgroupdisable="1 2" cone="elliptic"/>|<option actuatorgroupdisable="1 2" cone="elliptic"><flag contact="disable"/></option>|' \
   -e 's| range="[^"]*"||'
 
@@ -112,10 +95,7 @@ sed -e 's|<flag contact="disable"/>|<flag contact="disable" clampctrl="disable"/
     > "$FLAGS_DIR/muscle_bench__clampctrl_off.xml"
 for model in "$FLAGS_DIR"/*.xml; do
   ! cmp -s "$model" "$BENCH" || { echo "$model: sed changed nothing" >&2; exit 1; }
-  golden="$OUT/goldens/$(basename "$model" .xml).jsonl"
-  echo "rollout $model"
-  node "$ORACLE/rollout.mjs" "$model" --ctrl "$OUT/ctrl/wild.csv" --steps 300 --every "$EVERY" --out "$golden"
-  echo "$model $golden 300 - $OUT/ctrl/wild.csv $TOL" >> "$CASES.tmp"
+  oracle_rollout "$model" 300 - "$OUT/ctrl/wild.csv" "$TOL" "$CASES.tmp"
 done
 
 mv "$CASES.tmp" "$CASES"

@@ -28,18 +28,12 @@
 # Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
 set -euo pipefail
 
-SCRIPT_DIR="$(cd "$(dirname "$0")" && pwd)"
-ROOT="$(cd "$SCRIPT_DIR/.." && pwd)"
-ORACLE="$(cd "$SCRIPT_DIR/../../shared/oracle" && pwd)"
-SHARED_CORPUS="$(cd "$SCRIPT_DIR/../../shared/corpus/mujoco" && pwd)"
+source "$(dirname "$0")/oracle_case.sh"
+SHARED_CORPUS="$(cd "$ROOT/../shared/corpus/mujoco" && pwd)"
 STEPS=500
-EVERY=10
 TOL=1e-8
 
-[ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
-
 cd "$ROOT"
-source "$SCRIPT_DIR/oracle_case.sh"
 OUT=tests/conformance/constraint
 rm -rf "$OUT"
 mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"

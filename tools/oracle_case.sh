@@ -1,23 +1,57 @@
-# oracle_case.sh — sourced by the golden scripts (tools/make_*_goldens.sh).
+# oracle_case.sh — sourced by the golden scripts (tools/make_*_goldens.sh,
+# tests/conformance/*/make_goldens.sh): the oracle's location and the steps they share.
 #
+# Sourcing sets ROOT (the repository) and ORACLE (../shared/oracle beside it), checks that
+# `npm ci` was run there, and sets EVERY=10 unless the script set it. The functions use
+# $OUT (the case folder, with models/, goldens/, ctrl/).
+#
+#   oracle_rollout MODEL STEPS STATE CTRL TOL CASES
+#       goldens/<name>.jsonl = rollout.mjs MODEL, recording every $EVERY steps; STATE is
+#       "-", "key:K" (start from keyframe K) or a state file; CTRL is "-" or a CSV.
+#       Checks that MuJoCo found no contacts and no non-finite values; appends the case
+#       line "MODEL GOLDEN STEPS STATE CTRL TOL" to CASES.
 #   oracle_case MODEL STEPS STATE TOL CASES
-#
-# Writes ctrl/<name>.csv (ctrlgen.mjs) and goldens/<name>.jsonl (rollout.mjs, every
-# $EVERY steps) under $OUT for MODEL, checks that MuJoCo found no contacts and no
-# non-finite values, and appends the case line to CASES. STATE is "-", or "key:K" to start
-# from keyframe K. Needs $ORACLE, $OUT and $EVERY.
+#       ctrl/<name>.csv = ctrlgen.mjs MODEL, then oracle_rollout with it.
+#   derive CORPUS SRC VARIANT WHAT SED-ARGS...
+#       models/SRC__VARIANT.xml = sed SED-ARGS on CORPUS/SRC.xml, with a comment saying
+#       WHAT was changed; fails if sed changed nothing.
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ORACLE="$(cd "$ROOT/../shared/oracle" && pwd)"
+EVERY="${EVERY:-10}"
+[ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
+
+oracle_rollout() {
+  local model="$1" steps="$2" state="$3" ctrl="$4" tol="$5" cases="$6"
+  local golden args
+  golden="$OUT/goldens/$(basename "$model" .xml).jsonl"
+  args=(--steps "$steps" --every "$EVERY" --out "$golden")
+  case "$state" in
+    -) ;;
+    key:*) args+=(--key "${state#key:}") ;;
+    *) args+=(--state "$state") ;;
+  esac
+  [ "$ctrl" = - ] || args+=(--ctrl "$ctrl")
+  echo "rollout $model"
+  node "$ORACLE/rollout.mjs" "$model" "${args[@]}"
+  ! grep -q '"ncon":[1-9]' "$golden" || { echo "$golden: MuJoCo found contacts" >&2; exit 1; }
+  ! grep -qiE 'null|nan|infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
+  echo "$model $golden $steps $state $ctrl $tol" >> "$cases"
+}
+
 oracle_case() {
   local model="$1" steps="$2" state="$3" tol="$4" cases="$5"
-  local name ctrl golden key=()
-  name="$(basename "$model" .xml)"
-  ctrl="$OUT/ctrl/$name.csv"
-  golden="$OUT/goldens/$name.jsonl"
-  [ "${state#key:}" != "$state" ] && key=(--key "${state#key:}")
-  echo "rollout $model"
+  local ctrl
+  ctrl="$OUT/ctrl/$(basename "$model" .xml).csv"
   node "$ORACLE/ctrlgen.mjs" "$model" --steps "$steps" --out "$ctrl"
-  node "$ORACLE/rollout.mjs" "$model" "${key[@]}" --ctrl "$ctrl" --steps "$steps" \
-    --every "$EVERY" --out "$golden"
-  ! grep -q '"ncon":[1-9]' "$golden" || { echo "$golden: MuJoCo found contacts" >&2; exit 1; }
-  ! grep -qE 'null|NaN|Infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
-  echo "$model $golden $steps $state $ctrl $tol" >> "$cases"
+  oracle_rollout "$model" "$steps" "$state" "$ctrl" "$tol" "$cases"
+}
+
+derive() {
+  local corpus="$1" src="$2" variant="$3" what="$4"; shift 4
+  local dst="$OUT/models/${src}__${variant}.xml"
+  ! cmp -s <(sed "$@" "$corpus/$src.xml") "$corpus/$src.xml" \
+    || { echo "derive $dst: sed changed nothing" >&2; exit 1; }
+  sed "$@" "$corpus/$src.xml" |
+    sed -e "0,/<mujoco/s|\(<mujoco[^>]*>\)|\1\n  <!-- simlab: derived from the MuJoCo test model $(basename "$corpus")/$src.xml: $what -->|" \
+    > "$dst"
 }

@@ -50,7 +50,6 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
   ComputeConstants(&m);
-  ComputeInvWeights(&m);
   EqualityConstants(&m);
   ComputeLengthRanges(spec, &m);
 

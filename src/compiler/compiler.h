@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mjcf/spec.h"
+#include "simlab/data.h"
 #include "simlab/model.h"
 
 namespace simlab::compiler {
@@ -103,8 +104,9 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void SetTotalMass(double total, Model* m);
 void ComputeConstants(Model* m);
-// body_simple, body/dof/tendon_invweight0 and stat.meaninertia at qpos0 (invweight.cc).
-void ComputeInvWeights(Model* m);
+// body_simple, body/dof/tendon_invweight0 and stat.meaninertia from a Data at qpos0
+// after the smooth position stage (invweight.cc; called by ComputeConstants).
+void ComputeInvWeights(Model* m, const Data& at_qpos0);
 // actuator_lengthrange where the <compiler><lengthrange> options ask for it (lengthrange.cc).
 void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m);
 

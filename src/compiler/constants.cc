@@ -12,6 +12,7 @@
 
 #include "compiler/compiler.h"
 #include "engine/engine.h"
+#include "math/dot.h"
 
 namespace simlab::compiler {
 
@@ -76,11 +77,12 @@ void ComputeConstants(Model* m) {
     m->actuator_length0[i] = d.actuator_length[i];
     std::copy(moment, moment + m->nv, acc.begin());
     SolveSparse(*m, d.qLD.data(), d.qLDiagInv.data(), acc.data());
-    double norm2 = 0;
-    for (double a : acc) norm2 += a * a;
-    m->actuator_acc0[i] = std::sqrt(norm2);
+    m->actuator_acc0[i] = std::sqrt(math::Dot(acc.data(), acc.data(), m->nv));
     DampRatio(m, i, d, moment);
   }
+
+  // Inverse weights and meaninertia, from the same Data.
+  ComputeInvWeights(m, d);
 }
 
 }  // namespace simlab::compiler

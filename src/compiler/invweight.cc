@@ -9,6 +9,7 @@
 
 #include "compiler/compiler.h"
 #include "engine/engine.h"
+#include "math/dot.h"
 
 namespace simlab::compiler {
 
@@ -67,16 +68,12 @@ void InverseInertia(const Model& m, const Data& d, const double* rows, int n, do
   for (int r = 0; r < n; r++) {
     std::copy_n(rows + static_cast<size_t>(r) * m.nv, m.nv, x.begin());
     SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), x.data());
-    for (int c = 0; c < n; c++) {
-      double s = 0;
-      for (int v = 0; v < m.nv; v++) s += rows[static_cast<size_t>(c) * m.nv + v] * x[v];
-      a[r * n + c] = s;
-    }
+    for (int c = 0; c < n; c++) a[r * n + c] = math::Dot(rows + static_cast<size_t>(c) * m.nv, x.data(), m.nv);
   }
 }
 
 // Translation and rotation inverse weights of body b from its 6 x 6 A at the centre of mass.
-void BodyWeight(const Model& m, Data& d, int b, double* out) {
+void BodyWeight(const Model& m, const Data& d, int b, double* out) {
   if (m.body_weldid[b] == 0) {
     out[0] = out[1] = 0;
     return;
@@ -127,10 +124,8 @@ void JointWeight(const Model& m, const Data& d, int j, double* dof_weight) {
 
 }  // namespace
 
-void ComputeInvWeights(Model* m) {
+void ComputeInvWeights(Model* m, const Data& d) {
   SimpleBodies(m);
-  Data d = MakeData(*m);
-  FwdPositionSmooth(*m, d);
 
   for (int b = 0; b < m->nbody; b++) BodyWeight(*m, d, b, &m->body_invweight0[2 * b]);
   for (int j = 0; j < m->njnt; j++) JointWeight(*m, d, j, m->dof_invweight0.data());

@@ -16,6 +16,7 @@
 
 #include "compiler/compiler.h"
 #include "engine/engine.h"
+#include "math/dot.h"
 #include "mjcf/error.h"
 #include "simlab/simlab.h"
 
@@ -62,13 +63,12 @@ double PushStep(const Model& m, Data& d, const mjcf::LengthRangeSpec& opt, int i
   const double* moment = &d.actuator_moment[static_cast<size_t>(i) * nv];
   std::copy(moment, moment + nv, d.qfrc_applied.begin());
   SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qfrc_applied.data());
-  double norm = 0;
-  for (double f : d.qfrc_applied) norm += f * f;
-  double scale = (2 * side - 1) * opt.accel / std::max(kMinVal, std::sqrt(norm));
+  auto norm_of_applied = [&d, nv] {
+    return std::sqrt(math::Dot(d.qfrc_applied.data(), d.qfrc_applied.data(), nv));
+  };
+  double scale = (2 * side - 1) * opt.accel / std::max(kMinVal, norm_of_applied());
   for (int v = 0; v < nv; v++) d.qfrc_applied[v] = moment[v] * scale;
-  norm = 0;
-  for (double f : d.qfrc_applied) norm += f * f;
-  norm = std::sqrt(norm);
+  double norm = norm_of_applied();
   if (opt.maxforce > 0 && norm > opt.maxforce) {
     for (double& f : d.qfrc_applied) f *= opt.maxforce / std::max(kMinVal, norm);
   }

@@ -13,51 +13,23 @@
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/island.h"
+#include "engine/stack.h"
 #include "math/dot.h"
 
 namespace simlab {
 
 namespace {
 
-// res (nefc) = J vec.
-void MulJacVec(const Model& m, const Data& d, const double* vec, double* res) {
-  for (int r = 0; r < d.nefc; r++) {
-    res[r] = math::Dot(&d.efc_J[static_cast<size_t>(r) * m.nv], vec, m.nv);
-  }
-}
-
-// qfrc_constraint = J^T efc_force.
-void ConstraintForce(const Model& m, Data& d) {
-  std::fill(d.qfrc_constraint.begin(), d.qfrc_constraint.end(), 0.0);
-  for (int r = 0; r < d.nefc; r++) {
-    const double* row = &d.efc_J[static_cast<size_t>(r) * m.nv];
-    for (int v = 0; v < m.nv; v++) d.qfrc_constraint[v] += row[v] * d.efc_force[r];
-  }
-}
-
-// States, forces and qfrc_constraint of all rows at jar; returns the constraint cost.
-double UpdateAll(const Model& m, Data& d, const double* jar) {
+// Row states and forces at jar; returns the constraint cost.
+double UpdateAll(Data& d, const double* jar) {
   double cost = 0;
   ConstraintUpdate(d.ne, d.nf, d.nefc, d.efc_D.data(), d.efc_R.data(),
                    d.efc_frictionloss.data(), jar, d.efc_state.data(), d.efc_force.data(), &cost);
-  ConstraintForce(m, d);
   return cost;
 }
 
-// res = M vec with M in the model's sparse lower-triangle layout (diagonal first).
-void MulM(const Model& m, const Data& d, const double* vec, double* res) {
-  std::fill(res, res + m.nv, 0.0);
-  for (int i = 0; i < m.nv; i++) {
-    int adr = m.M_rowadr[i], end = adr + m.M_rownnz[i] - 1;
-    res[i] = d.M[end] * vec[i];
-    for (int k = end - 1; k >= adr; k--) {
-      res[i] += d.M[k] * vec[m.M_colind[k]];
-      res[m.M_colind[k]] += d.M[k] * vec[i];
-    }
-  }
-}
-
 // Initial qacc (and efc_force for PGS): the warm start when it is better than qacc_smooth.
+// (qfrc_constraint is left to the solvers, which compute it from their solution.)
 void WarmStart(const Model& m, Data& d, const Islands& islands) {
   int nv = m.nv, nefc = d.nefc;
   if (m.opt.disableflags & kDisableWarmstart) {
@@ -65,32 +37,29 @@ void WarmStart(const Model& m, Data& d, const Islands& islands) {
     std::fill(d.efc_force.begin(), d.efc_force.end(), 0.0);
     return;
   }
+  StackFrame frame(d);
+  double* jar = frame.Alloc(nefc);
   d.qacc = d.qacc_warmstart;
-  std::vector<double> jar(nefc);
-  MulJacVec(m, d, d.qacc_warmstart.data(), jar.data());
+  math::MulMatVec(jar, d.efc_J.data(), d.qacc_warmstart.data(), nefc, nv);
   for (int r = 0; r < nefc; r++) jar[r] -= d.efc_aref[r];
-  double cost_warm = UpdateAll(m, d, jar.data());
+  double cost_warm = UpdateAll(d, jar);
 
   if (m.opt.solver == kSolverPGS) {
     // Dual cost of the warm-start forces: f.b + 0.5 f.AR f; zero forces if positive.
-    double dual = 0;
-    for (int r = 0; r < nefc; r++) {
-      double arf = 0;
-      for (int c = 0; c < nefc; c++) arf += d.efc_AR[static_cast<size_t>(r) * nefc + c] * d.efc_force[c];
-      dual += d.efc_force[r] * d.efc_b[r] + 0.5 * d.efc_force[r] * arf;
-    }
-    if (dual > 0) {
-      std::fill(d.efc_force.begin(), d.efc_force.end(), 0.0);
-      std::fill(d.qfrc_constraint.begin(), d.qfrc_constraint.end(), 0.0);
-    }
+    double* arf = frame.Alloc(nefc);
+    math::MulMatVec(arf, d.efc_AR.data(), d.efc_force.data(), nefc, nefc);
+    double dual = math::Dot(d.efc_force.data(), d.efc_b.data(), nefc) +
+                  0.5 * math::Dot(d.efc_force.data(), arf, nefc);
+    if (dual > 0) std::fill(d.efc_force.begin(), d.efc_force.end(), 0.0);
   } else {
     // Primal cost: Gauss term plus constraint cost, against that of qacc_smooth.
-    std::vector<double> ma(nv);
-    MulM(m, d, d.qacc_warmstart.data(), ma.data());
+    double* ma = frame.Alloc(nv);
+    MulSymLayout(nv, m.M_rownnz.data(), m.M_rowadr.data(), m.M_colind.data(), d.M.data(),
+                 d.qacc_warmstart.data(), ma);
     for (int v = 0; v < nv; v++) {
       cost_warm += 0.5 * (ma[v] - d.qfrc_smooth[v]) * (d.qacc_warmstart[v] - d.qacc_smooth[v]);
     }
-    double cost_smooth = UpdateAll(m, d, d.efc_b.data());
+    double cost_smooth = UpdateAll(d, d.efc_b.data());
     if (cost_warm > cost_smooth) d.qacc = d.qacc_smooth;
   }
 
@@ -238,7 +207,7 @@ void Constraint(const Model& m, Data& d) {
   }
 
   // efc_b = J qacc_smooth - aref.
-  MulJacVec(m, d, d.qacc_smooth.data(), d.efc_b.data());
+  math::MulMatVec(d.efc_b.data(), d.efc_J.data(), d.qacc_smooth.data(), d.nefc, m.nv);
   for (int r = 0; r < d.nefc; r++) d.efc_b[r] -= d.efc_aref[r];
 
   Islands islands;

@@ -20,6 +20,8 @@ void MakeConstraint(const Model& m, Data& d);
 void ReferenceConstraint(const Model& m, Data& d);
 // efc_AR = J M^-1 J^T + diag(R), needed by the PGS solver (position stage).
 void ProjectConstraint(const Model& m, Data& d);
+// The body of side j (0 or 1) of a connect or weld, in its body or site form.
+int EqualityBody(const Model& m, int eq, int j);
 // The impedance of solimp at position `pos` with `margin`, and its derivative.
 void Impedance(const double* solimp, double pos, double margin, double* imp, double* slope);
 

@@ -248,12 +248,6 @@ void LimitRows(const Model& m, Data& d) {
 
 // ---------------------------------------------------------------- softness
 
-// Body of side j of a connect or weld.
-int EqualityBody(const Model& m, int eq, int j) {
-  int obj = j == 0 ? m.eq_obj1id[eq] : m.eq_obj2id[eq];
-  return m.eq_objtype[eq] == kObjSite ? m.site_bodyid[obj] : obj;
-}
-
 // Inverse weight of one side of a joint or tendon coupling.
 double CouplingWeight(const Model& m, int eq, int obj) {
   return m.eq_type[eq] == kEqJoint ? m.dof_invweight0[m.jnt_dofadr[obj]]
@@ -335,6 +329,11 @@ double Power(double a, double b) {
 }
 
 }  // namespace
+
+int EqualityBody(const Model& m, int eq, int j) {
+  int obj = j == 0 ? m.eq_obj1id[eq] : m.eq_obj2id[eq];
+  return m.eq_objtype[eq] == kObjSite ? m.site_bodyid[obj] : obj;
+}
 
 // The impedance d(r) of solimp at violation r = pos - margin, and its slope.
 void Impedance(const double* solimp, double pos, double margin, double* imp, double* slope) {

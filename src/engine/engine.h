@@ -53,6 +53,10 @@ void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int
 // Translation Jacobian of a point and the Jacobian of a unit axis turning with `body`.
 void JacobianPointAxis(const Model& m, Data& d, double* jac_point, double* jac_axis,
                        const double* point, const double* axis, int body);
+// qfrc (nv) += J^T force + Jr^T torque for a world force and torque acting at a world
+// point moving with `body` (MuJoCo mj_applyFT).
+void ApplyForceTorque(const Model& m, Data& d, const double* force, const double* torque,
+                      const double* point, int body, double* qfrc);
 // res (nv) = jac^T vec for a 3 x nv Jacobian.
 void MulJacTVec(const Model& m, const double* jac, const double* vec, double* res);
 
@@ -96,6 +100,10 @@ void Constraint(const Model& m, Data& d);
 void FactorSparse(const Model& m, double* mat, double* diag_inv);
 // x <- (L^T D L)^-1 x with a factorization from FactorSparse (inertia.cc).
 void SolveSparse(const Model& m, const double* ld, const double* diag_inv, double* x);
+// res = mat vec for a symmetric matrix stored as its lower triangle in M's layout with nv
+// rows (M itself, or an island's block of it).
+void MulSymLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
+                  const double* mat, const double* vec, double* res);
 // The same solve for any matrix in that layout with nv rows (an island's block of M).
 void SolveSparseLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
                        const double* ld, const double* diag_inv, double* x);

@@ -79,15 +79,7 @@ void ApplyLocalWrench(const Model& m, Data& d, const double* lfrc, const double*
   double torque[3], force[3];
   MulMatVec3(torque, rot, lfrc);
   MulMatVec3(force, rot, lfrc + 3);
-  StackFrame frame(d);
-  double* jacp = frame.Alloc(3 * m.nv);
-  double* jacr = frame.Alloc(3 * m.nv);
-  double* tmp = frame.Alloc(m.nv);
-  Jacobian(m, d, jacp, jacr, point, body);
-  MulJacTVec(m, jacp, force, tmp);
-  for (int v = 0; v < m.nv; v++) d.qfrc_fluid[v] += tmp[v];
-  MulJacTVec(m, jacr, torque, tmp);
-  for (int v = 0; v < m.nv; v++) d.qfrc_fluid[v] += tmp[v];
+  ApplyForceTorque(m, d, force, torque, point, body, d.qfrc_fluid.data());
 }
 
 // Sides of body i's equivalent inertia box.

@@ -11,7 +11,6 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
-#include "engine/stack.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -73,19 +72,10 @@ bool CheckState(const Model& m, Data& d, const std::vector<double>& values, Warn
 // qfrc += J^T (force, torque) for every body with a Cartesian force in xfrc_applied,
 // applied at the body's centre of mass (MuJoCo mj_xfrcAccumulate, mj_applyFT).
 void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
-  StackFrame frame(d);
-  double* jacp = frame.Alloc(3 * m.nv);
-  double* jacr = frame.Alloc(3 * m.nv);
-  double* tmp = frame.Alloc(m.nv);
   for (int b = 1; b < m.nbody; b++) {
     const double* f = &d.xfrc_applied[6 * b];
     if (f[0] == 0 && f[1] == 0 && f[2] == 0 && f[3] == 0 && f[4] == 0 && f[5] == 0) continue;
-    Jacobian(m, d, jacp, jacr, &d.xipos[3 * b], b);
-    // Force through the point Jacobian, then torque through the rotation Jacobian.
-    MulJacTVec(m, jacp, f, tmp);
-    for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
-    MulJacTVec(m, jacr, f + 3, tmp);
-    for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
+    ApplyForceTorque(m, d, f, f + 3, &d.xipos[3 * b], b, qfrc);
   }
 }
 

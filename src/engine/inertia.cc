@@ -106,6 +106,20 @@ void SolveSparse(const Model& m, const double* ld, const double* diag_inv, doubl
                     x);
 }
 
+void MulSymLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
+                  const double* mat, const double* vec, double* res) {
+  // Diagonal first, then the off-diagonals from the nearest ancestor out (MuJoCo's order).
+  for (int i = 0; i < nv; i++) res[i] = 0;
+  for (int i = 0; i < nv; i++) {
+    int adr = rowadr[i], end = adr + rownnz[i] - 1;
+    res[i] = mat[end] * vec[i];
+    for (int k = end - 1; k >= adr; k--) {
+      res[i] += mat[k] * vec[colind[k]];
+      res[colind[k]] += mat[k] * vec[i];
+    }
+  }
+}
+
 void SolveSparseLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
                        const double* ld, const double* diag_inv, double* x) {
   // x <- L^-T x

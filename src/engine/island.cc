@@ -7,37 +7,33 @@
 #include <algorithm>
 #include <vector>
 
+#include "engine/constraint.h"
 #include "engine/island.h"
 
 namespace simlab {
 
 namespace {
 
-// The trees one constraint (its first row `r`) acts on, as MuJoCo finds them: by the
-// element for limits, dof friction and connect/weld, else by scanning the row.
-std::vector<int> RowTrees(const Model& m, const Data& d, int r) {
+// The trees row `r` acts on, as MuJoCo finds them: by the element for limits, dof
+// friction and connect/weld, else by scanning the row. `trees` is reused between rows.
+void RowTrees(const Model& m, const Data& d, int r, std::vector<int>* trees) {
+  trees->clear();
   int id = d.efc_id[r];
-  switch (d.efc_type[r]) {
-    case kCnstrFrictionDof: return {m.dof_treeid[id]};
-    case kCnstrLimitJoint: return {m.dof_treeid[m.jnt_dofadr[id]]};
-    case kCnstrEquality:
-      if (m.eq_type[id] == kEqConnect || m.eq_type[id] == kEqWeld) {
-        int b1 = m.eq_obj1id[id], b2 = m.eq_obj2id[id];
-        if (m.eq_objtype[id] == kObjSite) {
-          b1 = m.site_bodyid[b1];
-          b2 = m.site_bodyid[b2];
-        }
-        return {m.body_treeid[b1], m.body_treeid[b2]};
-      }
-      break;
-    default: break;
+  int type = d.efc_type[r];
+  if (type == kCnstrFrictionDof) {
+    trees->push_back(m.dof_treeid[id]);
+  } else if (type == kCnstrLimitJoint) {
+    trees->push_back(m.dof_treeid[m.jnt_dofadr[id]]);
+  } else if (type == kCnstrEquality && (m.eq_type[id] == kEqConnect || m.eq_type[id] == kEqWeld)) {
+    trees->push_back(m.body_treeid[EqualityBody(m, id, 0)]);
+    trees->push_back(m.body_treeid[EqualityBody(m, id, 1)]);
+  } else {
+    const double* row = &d.efc_J[static_cast<size_t>(r) * m.nv];
+    for (int v = 0; v < m.nv; v++) {
+      int tree = m.dof_treeid[v];
+      if (row[v] != 0 && (trees->empty() || trees->back() != tree)) trees->push_back(tree);
+    }
   }
-  std::vector<int> trees;
-  const double* row = &d.efc_J[static_cast<size_t>(r) * m.nv];
-  for (int v = 0; v < m.nv; v++) {
-    if (row[v] != 0) trees.push_back(m.dof_treeid[v]);
-  }
-  return trees;
 }
 
 // Union-find root with path halving.
@@ -52,19 +48,23 @@ void FindIslands(const Model& m, const Data& d, Islands* out) {
   int ntree = 0;
   for (int v = 0; v < m.nv; v++) ntree = std::max(ntree, m.dof_treeid[v] + 1);
 
-  // Link the trees of every constraint; mark trees that carry any row.
-  std::vector<int> parent(ntree);
+  // Link the trees of every constraint; mark trees that carry any row. Rows of one
+  // constraint share its trees; each row keeps its first moving tree.
+  std::vector<int> parent(ntree), first_tree(d.nefc, -1), trees;
   std::vector<char> used(ntree, 0);
   for (int t = 0; t < ntree; t++) parent[t] = t;
   for (int r = 0; r < d.nefc; r++) {
     bool same = r > 0 && d.efc_type[r] == d.efc_type[r - 1] && d.efc_id[r] == d.efc_id[r - 1];
-    if (same) continue;
-    int first = -1;
-    for (int t : RowTrees(m, d, r)) {
+    if (same) {
+      first_tree[r] = first_tree[r - 1];
+      continue;
+    }
+    RowTrees(m, d, r, &trees);
+    for (int t : trees) {
       if (t < 0) continue;  // the world
       used[t] = 1;
-      if (first < 0) first = t;
-      parent[Root(parent, t)] = Root(parent, first);
+      if (first_tree[r] < 0) first_tree[r] = t;
+      parent[Root(parent, t)] = Root(parent, first_tree[r]);
     }
   }
 
@@ -80,14 +80,7 @@ void FindIslands(const Model& m, const Data& d, Islands* out) {
   out->dof_island.assign(m.nv, -1);
   for (int v = 0; v < m.nv; v++) out->dof_island[v] = tree_island[m.dof_treeid[v]];
   out->efc_island.assign(d.nefc, -1);
-  for (int r = 0; r < d.nefc; r++) {
-    for (int t : RowTrees(m, d, r)) {
-      if (t >= 0) {
-        out->efc_island[r] = tree_island[t];
-        break;
-      }
-    }
-  }
+  for (int r = 0; r < d.nefc; r++) out->efc_island[r] = tree_island[first_tree[r]];
 }
 
 }  // namespace simlab

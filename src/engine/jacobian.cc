@@ -63,6 +63,19 @@ void JacobianPointAxis(const Model& m, Data& d, double* jac_point, double* jac_a
   }
 }
 
+void ApplyForceTorque(const Model& m, Data& d, const double* force, const double* torque,
+                      const double* point, int body, double* qfrc) {
+  StackFrame frame(d);
+  double* jacp = frame.Alloc(3 * m.nv);
+  double* jacr = frame.Alloc(3 * m.nv);
+  double* tmp = frame.Alloc(m.nv);
+  Jacobian(m, d, jacp, jacr, point, body);
+  MulJacTVec(m, jacp, force, tmp);
+  for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
+  MulJacTVec(m, jacr, torque, tmp);
+  for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
+}
+
 void MulJacTVec(const Model& m, const double* jac, const double* vec, double* res) {
   int nv = m.nv;
   std::fill(res, res + nv, 0.0);

@@ -30,6 +30,21 @@ double NormalizedLength(double len, const double* lengthrange, const double* prm
   return prm[0] + (len - lengthrange[0]) / std::max(kMinVal, l0);
 }
 
+// A muscle's peak force F, optimal length L0, normalized length L and velocity V.
+struct Normalized {
+  double force, l0, length, velocity;
+};
+
+Normalized Normalize(double len, double vel, const double* lengthrange, double acc0,
+                     const double* prm) {
+  Normalized n;
+  n.force = PeakForce(prm, acc0);
+  n.l0 = OptimalLength(lengthrange, prm);
+  n.length = NormalizedLength(len, lengthrange, prm, n.l0);
+  n.velocity = vel / std::max(kMinVal, n.l0 * prm[6]);
+  return n;
+}
+
 // Quintic smooth step on [0, 1].
 double Sigmoid(double x) {
   if (x <= 0) return 0;
@@ -61,10 +76,9 @@ double MuscleGainLength(double length, double lmin, double lmax) {
 
 double MuscleGain(double len, double vel, const double* lengthrange, double acc0,
                   const double* prm) {
-  double force = PeakForce(prm, acc0), l0 = OptimalLength(lengthrange, prm);
-  double length = NormalizedLength(len, lengthrange, prm, l0);
-  double v = vel / std::max(kMinVal, l0 * prm[6]);
-  double fl = MuscleGainLength(length, prm[4], prm[5]);
+  Normalized n = Normalize(len, vel, lengthrange, acc0, prm);
+  double force = n.force, v = n.velocity;
+  double fl = MuscleGainLength(n.length, prm[4], prm[5]);
 
   // Force-velocity curve: zero below V = -1, quadratic up to fvmax at V = fvmax - 1.
   double fvmax = prm[8], y = fvmax - 1, fv;
@@ -82,10 +96,9 @@ double MuscleGain(double len, double vel, const double* lengthrange, double acc0
 
 double MuscleGainVelocity(double len, double vel, const double* lengthrange, double acc0,
                           const double* prm) {
-  double force = PeakForce(prm, acc0), l0 = OptimalLength(lengthrange, prm);
-  double length = NormalizedLength(len, lengthrange, prm, l0);
-  double v = vel / std::max(kMinVal, l0 * prm[6]);
-  double fl = MuscleGainLength(length, prm[4], prm[5]);
+  Normalized n = Normalize(len, vel, lengthrange, acc0, prm);
+  double force = n.force, v = n.velocity, l0 = n.l0;
+  double fl = MuscleGainLength(n.length, prm[4], prm[5]);
 
   // d FV / d V on each piece of the force-velocity curve.
   double y = prm[8] - 1, dfv = 0;
@@ -98,8 +111,8 @@ double MuscleGainVelocity(double len, double vel, const double* lengthrange, dou
 }
 
 double MuscleBias(double len, const double* lengthrange, double acc0, const double* prm) {
-  double force = PeakForce(prm, acc0), l0 = OptimalLength(lengthrange, prm);
-  double length = NormalizedLength(len, lengthrange, prm, l0);
+  Normalized n = Normalize(len, 0, lengthrange, acc0, prm);
+  double force = n.force, length = n.length;
 
   // Passive force: half-quadratic up to b = (1 + lmax) / 2, linear beyond.
   double b = 0.5 * (1 + prm[5]), fpmax = prm[7];

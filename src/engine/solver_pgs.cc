@@ -10,6 +10,7 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "math/dot.h"
 
 namespace simlab {
 
@@ -83,11 +84,7 @@ void SolvePGS(const Model& m, Data& d) {
   d.solver_niter += iter;
 
   // Back to joint space: qfrc_constraint = J^T f, qacc = qacc_smooth + M^-1 qfrc_constraint.
-  std::fill(d.qfrc_constraint.begin(), d.qfrc_constraint.end(), 0.0);
-  for (int r = 0; r < nefc; r++) {
-    const double* row = &d.efc_J[static_cast<size_t>(r) * m.nv];
-    for (int v = 0; v < m.nv; v++) d.qfrc_constraint[v] += row[v] * d.efc_force[r];
-  }
+  math::MulMatTVec(d.qfrc_constraint.data(), d.efc_J.data(), d.efc_force.data(), nefc, m.nv);
   d.qacc = d.qfrc_constraint;
   SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qacc.data());
   for (int v = 0; v < m.nv; v++) d.qacc[v] += d.qacc_smooth[v];

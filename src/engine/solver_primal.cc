@@ -71,24 +71,15 @@ namespace {
 
 // ---------------------------------------------------------------- small dense algebra
 
-// res = M vec for a symmetric matrix stored as its lower triangle in tree layout:
-// diagonal first, then the off-diagonals from the nearest ancestor out.
+// res = M vec with the problem's block of M.
 void MulSym(const ConstraintProblem& p, const double* vec, double* res) {
-  std::fill(res, res + p.nv, 0.0);
-  for (int i = 0; i < p.nv; i++) {
-    int adr = p.M_rowadr[i], end = adr + p.M_rownnz[i] - 1;
-    res[i] = p.M[end] * vec[i];
-    for (int k = end - 1; k >= adr; k--) {
-      int j = p.M_colind[k];
-      res[i] += p.M[k] * vec[j];
-      res[j] += p.M[k] * vec[i];
-    }
-  }
+  MulSymLayout(p.nv, p.M_rownnz.data(), p.M_rowadr.data(), p.M_colind.data(), p.M.data(), vec,
+               res);
 }
 
 // res (rows) = J vec.
 void MulJ(const ConstraintProblem& p, const double* vec, double* res) {
-  for (int r = 0; r < p.nefc; r++) res[r] = Dot(&p.J[static_cast<size_t>(r) * p.nv], vec, p.nv);
+  math::MulMatVec(res, p.J.data(), vec, p.nefc, p.nv);
 }
 
 // In-place dense Cholesky of the lower triangle; pivots below `mindiag` are raised to it.
@@ -164,11 +155,7 @@ void UpdateConstraint(Primal& s) {
   ConstraintProblem& p = s.p;
   ConstraintUpdate(p.ne, p.nf, p.nefc, p.D.data(), p.R.data(), p.frictionloss.data(),
                    s.jaref.data(), p.state.data(), p.force.data(), &s.cost);
-  std::fill(p.qfrc_constraint.begin(), p.qfrc_constraint.end(), 0.0);
-  for (int r = 0; r < p.nefc; r++) {
-    const double* row = &p.J[static_cast<size_t>(r) * p.nv];
-    for (int v = 0; v < p.nv; v++) p.qfrc_constraint[v] += row[v] * p.force[r];
-  }
+  math::MulMatTVec(p.qfrc_constraint.data(), p.J.data(), p.force.data(), p.nefc, p.nv);
   double gauss = 0;
   for (int v = 0; v < p.nv; v++) {
     gauss += 0.5 * (s.ma[v] - p.qfrc_smooth[v]) * (p.qacc[v] - p.qacc_smooth[v]);

@@ -1,4 +1,5 @@
-// Dot products of long vectors, summed in a fixed order: four interleaved partial sums,
+// Dot products of long vectors (and the dense matrix-vector products built on them), summed
+// in a fixed order: four interleaved partial sums,
 // combined as (s0 + s2) + (s1 + s3), then the remainder. MuJoCo sums this way (its
 // vectorized and scalar builds agree), and a constraint solver that stops at a tolerance
 // amplifies the last bit of difference, so the engine uses the same order.
@@ -38,6 +39,21 @@ inline double DotSparse(const double* a, const double* x, int n, const int* ind)
   double s = (s0 + s2) + (s1 + s3);
   for (; i < n; i++) s += a[i] * x[ind[i]];
   return s;
+}
+
+// res (rows) = mat vec, for a row-major rows x cols matrix (each row a Dot).
+inline void MulMatVec(double* res, const double* mat, const double* vec, int rows, int cols) {
+  for (int r = 0; r < rows; r++) res[r] = Dot(mat + static_cast<long>(r) * cols, vec, cols);
+}
+
+// res (cols) = mat^T vec: rows added in order, rows with a zero entry of vec skipped.
+inline void MulMatTVec(double* res, const double* mat, const double* vec, int rows, int cols) {
+  for (int c = 0; c < cols; c++) res[c] = 0;
+  for (int r = 0; r < rows; r++) {
+    if (vec[r] == 0) continue;
+    const double* row = mat + static_cast<long>(r) * cols;
+    for (int c = 0; c < cols; c++) res[c] += row[c] * vec[r];
+  }
 }
 
 }  // namespace simlab::math

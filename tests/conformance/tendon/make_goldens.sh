@@ -14,13 +14,9 @@
 # Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
 set -euo pipefail
 
-HERE="$(cd "$(dirname "$0")" && pwd)"
-ROOT="$(cd "$HERE/../../.." && pwd)"
-ORACLE="$(cd "$ROOT/../shared/oracle" && pwd)"
+source "$(dirname "$0")/../../../tools/oracle_case.sh"
 STEPS=500
-EVERY=10
 TOL=1e-9
-[ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
 
 cd "$ROOT"
 OUT=tests/conformance/tendon
@@ -39,15 +35,9 @@ for base in "$OUT"/base/*.xml; do
   fi
   for integrator in Euler RK4 implicit implicitfast; do
     model="$OUT/models/${name}__$integrator.xml"
-    golden="$OUT/goldens/${name}__$integrator.jsonl"
     grep -q '<option timestep=' "$base" || { echo "$base: no <option timestep=...>" >&2; exit 1; }
     sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
-    args=(--steps "$STEPS" --every "$EVERY" --out "$golden")
-    [ "$state" = - ] || args+=(--state "$state")
-    [ "$ctrl" = - ] || args+=(--ctrl "$ctrl")
-    node "$ORACLE/rollout.mjs" "$model" "${args[@]}"
-    grep -q -i 'nan\|null' "$golden" && { echo "$golden: NaN or null" >&2; exit 1; }
-    echo "$model $golden $STEPS $state $ctrl $TOL" >> "$CASES"
+    oracle_rollout "$model" "$STEPS" "$state" "$ctrl" "$TOL" "$CASES"
   done
 done
 echo "wrote $(wc -l < "$CASES") cases to $CASES"
