@@ -31,6 +31,29 @@ enum ConstraintState : int {
   kStateCone = 4
 };
 
+// One contact between two geoms (MuJoCo's mjContact). frame's first row is the normal,
+// pointing from geom[0] to geom[1]; rows 2 and 3 span the tangent plane.
+struct Contact {
+  double dist = 0;            // signed distance: negative when penetrating
+  double pos[3] = {0, 0, 0};  // position, midway between the two surfaces
+  double frame[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  double includemargin = 0;   // rows are made when dist < includemargin (margin - gap)
+  double friction[5] = {0, 0, 0, 0, 0};  // tangent1, tangent2, spin, roll1, roll2
+  double solref[kNRef] = {0, 0};          // reference acceleration, normal direction
+  double solreffriction[kNRef] = {0, 0};  // reference acceleration, frictional directions
+  double solimp[kNImp] = {0, 0, 0, 0, 0};
+  double mu = 0;              // friction of the regularized cone (set by the rows)
+  double H[36] = {};          // cone Hessian (set by the Newton solver)
+  int dim = 0;                // contact space dimension: 1, 3, 4 or 6
+  int geom1 = -1, geom2 = -1; // the two geoms (deprecated MuJoCo names of geom[])
+  int geom[2] = {-1, -1};
+  int flex[2] = {-1, -1};     // always -1: flexes are not modelled
+  int elem[2] = {-1, -1};
+  int vert[2] = {-1, -1};
+  int exclude = 0;            // 1: within the gap, no rows made
+  int efc_address = -1;       // first constraint row of this contact, or -1
+};
+
 struct WarningStat {
   int lastinfo = 0;  // info from the last time the warning was raised
   int number = 0;    // how many times it was raised
@@ -147,6 +170,9 @@ struct Data {
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
   std::vector<double> efc_AR;  // nefc x nefc: J M^-1 J^T + diag(R), for the PGS solver
+
+  // Contacts of the last collision stage: the first ncon entries (capacity grows as needed).
+  std::vector<Contact> contact;
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData.
   std::vector<double> stack;

@@ -173,6 +173,8 @@ struct Statistic {
   X(double, body_gravcomp, nbody, 1)               \
   X(int, body_simple, nbody, 1)                    \
   X(double, body_invweight0, nbody, 2)             \
+  X(int, body_contype, nbody, 1)                   \
+  X(int, body_conaffinity, nbody, 1)               \
   /* joints */                                     \
   X(int, jnt_type, njnt, 1)                        \
   X(int, jnt_qposadr, njnt, 1)                     \
@@ -229,6 +231,18 @@ struct Statistic {
   X(double, geom_gap, ngeom, 1)                    \
   X(double, geom_rgba, ngeom, 4)                   \
   X(double, geom_fluid, ngeom, kNFluid)            \
+  /* explicit contact pairs and excluded body pairs */ \
+  X(int, pair_dim, npair, 1)                       \
+  X(int, pair_geom1, npair, 1)                     \
+  X(int, pair_geom2, npair, 1)                     \
+  X(int, pair_signature, npair, 1)                 \
+  X(double, pair_solref, npair, kNRef)             \
+  X(double, pair_solreffriction, npair, kNRef)     \
+  X(double, pair_solimp, npair, kNImp)             \
+  X(double, pair_margin, npair, 1)                 \
+  X(double, pair_gap, npair, 1)                    \
+  X(double, pair_friction, npair, 5)               \
+  X(int, exclude_signature, nexclude, 1)           \
   /* sites */                                      \
   X(int, site_type, nsite, 1)                      \
   X(int, site_bodyid, nsite, 1)                    \
@@ -312,6 +326,8 @@ struct Statistic {
   X(jnt, njnt)                \
   X(geom, ngeom)              \
   X(site, nsite)              \
+  X(pair, npair)              \
+  X(exclude, nexclude)        \
   X(eq, neq)                  \
   X(tendon, ntendon)          \
   X(actuator, nu)             \
@@ -328,6 +344,8 @@ struct Statistic {
   X(njnt)        /* joints */                                              \
   X(ngeom)       /* geoms */                                               \
   X(nsite)       /* sites */                                               \
+  X(npair)       /* explicit geom pairs (<contact><pair>) */               \
+  X(nexclude)    /* excluded body pairs (<contact><exclude>) */            \
   X(ntendon)     /* tendons */                                             \
   X(nwrap)       /* tendon path elements */                                \
   X(neq)         /* equality constraints */                                \

@@ -1,0 +1,71 @@
+// The collision stage: which geom pairs touch, and where (MuJoCo's mj_collision).
+//
+// The driver (collision_driver.cc) finds candidate body pairs (broad phase), applies
+// MuJoCo's filters (contype/conaffinity, welded and parent bodies, <exclude>, bounding
+// spheres), merges the explicit <pair>s, and calls one narrow-phase function per geom
+// pair from the table below. Narrow-phase functions live in collision_primitive.cc
+// (analytic pairs), collision_box.cc (box pairs) and collision_convex.cc (GJK/EPA for
+// every other convex pair, meshes included).
+#ifndef SIMLAB_ENGINE_COLLISION_H_
+#define SIMLAB_ENGINE_COLLISION_H_
+
+#include "simlab/data.h"
+#include "simlab/model.h"
+
+namespace simlab {
+
+// Most contacts one geom pair may produce (mjMAXCONPAIR).
+inline constexpr int kMaxContactPair = 50;
+
+// A narrow-phase function. Geom g1's type is <= g2's type (the driver orders them).
+// Writes up to kMaxContactPair contacts whose distance is below `margin` and returns
+// how many. For each it sets dist, pos, and frame[0..2], the unit normal pointing from
+// g1 to g2; it may set frame[3..5] to a first tangent direction, else leaves it zero.
+// The driver fills in everything else (ids, parameters, the rest of the frame).
+using CollideFn = int (*)(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                          double margin);
+
+// The narrow-phase function for a pair of geom types (type1 <= type2), or null when
+// MuJoCo has none for it (collision_table.cc).
+CollideFn CollisionFunction(int type1, int type2);
+
+// The whole collision stage: d.ncon and d.contact (collision_driver.cc).
+void Collision(const Model& m, Data& d);
+
+// ------------------------------------------------------------ narrow phase: analytic
+
+int CollidePlaneSphere(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                       double margin);
+int CollidePlaneCapsule(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                        double margin);
+int CollidePlaneCylinder(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                         double margin);
+int CollidePlaneBox(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                    double margin);
+int CollideSphereSphere(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                        double margin);
+int CollideSphereCapsule(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                         double margin);
+int CollideSphereCylinder(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                          double margin);
+int CollideSphereBox(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                     double margin);
+int CollideCapsuleCapsule(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                          double margin);
+int CollideCapsuleBox(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                      double margin);
+int CollideBoxBox(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                  double margin);
+
+// ------------------------------------------------------------ narrow phase: convex
+
+// A plane and a convex geom (ellipsoid, mesh): MuJoCo's mjc_PlaneConvex.
+int CollidePlaneConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                       double margin);
+// Any two convex geoms by GJK/EPA (MuJoCo's mjc_Convex with its native CCD).
+int CollideConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                  double margin);
+
+}  // namespace simlab
+
+#endif  // SIMLAB_ENGINE_COLLISION_H_

@@ -1,0 +1,44 @@
+// Which narrow-phase function handles which pair of geom types: MuJoCo's table
+// (mjCOLLISIONFUNC), by the types of the two geoms in increasing order. Hfields and
+// SDFs have no functions yet, so such pairs make no contacts.
+#include "engine/collision.h"
+
+namespace simlab {
+
+namespace {
+
+constexpr int kNumGeomTypes = 9;
+
+// Rows: type1, columns: type2 (plane, hfield, sphere, capsule, ellipsoid, cylinder, box,
+// mesh, sdf). Null entries: no collision for this pair of types.
+const CollideFn kTable[kNumGeomTypes][kNumGeomTypes] = {
+    /* plane */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                 nullptr},
+    /* hfield */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                  nullptr},
+    /* sphere */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                  nullptr},
+    /* capsule */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                   nullptr},
+    /* ellipsoid */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                     nullptr, nullptr},
+    /* cylinder */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                    nullptr, nullptr},
+    /* box */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+               nullptr},
+    /* mesh */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                nullptr},
+    /* sdf */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+               nullptr},
+};
+
+}  // namespace
+
+CollideFn CollisionFunction(int type1, int type2) {
+  if (type1 < 0 || type2 < 0 || type1 >= kNumGeomTypes || type2 >= kNumGeomTypes) {
+    return nullptr;
+  }
+  return kTable[type1][type2];
+}
+
+}  // namespace simlab
