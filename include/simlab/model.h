@@ -231,6 +231,19 @@ struct Statistic {
   X(double, geom_gap, ngeom, 1)                    \
   X(double, geom_rgba, ngeom, 4)                   \
   X(double, geom_fluid, ngeom, kNFluid)            \
+  X(int, geom_dataid, ngeom, 1)                    \
+  /* meshes (vertices hold float-rounded values, as MuJoCo stores floats) */ \
+  X(int, mesh_vertadr, nmesh, 1)                   \
+  X(int, mesh_vertnum, nmesh, 1)                   \
+  X(int, mesh_faceadr, nmesh, 1)                   \
+  X(int, mesh_facenum, nmesh, 1)                   \
+  X(int, mesh_graphadr, nmesh, 1)                  \
+  X(double, mesh_scale, nmesh, 3)                  \
+  X(double, mesh_pos, nmesh, 3)                    \
+  X(double, mesh_quat, nmesh, 4)                   \
+  X(double, mesh_vert, nmeshvert, 3)               \
+  X(int, mesh_face, nmeshface, 3)                  \
+  X(int, mesh_graph, nmeshgraph, 1)                \
   /* explicit contact pairs and excluded body pairs */ \
   X(int, pair_dim, npair, 1)                       \
   X(int, pair_geom1, npair, 1)                     \
@@ -326,6 +339,7 @@ struct Statistic {
   X(jnt, njnt)                \
   X(geom, ngeom)              \
   X(site, nsite)              \
+  X(mesh, nmesh)              \
   X(pair, npair)              \
   X(exclude, nexclude)        \
   X(eq, neq)                  \
@@ -344,6 +358,10 @@ struct Statistic {
   X(njnt)        /* joints */                                              \
   X(ngeom)       /* geoms */                                               \
   X(nsite)       /* sites */                                               \
+  X(nmesh)       /* meshes */                                              \
+  X(nmeshvert)   /* vertices of all meshes */                              \
+  X(nmeshface)   /* triangles of all meshes */                             \
+  X(nmeshgraph)  /* ints of all convex-hull graphs (mesh_graph) */         \
   X(npair)       /* explicit geom pairs (<contact><pair>) */               \
   X(nexclude)    /* excluded body pairs (<contact><exclude>) */            \
   X(ntendon)     /* tendons */                                             \
