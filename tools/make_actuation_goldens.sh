@@ -8,7 +8,7 @@
 # What it does (idempotent: tests/conformance/actuation is deleted and rebuilt):
 #   1. Copies the models of ../shared/corpus/mujoco/test/engine/testdata/actuation that
 #      need nothing beyond actuators (no contacts, equality, spatial tendons, sensors,
-#      fluid forces, limit constraints, gravity compensation) into
+#      fluid forces, limit constraints) into
 #      tests/conformance/actuation/models, unchanged (their Apache-2.0 headers kept).
 #      Models that need one of those features only incidentally are derived with sed into
 #      <name>__<variant>.xml, with a comment saying what was removed (the derive calls below).
@@ -40,7 +40,7 @@ rm -rf "$OUT"
 mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
 
 # --- 1. corpus models ----------------------------------------------------------------------
-for name in damper dampratio; do cp "$CORPUS/$name.xml" "$OUT/models/$name.xml"; done
+for name in damper dampratio refsite; do cp "$CORPUS/$name.xml" "$OUT/models/$name.xml"; done
 derive "$CORPUS" sites nofluid "option density removed (fluid forces come later)" \
   -e 's|<option density="1000">|<option>|'
 derive "$CORPUS" refsite_free smooth "frictionloss and sensors removed (they come later)" \

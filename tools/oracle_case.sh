@@ -12,6 +12,11 @@
 #       line "MODEL GOLDEN STEPS STATE CTRL TOL" to CASES.
 #   oracle_case MODEL STEPS STATE TOL CASES
 #       ctrl/<name>.csv = ctrlgen.mjs MODEL, then oracle_rollout with it.
+#   case_folder CASES
+#       Empties $OUT/{models,goldens,ctrl} and the case list CASES.
+#   integrator_models BASE
+#       models/<name>__I.xml for I in (Euler RK4 implicit implicitfast): BASE with
+#       integrator="I" added to its <option timestep=...> tag; prints their paths.
 #   derive CORPUS SRC VARIANT WHAT SED-ARGS...
 #       models/SRC__VARIANT.xml = sed SED-ARGS on CORPUS/SRC.xml, with a comment saying
 #       WHAT was changed; fails if sed changed nothing.
@@ -44,6 +49,23 @@ oracle_case() {
   ctrl="$OUT/ctrl/$(basename "$model" .xml).csv"
   node "$ORACLE/ctrlgen.mjs" "$model" --steps "$steps" --out "$ctrl"
   oracle_rollout "$model" "$steps" "$state" "$ctrl" "$tol" "$cases"
+}
+
+case_folder() {
+  rm -rf "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
+  mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
+  : > "$1"
+}
+
+integrator_models() {
+  local base="$1" name integrator model
+  name="$(basename "$base" .xml)"
+  grep -q '<option timestep=' "$base" || { echo "$base: no <option timestep=...>" >&2; exit 1; }
+  for integrator in Euler RK4 implicit implicitfast; do
+    model="$OUT/models/${name}__$integrator.xml"
+    sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
+    echo "$model"
+  done
 }
 
 derive() {

@@ -112,6 +112,7 @@ struct WarningStat {
   X(double, qfrc_spring, nv, 1)                 \
   X(double, qfrc_damper, nv, 1)                 \
   X(double, qfrc_fluid, nv, 1)                  \
+  X(double, qfrc_gravcomp, nv, 1)               \
   X(double, qfrc_passive, nv, 1)                \
   /* acceleration-dependent */                  \
   X(double, actuator_force, nu, 1)              \

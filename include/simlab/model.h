@@ -100,6 +100,8 @@ enum WrapType : int {
 // state and accelerations before a simulation is declared divergent (mjMAXVAL).
 inline constexpr double kMinVal = 1e-15;
 inline constexpr double kMaxVal = 1e10;
+// Smallest friction coefficient a contact gets (mjMINMU).
+inline constexpr double kMinMu = 1e-5;
 
 // ---------------------------------------------------------------- options
 

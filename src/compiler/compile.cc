@@ -23,6 +23,8 @@ void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
   for (const mjcf::ActuatorSpec& a : spec.actuators) m->na += ActuatorActDim(a);
   m->nkey = static_cast<int>(spec.keys.size());
   m->neq = static_cast<int>(spec.equalities.size());
+  m->npair = static_cast<int>(spec.pairs.size());
+  m->nexclude = static_cast<int>(spec.excludes.size());
   m->nsensor = m->nsensordata = 0;
 }
 
@@ -44,6 +46,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   LayoutTree(state, &m);
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);
+  CompileContacts(spec, &m);
   CompileActuators(spec, state, &m);
   CompileKeyframes(spec, state, &m);
 

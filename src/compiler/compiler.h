@@ -97,6 +97,8 @@ void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileEqualities(const mjcf::ModelSpec& spec, Model* m);
+// Explicit pairs, exclusions and body_contype/conaffinity (contact.cc).
+void CompileContacts(const mjcf::ModelSpec& spec, Model* m);
 // eq_data computed from the body poses at qpos0 (connect and weld between bodies).
 void EqualityConstants(Model* m);
 int ActuatorActDim(const mjcf::ActuatorSpec& a);

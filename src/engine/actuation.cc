@@ -155,6 +155,7 @@ void Actuation(const Model& m, Data& d) {
     const double* moment = &d.actuator_moment[static_cast<size_t>(i) * m.nv];
     for (int v = 0; v < m.nv; v++) d.qfrc_actuator[v] += moment[v] * d.actuator_force[i];
   }
+  AddActuatorGravcomp(m, d);
   for (int j = 0; j < m.njnt; j++) {
     if (!m.jnt_actfrclimited[j]) continue;
     int n = m.jnt_type[j] == kJointFree ? 6 : m.jnt_type[j] == kJointBall ? 3 : 1;

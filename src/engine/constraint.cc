@@ -6,6 +6,7 @@
 //   2. Warm start: the previous step's acceleration if it costs less than qacc_smooth.
 //   3. Solve: Newton or CG per island (each island an independent problem), or PGS on
 //      the whole dual problem.
+//   4. noslip (opt.noslip_iterations > 0): friction forces re-solved without R.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -23,8 +24,7 @@ namespace {
 // Row states and forces at jar; returns the constraint cost.
 double UpdateAll(Data& d, const double* jar) {
   double cost = 0;
-  ConstraintUpdate(d.ne, d.nf, d.nefc, d.efc_D.data(), d.efc_R.data(),
-                   d.efc_frictionloss.data(), jar, d.efc_state.data(), d.efc_force.data(), &cost);
+  ConstraintUpdate(DataRows(d), jar, d.efc_state.data(), d.efc_force.data(), &cost, false);
   return cost;
 }
 
@@ -74,7 +74,7 @@ void WarmStart(const Model& m, Data& d, const Islands& islands) {
 // ---------------------------------------------------------------- problems
 
 // The problem over the given dofs (ascending) and rows (ascending).
-ConstraintProblem MakeProblem(const Model& m, const Data& d, const std::vector<int>& dofs,
+ConstraintProblem MakeProblem(const Model& m, Data& d, const std::vector<int>& dofs,
                               const std::vector<int>& rows) {
   ConstraintProblem p;
   p.nv = static_cast<int>(dofs.size());
@@ -113,7 +113,9 @@ ConstraintProblem MakeProblem(const Model& m, const Data& d, const std::vector<i
     p.frictionloss.push_back(d.efc_frictionloss[e]);
     p.aref.push_back(d.efc_aref[e]);
     p.type.push_back(d.efc_type[e]);
+    p.id.push_back(d.efc_id[e]);
   }
+  p.contact = d.contact.data();
   p.force.assign(p.nefc, 0.0);
   p.state.assign(p.nefc, 0);
   return p;
@@ -166,11 +168,12 @@ void SolveWhole(const Model& m, Data& d) {
 
 }  // namespace
 
-// ---------------------------------------------------------------- efc_AR for PGS
+// ---------------------------------------------------------------- efc_AR for PGS and noslip
 
 void ProjectConstraint(const Model& m, Data& d) {
   int nv = m.nv, nefc = d.nefc;
-  if (nefc == 0 || m.opt.solver != kSolverPGS) return;
+  bool dual = m.opt.solver == kSolverPGS || m.opt.noslip_iterations > 0;
+  if (nefc == 0 || !dual) return;
 
   // B = J L^-1 D^-1/2 row by row (M = L^T D L), so that J M^-1 J^T = B B^T.
   std::vector<double> b(static_cast<size_t>(nefc) * nv);
@@ -182,7 +185,7 @@ void ProjectConstraint(const Model& m, Data& d) {
       int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
       for (int k = m.M_rowadr[i]; k < end; k++) x[m.M_colind[k]] -= d.qLD[k] * x[i];
     }
-    for (int i = 0; i < nv; i++) x[i] /= std::sqrt(d.qLD[m.M_rowadr[i] + m.M_rownnz[i] - 1]);
+    for (int i = 0; i < nv; i++) x[i] *= 1 / std::sqrt(d.qLD[m.M_rowadr[i] + m.M_rownnz[i] - 1]);
   }
   d.efc_AR.assign(static_cast<size_t>(nefc) * nefc, 0.0);
   for (int r = 0; r < nefc; r++) {
@@ -223,6 +226,7 @@ void Constraint(const Model& m, Data& d) {
   } else {
     SolvePGS(m, d);
   }
+  if (m.opt.noslip_iterations > 0) SolveNoSlip(m, d);
 }
 
 }  // namespace simlab

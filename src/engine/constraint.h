@@ -7,6 +7,7 @@
 #ifndef SIMLAB_ENGINE_CONSTRAINT_H_
 #define SIMLAB_ENGINE_CONSTRAINT_H_
 
+#include <functional>
 #include <vector>
 
 #include "simlab/data.h"
@@ -18,12 +19,29 @@ namespace simlab {
 void MakeConstraint(const Model& m, Data& d);
 // efc_vel and efc_aref (velocity stage).
 void ReferenceConstraint(const Model& m, Data& d);
-// efc_AR = J M^-1 J^T + diag(R), needed by the PGS solver (position stage).
+// efc_AR = J M^-1 J^T + diag(R), needed by PGS and noslip (position stage).
 void ProjectConstraint(const Model& m, Data& d);
 // The body of side j (0 or 1) of a connect or weld, in its body or site form.
 int EqualityBody(const Model& m, int eq, int j);
 // The impedance of solimp at position `pos` with `margin`, and its derivative.
 void Impedance(const double* solimp, double pos, double margin, double* imp, double* slope);
+
+// The rows a cost update reads: their counts (the first ne rows are equalities, the next
+// nf friction losses), softness, kinds, and for elliptic contact rows the contacts they
+// belong to (efc_id indexes `contact`; its mu, friction and dim shape the cone, and the
+// cone Hessian is written into its H).
+struct RowSet {
+  int ne = 0, nf = 0, nefc = 0;
+  const double* D = nullptr;
+  const double* R = nullptr;
+  const double* frictionloss = nullptr;
+  const int* type = nullptr;
+  const int* id = nullptr;
+  Contact* contact = nullptr;
+};
+
+// The rows of the whole model.
+RowSet DataRows(Data& d);
 
 // One constraint problem: the whole model, or one island of it. Dof arrays have nv
 // entries, row arrays nefc; the first ne rows are equalities, the next nf friction.
@@ -36,24 +54,87 @@ struct ConstraintProblem {
   std::vector<double> M, qLD, qLDiagInv;
   std::vector<double> qfrc_smooth, qacc_smooth, qacc, qfrc_constraint;
 
-  // rows: dense Jacobian (nefc x nv) and the per-row data the cost needs.
+  // rows: dense Jacobian (nefc x nv) and the per-row data the cost needs; id is efc_id
+  // (the contact of a contact row), contact is Data's contact list.
   std::vector<double> J, D, R, frictionloss, aref, force;
-  std::vector<int> type, state;
+  std::vector<int> type, id, state;
+  Contact* contact = nullptr;
 
   double scale = 1;  // 1 / (total inertia): makes tolerances unit-free
   int niter = 0;     // iterations the solver used
+
+  RowSet Rows() {
+    return RowSet{ne, nf, nefc, D.data(), R.data(), frictionloss.data(), type.data(),
+                  id.data(), contact};
+  }
 };
 
 // Row states and forces for jar = J a - aref, and optionally the constraint cost s(jar)
-// (MuJoCo mj_constraintUpdate). Works on any contiguous run of rows.
-void ConstraintUpdate(int ne, int nf, int nefc, const double* D, const double* R,
-                      const double* frictionloss, const double* jar, int* state,
-                      double* force, double* cost);
+// (MuJoCo mj_constraintUpdate). Elliptic contacts between the cone's top and bottom zones
+// get state kStateCone; with cone_hessian their cost's Hessian goes to contact[id].H.
+void ConstraintUpdate(const RowSet& rows, const double* jar, int* state, double* force,
+                      double* cost, bool cone_hessian);
+
+// Rows of one elliptic contact starting at row i (its dim), or 1 for any other row.
+inline int RowBlock(const RowSet& rows, int i) {
+  return rows.type[i] == kCnstrContactElliptic ? rows.contact[rows.id[i]].dim : 1;
+}
+
+// ---------------------------------------------------------------- small dense algebra
+// (MuJoCo's mju_cholFactor, mju_cholSolve, mju_cholUpdate and the QCQP helpers.)
+
+// In-place dense Cholesky L L^T of the lower triangle (row-major n x n); pivots below
+// `mindiag` are raised to it. Returns the rank.
+int CholFactor(double* mat, int n, double mindiag);
+// res = (L L^T)^-1 vec.
+void CholSolve(const double* mat, int n, const double* vec, double* res);
+// L L^T +/- x x^T, in place (x is overwritten); returns the rank.
+int CholUpdate(double* mat, double* x, int n, bool plus);
+
+// The friction QCQP of an elliptic contact:
+//   minimize 0.5 x^T A x + x^T b  subject to  sum (x_i / d_i)^2 <= r^2
+// over n (2..5) entries; returns whether the constraint is active. QCQP2 and QCQP3 are
+// MuJoCo's closed-form 2x2 and 3x3 variants, QCQP the Cholesky-based general one: all
+// three run the same Newton iteration on the multiplier, and the solvers call the one
+// MuJoCo calls for each size so that results agree to the last bit.
+bool QCQP2(double* res, const double* A, const double* b, const double* d, double r);
+bool QCQP3(double* res, const double* A, const double* b, const double* d, double r);
+bool QCQP(double* res, const double* A, const double* b, const double* d, double r, int n);
 
 // The primal solvers: Newton (flg_newton) or nonlinear conjugate gradient.
 void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton);
 // Projected Gauss-Seidel on the dual problem (whole model; uses efc_AR).
 void SolvePGS(const Model& m, Data& d);
+// MuJoCo's noslip post-pass (opt.noslip_iterations > 0): Gauss-Seidel on the friction
+// forces alone, without the regularizer R, keeping normal forces fixed (uses efc_AR).
+void SolveNoSlip(const Model& m, Data& d);
+
+// ---------------------------------------------------------------- dual solver helpers
+// Shared by PGS (solver_pgs.cc) and noslip (noslip.cc); `no_r` drops R from AR's diagonal.
+
+// Row states of a dual solution (MuJoCo dualState).
+void DualState(Data& d);
+// The dual solvers' loop: sweep(iter) returns its cost decrease; sweeps run until that
+// decrease (scaled by the total inertia) is below `tolerance` or `maxiter` ran, updating
+// the row states after each; then joint space: qfrc_constraint = J^T f and
+// qacc = qacc_smooth + M^-1 qfrc_constraint.
+void RunDualSweeps(const Model& m, Data& d, int maxiter, double tolerance,
+                   const std::function<double(int)>& sweep);
+// 1 / diag(AR) (or of AR - R, floored at kMinVal) for every row.
+std::vector<double> InverseDiagAR(const Data& d, bool no_r);
+// The dim x dim diagonal block of AR at row `start` (minus R, floored at 1e-10).
+void BlockAR(const Data& d, int start, int dim, bool no_r, double* block);
+// res = b + AR f over rows start..start+dim-1 (minus R f).
+void Residual(const Data& d, int start, int dim, bool no_r, double* res);
+// The dual cost change of moving `force` (dim rows) from `old` given the block A and the
+// residual at `old`; a step that raises the cost is undone (returns 0 then).
+double CostChange(const double* A, double* force, const double* old, const double* res,
+                  int dim);
+// Friction forces of an elliptic contact with normal force fn, by the QCQP of the block
+// (A, b) over dim-1 entries: zero when fn is too small, else put back on the cone's
+// surface when the cone constraint is active.
+void EllipticFriction(const double* A, const double* b, const double* mu, double fn, int dim,
+                      double* friction_force);
 
 }  // namespace simlab
 

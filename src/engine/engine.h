@@ -64,8 +64,12 @@ void MulJacTVec(const Model& m, const double* jac, const double* vec, double* re
 
 // cvel, cdof_dot (rne.cc).
 void ComVel(const Model& m, Data& d);
-// qfrc_spring, qfrc_damper, qfrc_passive (passive.cc).
+// qfrc_spring, qfrc_damper, qfrc_gravcomp, qfrc_passive (passive.cc).
 void Passive(const Model& m, Data& d);
+// Whether gravity compensation acts: gravity on and some body with gravcomp > 0.
+bool GravcompActive(const Model& m);
+// qfrc_actuator += qfrc_gravcomp on the dofs of joints with actuatorgravcomp (passive.cc).
+void AddActuatorGravcomp(const Model& m, Data& d);
 // qfrc_fluid (inertia-box or ellipsoid model), added into qfrc_passive (fluid.cc).
 void FluidForces(const Model& m, Data& d);
 // Semi-axes of the ellipsoid that stands for a geom in the fluid model (fluid.cc).

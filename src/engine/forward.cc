@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/collision.h"
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "simlab/simlab.h"
@@ -92,6 +93,7 @@ void FwdPositionSmooth(const Model& m, Data& d) {
 
 void FwdPosition(const Model& m, Data& d) {
   FwdPositionSmooth(m, d);
+  Collision(m, d);
   MakeConstraint(m, d);
   ProjectConstraint(m, d);
 }

@@ -1,6 +1,10 @@
 // Passive forces (MuJoCo mj_passive): joint springs toward qpos_spring, dof dampers,
 // tendon springs (with a dead band [lower, upper]) and dampers.
 //
+// Gravity compensation (MuJoCo mj_gravcomp): each body with gravcomp g feels the force
+// -g * mass * gravity at its centre of mass, into qfrc_gravcomp. A dof of a joint with
+// actuatorgravcomp takes that force as actuator force (actuation.cc) instead of passive.
+//
 // Actuator damping (MuJoCo 3.7+) joins the damping of its joint or tendon, scaled by
 // gear^2, with higher-order terms: force = -v (b + p0 |v| + p1 v^2).
 #include <algorithm>
@@ -65,7 +69,36 @@ void TendonSpringDamper(const Model& m, Data& d, int i, bool spring, bool damper
   }
 }
 
+// qfrc_gravcomp from every body with gravcomp (the caller checks GravcompActive).
+void GravityCompensation(const Model& m, Data& d) {
+  const double torque[3] = {0, 0, 0};
+  for (int b = 1; b < m.nbody; b++) {
+    if (m.body_gravcomp[b] == 0) continue;
+    double scale = -m.body_mass[b] * m.body_gravcomp[b], force[3];
+    for (int k = 0; k < 3; k++) force[k] = scale * m.opt.gravity[k];
+    ApplyForceTorque(m, d, force, torque, &d.xipos[3 * b], b, d.qfrc_gravcomp.data());
+  }
+}
+
 }  // namespace
+
+bool GravcompActive(const Model& m) {
+  if (m.opt.disableflags & kDisableGravity) return false;
+  const auto& g = m.opt.gravity;
+  if (g[0] == 0 && g[1] == 0 && g[2] == 0) return false;
+  // As MuJoCo's ngravcomp, only positive gravcomp values switch the feature on.
+  for (int b = 0; b < m.nbody; b++) {
+    if (m.body_gravcomp[b] > 0) return true;
+  }
+  return false;
+}
+
+void AddActuatorGravcomp(const Model& m, Data& d) {
+  if (!GravcompActive(m)) return;
+  for (int v = 0; v < m.nv; v++) {
+    if (m.jnt_actgravcomp[m.dof_jntid[v]]) d.qfrc_actuator[v] += d.qfrc_gravcomp[v];
+  }
+}
 
 double ActuatorDamping(const Model& m, bool tendon, int id, double poly[kNPoly]) {
   double damping = 0;
@@ -98,6 +131,7 @@ void Passive(const Model& m, Data& d) {
   std::fill(d.qfrc_spring.begin(), d.qfrc_spring.end(), 0.0);
   std::fill(d.qfrc_damper.begin(), d.qfrc_damper.end(), 0.0);
   std::fill(d.qfrc_passive.begin(), d.qfrc_passive.end(), 0.0);
+  std::fill(d.qfrc_gravcomp.begin(), d.qfrc_gravcomp.end(), 0.0);
   bool spring = !(m.opt.disableflags & kDisableSpring);
   bool damper = !(m.opt.disableflags & kDisableDamper);
   if (!spring && !damper) return;
@@ -122,6 +156,13 @@ void Passive(const Model& m, Data& d) {
 
   for (int v = 0; v < m.nv; v++) d.qfrc_passive[v] = d.qfrc_spring[v] + d.qfrc_damper[v];
   FluidForces(m, d);
+
+  // Gravity compensation: passive, except on joints that route it through actuation.
+  if (!GravcompActive(m)) return;
+  GravityCompensation(m, d);
+  for (int v = 0; v < m.nv; v++) {
+    if (!m.jnt_actgravcomp[m.dof_jntid[v]]) d.qfrc_passive[v] += d.qfrc_gravcomp[v];
+  }
 }
 
 }  // namespace simlab

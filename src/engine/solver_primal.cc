@@ -22,12 +22,91 @@ using math::Dot;
 
 // ---------------------------------------------------------------- row states and forces
 
-void ConstraintUpdate(int ne, int nf, int nefc, const double* D, const double* R,
-                      const double* frictionloss, const double* jar, int* state,
-                      double* force, double* cost) {
+namespace {
+
+// The Hessian of one cone-zone contact's cost (dim x dim, symmetric) in contact->H.
+// In the scaled space U = diag(mu, friction) jar with normal N = U0 and tangent norm T,
+// the cost 0.5 Dm (N - mu T)^2 has the Hessian Dm [1, -mu/T U_t^T; ., mu^2 I + mu N/T^3
+// U_t U_t^T - mu N/T I] (rank one plus curvature), scaled back by diag(mu, friction).
+void ConeHessian(Contact* con, const double* U, double N, double T, double Dm) {
+  int dim = con->dim;
+  double mu = con->mu;
+  double* H = con->H;
+  auto scale = [con](int k) { return k == 0 ? con->mu : con->friction[k - 1]; };
+
+  // Upper triangle in the scaled space: first row, tangent block, its diagonal.
+  H[0] = 1;
+  for (int j = 1; j < dim; j++) H[j] = -mu / T * U[j];
+  double outer = mu * N / (T * T * T);
+  for (int k = 1; k < dim; k++) {
+    for (int j = k; j < dim; j++) H[k * dim + j] = outer * U[j] * U[k];
+  }
+  double diag = mu * mu - mu * N / T;
+  for (int j = 1; j < dim; j++) H[j * (dim + 1)] += diag;
+
+  // Back to jar space (both sides), times Dm; then mirror into the lower triangle.
+  for (int k = 0; k < dim; k++) {
+    double sk = Dm * scale(k);
+    for (int j = k; j < dim; j++) H[k * dim + j] *= sk * scale(j);
+  }
+  for (int k = 0; k < dim; k++) {
+    for (int j = k + 1; j < dim; j++) H[j * dim + k] = H[k * dim + j];
+  }
+}
+
+// One elliptic contact's rows i..i+dim-1: zone, forces, state; returns its cost. With the
+// friction-scaled U (normal N = mu jar_0, tangents friction_j jar_j, norm T): the top zone
+// (N >= mu T) is free, the bottom zone (mu N + T <= 0) quadratic in every row, and in
+// between the cost is 0.5 Dm (N - mu T)^2 with Dm = D_0 / (mu^2 (1 + mu^2)).
+double UpdateEllipticContact(const RowSet& rows, int i, const double* jar, int* state,
+                             double* force, bool cone_hessian) {
+  Contact* con = rows.contact + rows.id[i];
+  int dim = con->dim;
+  double mu = con->mu;
+  double U[6];
+  U[0] = jar[i] * mu;
+  for (int j = 1; j < dim; j++) U[j] = jar[i + j] * con->friction[j - 1];
+  double N = U[0];
+  double T = std::sqrt(Dot(U + 1, U + 1, dim - 1));
+
+  double cost = 0;
+  int zone;
+  if (N >= mu * T || (T <= 0 && N >= 0)) {
+    // Top zone: separating, no force.
+    std::fill(force + i, force + i + dim, 0.0);
+    zone = kStateSatisfied;
+  } else if (mu * N + T <= 0 || (T <= 0 && N < 0)) {
+    // Bottom zone: every row quadratic (forces -D jar as set by the caller).
+    for (int j = 0; j < dim; j++) cost += 0.5 * rows.D[i + j] * jar[i + j] * jar[i + j];
+    zone = kStateQuadratic;
+  } else {
+    // Middle zone: the force is -d cost / d jar.
+    double Dm = rows.D[i] / (mu * mu * (1 + mu * mu));
+    double gap = N - mu * T;
+    cost = 0.5 * Dm * gap * gap;
+    force[i] = -Dm * gap * mu;
+    for (int j = 1; j < dim; j++) force[i + j] = -force[i] / T * U[j] * con->friction[j - 1];
+    zone = kStateCone;
+    if (cone_hessian) ConeHessian(con, U, N, T, Dm);
+  }
+  std::fill(state + i, state + i + dim, zone);
+  return cost;
+}
+
+}  // namespace
+
+RowSet DataRows(Data& d) {
+  return RowSet{d.ne, d.nf, d.nefc, d.efc_D.data(), d.efc_R.data(), d.efc_frictionloss.data(),
+                d.efc_type.data(), d.efc_id.data(), d.contact.data()};
+}
+
+void ConstraintUpdate(const RowSet& rows, const double* jar, int* state, double* force,
+                      double* cost, bool cone_hessian) {
+  int ne = rows.ne, nf = rows.nf, nefc = rows.nefc;
+  const double *D = rows.D, *R = rows.R, *frictionloss = rows.frictionloss;
   double s = 0;
+  for (int i = 0; i < nefc; i++) force[i] = -D[i] * jar[i];
   for (int i = 0; i < nefc; i++) {
-    force[i] = -D[i] * jar[i];
     double quadratic = 0.5 * D[i] * jar[i] * jar[i];
 
     // Equality: always quadratic.
@@ -55,7 +134,14 @@ void ConstraintUpdate(int ne, int nf, int nefc, const double* D, const double* R
       continue;
     }
 
-    // Limits and contacts: one-sided.
+    // Elliptic contacts: a cone over the contact's rows.
+    if (rows.type[i] == kCnstrContactElliptic) {
+      s += UpdateEllipticContact(rows, i, jar, state, force, cone_hessian);
+      i += rows.contact[rows.id[i]].dim - 1;
+      continue;
+    }
+
+    // Limits, frictionless and pyramidal contacts: one-sided.
     if (jar[i] >= 0) {
       force[i] = 0;
       state[i] = kStateSatisfied;
@@ -67,23 +153,8 @@ void ConstraintUpdate(int ne, int nf, int nefc, const double* D, const double* R
   if (cost) *cost = s;
 }
 
-namespace {
-
 // ---------------------------------------------------------------- small dense algebra
 
-// res = M vec with the problem's block of M.
-void MulSym(const ConstraintProblem& p, const double* vec, double* res) {
-  MulSymLayout(p.nv, p.M_rownnz.data(), p.M_rowadr.data(), p.M_colind.data(), p.M.data(), vec,
-               res);
-}
-
-// res (rows) = J vec.
-void MulJ(const ConstraintProblem& p, const double* vec, double* res) {
-  math::MulMatVec(res, p.J.data(), vec, p.nefc, p.nv);
-}
-
-// In-place dense Cholesky of the lower triangle; pivots below `mindiag` are raised to it.
-// Returns the rank (MuJoCo mju_cholFactor).
 int CholFactor(double* mat, int n, double mindiag) {
   int rank = n;
   for (int j = 0; j < n; j++) {
@@ -101,9 +172,8 @@ int CholFactor(double* mat, int n, double mindiag) {
   return rank;
 }
 
-// res = (L L^T)^-1 vec.
 void CholSolve(const double* mat, int n, const double* vec, double* res) {
-  std::copy(vec, vec + n, res);
+  if (res != vec) std::copy(vec, vec + n, res);
   for (int i = 0; i < n; i++) res[i] = (res[i] - Dot(mat + i * n, res, i)) / mat[i * (n + 1)];
   for (int i = n - 1; i >= 0; i--) {
     for (int j = i + 1; j < n; j++) res[i] -= mat[j * n + i] * res[j];
@@ -111,7 +181,6 @@ void CholSolve(const double* mat, int n, const double* vec, double* res) {
   }
 }
 
-// L L^T +/- x x^T, in place (x is overwritten); returns the rank (mju_cholUpdate).
 int CholUpdate(double* mat, double* x, int n, bool plus) {
   int rank = n;
   for (int k = 0; k < n; k++) {
@@ -132,29 +201,54 @@ int CholUpdate(double* mat, double* x, int n, bool plus) {
   return rank;
 }
 
+namespace {
+
+// ---------------------------------------------------------------- products
+
+// res = M vec with the problem's block of M.
+void MulSym(const ConstraintProblem& p, const double* vec, double* res) {
+  MulSymLayout(p.nv, p.M_rownnz.data(), p.M_rowadr.data(), p.M_colind.data(), p.M.data(), vec,
+               res);
+}
+
+// res (rows) = J vec.
+void MulJ(const ConstraintProblem& p, const double* vec, double* res) {
+  math::MulMatVec(res, p.J.data(), vec, p.nefc, p.nv);
+}
+
 // ---------------------------------------------------------------- solver state
 
 struct Primal {
   ConstraintProblem& p;
   bool newton;
+  bool elliptic;  // the model's contacts use elliptic cones
+  // quad: 3 numbers per row; an elliptic contact's first row uses 9 (its rows have room).
   std::vector<double> jaref, jv, ma, mv, grad, mgrad, search, quad;
-  std::vector<double> hessian;  // Newton: Cholesky factor of M + J^T D_active J (nv x nv)
+  std::vector<double> hessian;       // Newton: Cholesky factor of M + J^T D_active J (nv x nv)
+  std::vector<double> hessian_cone;  // the same plus the cone-zone contacts' Hessians
   double cost = 0;
   double quad_gauss[3] = {0, 0, 0};
+  int ncone = 0;  // rows in the cone state
   int ls_iter = 0;
 
-  Primal(ConstraintProblem& problem, bool is_newton)
-      : p(problem), newton(is_newton), jaref(p.nefc), jv(p.nefc), ma(p.nv), mv(p.nv),
-        grad(p.nv), mgrad(p.nv), search(p.nv), quad(3 * static_cast<size_t>(p.nefc)) {
+  Primal(ConstraintProblem& problem, bool is_newton, bool is_elliptic)
+      : p(problem), newton(is_newton), elliptic(is_elliptic), jaref(p.nefc), jv(p.nefc),
+        ma(p.nv), mv(p.nv), grad(p.nv), mgrad(p.nv), search(p.nv),
+        quad(3 * static_cast<size_t>(p.nefc)) {
     if (newton) hessian.assign(static_cast<size_t>(p.nv) * p.nv, 0.0);
+    if (newton && elliptic) hessian_cone.assign(hessian.size(), 0.0);
   }
+
+  // The factor Newton steps with: with the cones' curvature when any contact is in the cone.
+  const double* NewtonFactor() const { return ncone ? hessian_cone.data() : hessian.data(); }
 };
 
 // Row states, forces, qfrc_constraint and the total cost at the current iterate.
 void UpdateConstraint(Primal& s) {
   ConstraintProblem& p = s.p;
-  ConstraintUpdate(p.ne, p.nf, p.nefc, p.D.data(), p.R.data(), p.frictionloss.data(),
-                   s.jaref.data(), p.state.data(), p.force.data(), &s.cost);
+  ConstraintUpdate(p.Rows(), s.jaref.data(), p.state.data(), p.force.data(), &s.cost,
+                   s.newton && s.elliptic);
+  s.ncone = static_cast<int>(std::count(p.state.begin(), p.state.end(), kStateCone));
   math::MulMatTVec(p.qfrc_constraint.data(), p.J.data(), p.force.data(), p.nefc, p.nv);
   double gauss = 0;
   for (int v = 0; v < p.nv; v++) {
@@ -169,7 +263,7 @@ void UpdateGradient(Primal& s) {
   ConstraintProblem& p = s.p;
   for (int v = 0; v < p.nv; v++) s.grad[v] = s.ma[v] - p.qfrc_smooth[v] - p.qfrc_constraint[v];
   if (s.newton) {
-    CholSolve(s.hessian.data(), p.nv, s.grad.data(), s.mgrad.data());
+    CholSolve(s.NewtonFactor(), p.nv, s.grad.data(), s.mgrad.data());
   } else {
     s.mgrad = s.grad;
     SolveSparseLayout(p.nv, p.M_rownnz.data(), p.M_rowadr.data(), p.M_colind.data(),
@@ -177,7 +271,36 @@ void UpdateGradient(Primal& s) {
   }
 }
 
-// H = M + J^T D J over the rows in the quadratic state, factored (lower triangle).
+// The cone factor: the plain factor updated by each cone-zone contact's Hessian H = C C^T
+// (C its Cholesky factor), i.e. by the dim vectors of (J_contact^T C) (MuJoCo HessianCone).
+void AddConeHessians(Primal& s) {
+  ConstraintProblem& p = s.p;
+  int nv = p.nv;
+  s.hessian_cone = s.hessian;
+  std::vector<double> ltj(6 * static_cast<size_t>(nv));
+  for (int i = 0; i < p.nefc; i++) {
+    if (p.state[i] != kStateCone) continue;
+    const Contact& con = p.contact[p.id[i]];
+    int dim = con.dim;
+    double local[36];
+    std::copy(con.H, con.H + dim * dim, local);
+    CholFactor(local, dim, kMinVal);
+
+    // Column c of C^T J: sum over rows r >= c of C(r, c) J_r.
+    std::fill(ltj.begin(), ltj.end(), 0.0);
+    for (int r = 0; r < dim; r++) {
+      const double* row = &p.J[static_cast<size_t>(i + r) * nv];
+      for (int c = 0; c <= r; c++) {
+        for (int v = 0; v < nv; v++) ltj[c * nv + v] += local[r * dim + c] * row[v];
+      }
+    }
+    for (int r = 0; r < dim; r++) CholUpdate(s.hessian_cone.data(), &ltj[r * nv], nv, true);
+    i += dim - 1;
+  }
+}
+
+// H = M + J^T D J over the rows in the quadratic state, factored (lower triangle); then
+// the cone factor when contacts are in the cone.
 void FactorHessian(Primal& s) {
   ConstraintProblem& p = s.p;
   int nv = p.nv;
@@ -198,10 +321,11 @@ void FactorHessian(Primal& s) {
     }
   }
   CholFactor(h.data(), nv, kMinVal);
+  if (s.ncone) AddConeHessians(s);
 }
 
-// Rank-one updates of the factor for rows that entered or left the quadratic state; a
-// full refactorization if an update loses rank.
+// Rank-one updates of the factor for rows that entered or left the quadratic state (a
+// full refactorization if an update loses rank); then the cone factor anew.
 void UpdateHessian(Primal& s, const std::vector<int>& oldstate) {
   ConstraintProblem& p = s.p;
   std::vector<double> vec(p.nv);
@@ -216,6 +340,7 @@ void UpdateHessian(Primal& s, const std::vector<int>& oldstate) {
       return;
     }
   }
+  if (s.ncone) AddConeHessians(s);
 }
 
 // ---------------------------------------------------------------- line search
@@ -226,6 +351,36 @@ struct LinePoint {
   double deriv[2] = {0, 0};  // first and second derivative along the line
 };
 
+// An elliptic contact's numbers along the line (rows i..i+dim-1), q = &quad[3 i]: q[0..2]
+// become the bottom zone's quadratic over all its rows (still unhalved), and with the
+// friction-scaled U = diag(mu, friction) jaref and V = diag(mu, friction) jv:
+// q[3] = U0, q[4] = V0, q[5..7] = U_t.U_t, U_t.V_t, V_t.V_t and q[8] = Dm.
+void PrepareCone(const Primal& s, int i, double* q) {
+  const ConstraintProblem& p = s.p;
+  const Contact& con = p.contact[p.id[i]];
+  int dim = con.dim;
+  double mu = con.mu;
+  for (int j = 1; j < dim; j++) {
+    double dj = p.D[i + j] * s.jaref[i + j];
+    q[0] += s.jaref[i + j] * dj;
+    q[1] += s.jv[i + j] * dj;
+    q[2] += s.jv[i + j] * p.D[i + j] * s.jv[i + j];
+  }
+  double uu = 0, uv = 0, vv = 0;
+  for (int j = 1; j < dim; j++) {
+    double u = s.jaref[i + j] * con.friction[j - 1], v = s.jv[i + j] * con.friction[j - 1];
+    uu += u * u;
+    uv += u * v;
+    vv += v * v;
+  }
+  q[3] = s.jaref[i] * mu;
+  q[4] = s.jv[i] * mu;
+  q[5] = uu;
+  q[6] = uv;
+  q[7] = vv;
+  q[8] = p.D[i] / ((mu * mu) * (1 + (mu * mu)));
+}
+
 // Per-row quadratics along the search line: cost_r(alpha) = q0 + q1 alpha + q2 alpha^2.
 void PrepareLine(Primal& s) {
   ConstraintProblem& p = s.p;
@@ -234,11 +389,55 @@ void PrepareLine(Primal& s) {
                     Dot(p.qfrc_smooth.data(), s.search.data(), nv);
   s.quad_gauss[2] = 0.5 * Dot(s.search.data(), s.mv.data(), nv);
   for (int r = 0; r < p.nefc; r++) {
+    double* q = &s.quad[3 * r];
     double dj = p.D[r] * s.jaref[r];
-    s.quad[3 * r] = 0.5 * s.jaref[r] * dj;
-    s.quad[3 * r + 1] = s.jv[r] * dj;
-    s.quad[3 * r + 2] = 0.5 * s.jv[r] * p.D[r] * s.jv[r];
+    q[0] = s.jaref[r] * dj;
+    q[1] = s.jv[r] * dj;
+    q[2] = s.jv[r] * p.D[r] * s.jv[r];
+    if (p.type[r] == kCnstrContactElliptic) {
+      PrepareCone(s, r, q);
+      r += p.contact[p.id[r]].dim - 1;
+    }
+    q[0] *= 0.5;
+    q[2] *= 0.5;
   }
+}
+
+// The cost of an elliptic contact along the line (rows i.., prepared in q[0..8]): in its
+// zone at alpha, added to the totals (quadratic zones) or to cost/deriv (the cone).
+void EvalCone(const Primal& s, int i, double alpha, double total[3], double* cost,
+              double deriv[2]) {
+  const double* q = &s.quad[3 * i];
+  double mu = s.p.contact[s.p.id[i]].mu;
+  double N = q[3] + alpha * q[4];
+  double Tsqr = q[5] + alpha * (2 * q[6] + alpha * q[7]);
+  auto add_quadratic = [total, q]() {
+    total[0] += q[0];
+    total[1] += q[1];
+    total[2] += q[2];
+  };
+
+  // No tangential part: bottom zone when pulling, else free.
+  if (Tsqr <= 0) {
+    if (N < 0) add_quadratic();
+    return;
+  }
+  double T = std::sqrt(Tsqr);
+  if (N >= mu * T) return;  // top zone
+  if (mu * N + T <= 0) {    // bottom zone
+    add_quadratic();
+    return;
+  }
+
+  // Middle zone: 0.5 Dm (N - mu T)^2 with N, T and their alpha-derivatives.
+  double Dm = q[8];
+  double N1 = q[4];
+  double T1 = (q[6] + alpha * q[7]) / T;
+  double T2 = q[7] / T - (q[6] + alpha * q[7]) * T1 / (T * T);
+  double gap = N - mu * T, gap1 = N1 - mu * T1;
+  *cost += 0.5 * Dm * gap * gap;
+  deriv[0] += Dm * gap * gap1;
+  deriv[1] += Dm * (gap1 * gap1 + gap * (-mu * T2));
 }
 
 // Cost and its derivatives at alpha along the search direction.
@@ -246,6 +445,7 @@ void EvalLine(Primal& s, LinePoint* point) {
   ConstraintProblem& p = s.p;
   double alpha = point->alpha;
   double total[3] = {s.quad_gauss[0], s.quad_gauss[1], s.quad_gauss[2]};
+  double cost = 0, deriv[2] = {0, 0};  // the cone-zone contacts' share
   auto add = [&total](const double* q) {
     total[0] += q[0];
     total[1] += q[1];
@@ -267,13 +467,16 @@ void EvalLine(Primal& s, LinePoint* point) {
         double q[3] = {f * (-0.5 * bound + s.jaref[r]), f * s.jv[r], 0};
         add(q);
       }
+    } else if (p.type[r] == kCnstrContactElliptic) {
+      EvalCone(s, r, alpha, total, &cost, deriv);
+      r += p.contact[p.id[r]].dim - 1;
     } else if (x < 0) {
       add(&s.quad[3 * r]);
     }
   }
-  point->cost = alpha * alpha * total[2] + alpha * total[1] + total[0];
-  point->deriv[0] = 2 * alpha * total[2] + total[1];
-  point->deriv[1] = 2 * total[2];
+  point->cost = cost + (alpha * alpha * total[2] + alpha * total[1] + total[0]);
+  point->deriv[0] = deriv[0] + (2 * alpha * total[2] + total[1]);
+  point->deriv[1] = deriv[1] + 2 * total[2];
   if (point->deriv[1] <= 0) {
     std::fprintf(stderr, "simlab warning: line search objective is not convex\n");
     point->deriv[1] = kMinVal;
@@ -367,7 +570,7 @@ double LineSearch(const Model& m, Primal& s) {
 
 void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton) {
   int nv = p.nv, nefc = p.nefc;
-  Primal s(p, newton);
+  Primal s(p, newton, m.opt.cone == kConeElliptic);
   std::vector<double> gradold, mgradold;
   std::vector<int> oldstate(nefc);
 

@@ -162,7 +162,9 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
       Light(c, true);
     } else if (tag == "equality") {
       ReadEquality(c, &def->equality, true);
-    } else if (tag == "mesh" || tag == "material" || tag == "pair") {
+    } else if (tag == "pair") {
+      ReadPair(c, &def->pair, true);
+    } else if (tag == "mesh" || tag == "material") {
       // Settings for features that do not change the compiled fields we produce.
       continue;
     } else if (tag == "general" || tag == "motor" || tag == "position" ||

@@ -56,6 +56,7 @@ class Reader {
   // equality constraints (reader_equality.cc)
   void Equality(const XmlElement& e);
   void ReadEquality(const XmlElement& e, EqualitySpec* eq, bool in_default) const;
+  void ReadPair(const XmlElement& e, PairSpec* pair, bool in_default) const;
   void Camera(const XmlElement& e, bool in_default) const;
   void Light(const XmlElement& e, bool in_default) const;
 

@@ -277,21 +277,48 @@ void Reader::Asset(const XmlElement& e) {
 }
 
 void Reader::Contact(const XmlElement& e) {
-  // Contact pairs and exclusions are accepted; contacts are compiled later.
+  // Explicit geom pairs (with class defaults) and excluded body pairs.
   e.CheckAttributes({});
   for (pugi::xml_node n : e.node().children()) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     if (c.tag() == "pair") {
-      c.CheckAttributes({"name", "class", "geom1", "geom2", "condim", "friction", "solref",
-                         "solreffriction", "solimp", "gap", "margin"});
-      FindClass(c, "class");
+      const DefaultClass* cls = FindClass(c, "class");
+      PairSpec pair = cls ? cls->pair : classes_.at("main")->pair;
+      ReadPair(c, &pair, false);
+      spec_->pairs.push_back(std::move(pair));
     } else if (c.tag() == "exclude") {
       c.CheckAttributes({"name", "body1", "body2"});
+      ExcludeSpec ex;
+      ex.src = c.src();
+      c.RequiredText("body1", &ex.body1);
+      c.RequiredText("body2", &ex.body2);
+      spec_->excludes.push_back(std::move(ex));
     } else {
       Unknown(c);
     }
   }
+}
+
+// One <pair>, or the pair defaults of a class.
+void Reader::ReadPair(const XmlElement& e, PairSpec* pair, bool in_default) const {
+  if (in_default) {
+    e.CheckAttributes({"condim", "friction", "solref", "solreffriction", "solimp", "gap",
+                       "margin"});
+  } else {
+    e.CheckAttributes({"name", "class", "geom1", "geom2", "condim", "friction", "solref",
+                       "solreffriction", "solimp", "gap", "margin"});
+    pair->src = e.src();
+    e.RequiredText("geom1", &pair->geom1);
+    e.RequiredText("geom2", &pair->geom2);
+  }
+  e.Int("condim", &pair->condim);
+  e.Numbers("friction", pair->friction, false);
+  e.Numbers("solref", pair->solref, false);
+  e.Numbers("solreffriction", pair->solreffriction, false);
+  e.Numbers("solimp", pair->solimp, false);
+  e.Number("margin", &pair->margin);
+  e.Number("gap", &pair->gap);
 }
 
 // ---------------------------------------------------------------- tendon, actuator, keyframe

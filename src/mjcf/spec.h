@@ -253,6 +253,26 @@ struct EqualitySpec {
   std::array<double, kNEqData> data = {0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 1};
 };
 
+// An explicit contact pair (MuJoCo's mjsPair, with its defaults: the pair's own values
+// are used, not a combination of the two geoms').
+struct PairSpec {
+  Source src;
+  std::string geom1, geom2;
+  int condim = 3;
+  std::array<double, 5> friction = {1, 1, 0.005, 0.0001, 0.0001};
+  std::array<double, kNRef> solref = {0.02, 1};
+  std::array<double, kNRef> solreffriction = {0, 0};
+  std::array<double, kNImp> solimp = {0.9, 0.95, 0.001, 0.5, 2};
+  double margin = 0;
+  double gap = 0;
+};
+
+// A body pair whose contacts are excluded (MuJoCo's mjsExclude).
+struct ExcludeSpec {
+  Source src;
+  std::string body1, body2;
+};
+
 // A keyframe that came with an attached model (defined in mjcf/compose.h).
 struct AttachedKey;
 
@@ -275,6 +295,7 @@ struct DefaultClass {
   TendonSpec tendon;
   ActuatorSpec actuator;
   EqualitySpec equality;
+  PairSpec pair;
 };
 
 // <compiler> settings that affect the compiled model.
@@ -312,6 +333,8 @@ struct ModelSpec {
   std::vector<TendonSpec> tendons;
   std::vector<ActuatorSpec> actuators;
   std::vector<EqualitySpec> equalities;
+  std::vector<PairSpec> pairs;
+  std::vector<ExcludeSpec> excludes;
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
   // <statistic>: values given by the model (undefined: computed by the compiler).

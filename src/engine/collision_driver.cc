@@ -1,0 +1,392 @@
+// The collision stage (MuJoCo mj_collision): candidate body pairs from the broad phase,
+// merged in signature order with the explicit <pair>s, filtered as MuJoCo filters them,
+// then one narrow-phase call per geom pair (collision_table.cc) whose contacts get
+// their parameters here.
+//
+// The contact order is MuJoCo's: body pairs by signature (body1 << 16) + body2, explicit
+// pairs of a signature before that body pair's own geom pairs, geom pairs in geom order.
+// Candidates are every body pair whose bounding boxes (geom bounding spheres grown by
+// their margins) overlap: a superset of MuJoCo's sweep-and-prune pairs, and the
+// narrow-phase filters that follow are MuJoCo's, so the contacts are the same.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "engine/collision.h"
+#include "engine/engine.h"
+#include "math/math.h"
+
+namespace simlab {
+
+namespace {
+
+bool Enabled(const Model& m, int bit) { return (m.opt.enableflags & bit) != 0; }
+bool Disabled(const Model& m, int bit) { return (m.opt.disableflags & bit) != 0; }
+
+// ------------------------------------------------------------ contact parameters
+
+// Margin, reference, impedance and friction, or the global overrides (mj_assign*).
+double AssignMargin(const Model& m, double margin) {
+  return Enabled(m, kEnableOverride) ? m.opt.o_margin : margin;
+}
+
+// True when neither geom's contype meets the other's conaffinity.
+bool BitmaskRejects(int contype1, int conaffinity1, int contype2, int conaffinity2) {
+  return !(contype1 & conaffinity2) && !(contype2 & conaffinity1);
+}
+
+// Condim, gap, solref, solimp and 5-d friction of two geoms without an explicit pair:
+// the higher priority geom's, else condim and friction by max, solref/solimp mixed by
+// solmix (solref by min when either is in direct form).
+struct ContactParams {
+  int condim = 3;
+  double gap = 0;
+  double solref[kNRef] = {0, 0};
+  double solreffriction[kNRef] = {0, 0};
+  double solimp[kNImp] = {0, 0, 0, 0, 0};
+  double friction[5] = {0, 0, 0, 0, 0};
+};
+
+double SolMix(double mix1, double mix2) {
+  if (mix1 >= kMinVal && mix2 >= kMinVal) return mix1 / (mix1 + mix2);
+  if (mix1 < kMinVal && mix2 < kMinVal) return 0.5;
+  return mix1 < kMinVal ? 0.0 : 1.0;
+}
+
+ContactParams GeomPairParams(const Model& m, int g1, int g2) {
+  ContactParams p;
+  p.gap = m.geom_gap[g1] + m.geom_gap[g2];
+  const double* ref1 = &m.geom_solref[kNRef * g1];
+  const double* ref2 = &m.geom_solref[kNRef * g2];
+  const double* imp1 = &m.geom_solimp[kNImp * g1];
+  const double* imp2 = &m.geom_solimp[kNImp * g2];
+  const double* fri1 = &m.geom_friction[3 * g1];
+  const double* fri2 = &m.geom_friction[3 * g2];
+  double fri[3];
+  int pri1 = m.geom_priority[g1], pri2 = m.geom_priority[g2];
+  if (pri1 != pri2) {
+    // The higher priority geom decides everything.
+    int g = pri1 > pri2 ? g1 : g2;
+    p.condim = m.geom_condim[g];
+    std::copy_n(&m.geom_solref[kNRef * g], kNRef, p.solref);
+    std::copy_n(&m.geom_solimp[kNImp * g], kNImp, p.solimp);
+    std::copy_n(&m.geom_friction[3 * g], 3, fri);
+  } else {
+    // Same priority: max condim and friction, mixed solver parameters.
+    p.condim = std::max(m.geom_condim[g1], m.geom_condim[g2]);
+    double mix = SolMix(m.geom_solmix[g1], m.geom_solmix[g2]);
+    bool standard = ref1[0] > 0 && ref2[0] > 0;
+    for (int i = 0; i < kNRef; i++) {
+      p.solref[i] = standard ? mix * ref1[i] + (1 - mix) * ref2[i] : std::min(ref1[i], ref2[i]);
+    }
+    for (int i = 0; i < kNImp; i++) p.solimp[i] = mix * imp1[i] + (1 - mix) * imp2[i];
+    for (int i = 0; i < 3; i++) fri[i] = std::max(fri1[i], fri2[i]);
+  }
+  // Tangential friction twice, torsional once, rolling twice.
+  p.friction[0] = p.friction[1] = fri[0];
+  p.friction[2] = fri[1];
+  p.friction[3] = p.friction[4] = fri[2];
+  return p;
+}
+
+// The explicit pair's own parameters.
+ContactParams PairParams(const Model& m, int ipair) {
+  ContactParams p;
+  p.condim = m.pair_dim[ipair];
+  p.gap = m.pair_gap[ipair];
+  std::copy_n(&m.pair_solref[kNRef * ipair], kNRef, p.solref);
+  std::copy_n(&m.pair_solreffriction[kNRef * ipair], kNRef, p.solreffriction);
+  std::copy_n(&m.pair_solimp[kNImp * ipair], kNImp, p.solimp);
+  std::copy_n(&m.pair_friction[5 * ipair], 5, p.friction);
+  return p;
+}
+
+// Completes the contact frame: the normal is row 0; row 1 is the given tangent, else
+// the world y axis (z when the normal is near y), made orthogonal; row 2 = row0 x row1.
+void CompleteFrame(double* frame) {
+  math::Normalize3(frame);
+  double* y = frame + 3;
+  if (math::Dot3(y, y) < 0.25) {
+    math::Zero3(y);
+    if (frame[1] < 0.5 && frame[1] > -0.5) {
+      y[1] = 1;
+    } else {
+      y[2] = 1;
+    }
+  }
+  double along = math::Dot3(frame, y);
+  for (int k = 0; k < 3; k++) y[k] -= along * frame[k];
+  math::Normalize3(y);
+  math::Cross3(frame + 6, frame, y);
+}
+
+// Parameters of one new contact (mj_setContact), with the global overrides.
+void SetContact(const Model& m, const ContactParams& p, double includemargin, int g1, int g2,
+                Contact* c) {
+  bool override = Enabled(m, kEnableOverride);
+  c->geom[0] = c->geom1 = g1;
+  c->geom[1] = c->geom2 = g2;
+  c->flex[0] = c->flex[1] = c->elem[0] = c->elem[1] = c->vert[0] = c->vert[1] = -1;
+  c->dim = p.condim;
+  c->includemargin = includemargin;
+  for (int i = 0; i < kNRef; i++) {
+    c->solref[i] = override ? m.opt.o_solref[i] : p.solref[i];
+    c->solreffriction[i] = override ? m.opt.o_solref[i] : p.solreffriction[i];
+  }
+  for (int i = 0; i < kNImp; i++) c->solimp[i] = override ? m.opt.o_solimp[i] : p.solimp[i];
+  for (int i = 0; i < 5; i++) {
+    c->friction[i] = std::max(kMinMu, override ? m.opt.o_friction[i] : p.friction[i]);
+  }
+  c->exclude = c->dist >= includemargin;
+  CompleteFrame(c->frame);
+  c->efc_address = -1;
+  c->mu = 0;
+  std::fill(c->H, c->H + 36, 0.0);
+}
+
+// ------------------------------------------------------------ geom filters
+
+// Distance of geom g's centre above plane geom p.
+double PlaneGeomDist(const Data& d, int p, int g) {
+  const double* mat = &d.geom_xmat[9 * p];
+  double normal[3] = {mat[2], mat[5], mat[8]};
+  double dif[3];
+  math::Sub3(dif, &d.geom_xpos[3 * g], &d.geom_xpos[3 * p]);
+  return math::Dot3(dif, normal);
+}
+
+// True when the bounding spheres (or a plane and a sphere) are farther than margin.
+bool SpheresApart(const Model& m, const Data& d, int g1, int g2, double margin) {
+  double r1 = m.geom_rbound[g1], r2 = m.geom_rbound[g2];
+  if (r1 > 0 && r2 > 0) {
+    double dif[3];
+    math::Sub3(dif, &d.geom_xpos[3 * g1], &d.geom_xpos[3 * g2]);
+    double bound = r1 + r2 + margin;
+    return dif[0] * dif[0] + dif[1] * dif[1] + dif[2] * dif[2] > bound * bound;
+  }
+  if (m.geom_type[g1] == kGeomPlane && r2 > 0 && PlaneGeomDist(d, g1, g2) > margin + r2) {
+    return true;
+  }
+  return m.geom_type[g2] == kGeomPlane && r1 > 0 && PlaneGeomDist(d, g2, g1) > margin + r1;
+}
+
+// Is the point outside box (pos, mat, size) inflated by `ratio` (1), inside the box
+// deflated by it (-1), or in between (0)?  (mju_outsideBox)
+int OutsideBox(const double* point, const double* pos, const double* mat, const double* size,
+               double ratio) {
+  double dif[3], local[3];
+  math::Sub3(dif, point, pos);
+  math::MulMatTVec3(local, mat, dif);
+  for (int k = 0; k < 3; k++) {
+    if (local[k] > size[k] * ratio || local[k] < -size[k] * ratio) return 1;
+  }
+  for (int k = 0; k < 3; k++) {
+    if (local[k] > size[k] / ratio || local[k] < -size[k] / ratio) return 0;
+  }
+  return -1;
+}
+
+// Box-box contacts outside one box and not inside the other, and repeated positions,
+// are dropped (MuJoCo's clean-up after mjc_BoxBox). Returns the new count.
+int CleanBoxBox(const Model& m, const Data& d, Contact* con, int num, int g1, int g2,
+                double margin) {
+  constexpr double kRemoveRatio = 1.01;
+  std::vector<char> bad(num, 0);
+  double size1[3], size2[3];
+  for (int k = 0; k < 3; k++) {
+    size1[k] = m.geom_size[3 * g1 + k] + margin;
+    size2[k] = m.geom_size[3 * g2 + k] + margin;
+  }
+  for (int i = 0; i < num; i++) {
+    int out1 = OutsideBox(con[i].pos, &d.geom_xpos[3 * g1], &d.geom_xmat[9 * g1], size1,
+                          kRemoveRatio);
+    int out2 = OutsideBox(con[i].pos, &d.geom_xpos[3 * g2], &d.geom_xmat[9 * g2], size2,
+                          kRemoveRatio);
+    bad[i] = (out1 == 1 && out2 != -1) || (out2 == 1 && out1 != -1);
+  }
+  // A contact repeated later is dropped in favour of the later one.
+  for (int i = 0; i < num - 1; i++) {
+    if (bad[i]) continue;
+    for (int j = i + 1; j < num; j++) {
+      if (bad[j]) continue;
+      if (con[i].pos[0] == con[j].pos[0] && con[i].pos[1] == con[j].pos[1] &&
+          con[i].pos[2] == con[j].pos[2]) {
+        bad[i] = 1;
+        break;
+      }
+    }
+  }
+  int kept = 0;
+  for (int j = 0; j < num; j++) {
+    if (bad[j]) continue;
+    if (kept < j) con[kept] = con[j];
+    kept++;
+  }
+  return kept;
+}
+
+// ------------------------------------------------------------ one geom pair
+
+// Collides geoms g1 and g2, or explicit pair `ipair` (g1 = g2 = -1), and appends the
+// contacts to d.contact (mj_collideGeoms).
+void CollideGeoms(const Model& m, Data& d, int g1, int g2, int ipair) {
+  if (ipair >= 0) {
+    g1 = m.pair_geom1[ipair];
+    g2 = m.pair_geom2[ipair];
+  }
+  if (m.geom_type[g1] > m.geom_type[g2]) std::swap(g1, g2);
+  CollideFn collide = CollisionFunction(m.geom_type[g1], m.geom_type[g2]);
+  if (!collide) return;
+  if (ipair < 0 && BitmaskRejects(m.geom_contype[g1], m.geom_conaffinity[g1],
+                                  m.geom_contype[g2], m.geom_conaffinity[g2])) {
+    return;
+  }
+  double margin = AssignMargin(m, ipair < 0 ? m.geom_margin[g1] + m.geom_margin[g2]
+                                            : m.pair_margin[ipair]);
+  if (SpheresApart(m, d, g1, g2, margin)) return;
+
+  // Narrow phase into the free end of the contact array.
+  if (d.contact.size() < static_cast<size_t>(d.ncon + kMaxContactPair)) {
+    d.contact.resize(static_cast<size_t>(d.ncon + kMaxContactPair) * 2);
+  }
+  Contact* con = &d.contact[d.ncon];
+  std::fill(con, con + kMaxContactPair, Contact{});
+  int num = collide(m, d, con, g1, g2, margin);
+  if (num <= 0) return;
+  if (m.geom_type[g1] == kGeomBox && m.geom_type[g2] == kGeomBox) {
+    num = CleanBoxBox(m, d, con, num, g1, g2, margin);
+  }
+
+  // Parameters: the pair's own, or combined from the two geoms.
+  ContactParams p = ipair < 0 ? GeomPairParams(m, g1, g2) : PairParams(m, ipair);
+  for (int i = 0; i < num; i++) SetContact(m, p, margin - p.gap, g1, g2, con + i);
+  d.ncon += num;
+}
+
+// Collides geoms g1, g2 unless an explicit pair of this body pair (pairs [start, end))
+// already covers them (mj_collideGeomPair).
+void CollideUnlessPaired(const Model& m, Data& d, int g1, int g2, int start, int end) {
+  for (int k = start; k < end; k++) {
+    if ((m.pair_geom1[k] == g1 && m.pair_geom2[k] == g2) ||
+        (m.pair_geom1[k] == g2 && m.pair_geom2[k] == g1)) {
+      return;
+    }
+  }
+  CollideGeoms(m, d, g1, g2, -1);
+}
+
+// ------------------------------------------------------------ broad phase
+
+// Can body b collide with anything?
+bool CanCollide(const Model& m, int b) { return m.body_contype[b] || m.body_conaffinity[b]; }
+
+bool HasPlane(const Model& m, int b) {
+  for (int g = m.body_geomadr[b]; g < m.body_geomadr[b] + m.body_geomnum[b]; g++) {
+    if (m.geom_type[g] == kGeomPlane) return true;
+  }
+  return false;
+}
+
+// True when MuJoCo never collides these bodies: welded together, or (unless the
+// filterparent flag is disabled) one welded to the other's parent (filterBodyPair).
+// `always1` marks the world side of the always-colliding pairs.
+bool BodyPairFiltered(const Model& m, int b1, int b2, bool always1) {
+  int weld1 = always1 ? 0 : m.body_weldid[b1];
+  int weld2 = m.body_weldid[b2];
+  int parent1 = always1 ? 0 : m.body_weldid[m.body_parentid[weld1]];
+  int parent2 = m.body_weldid[m.body_parentid[weld2]];
+  if (weld1 == weld2) return true;
+  if (always1 && weld2 == 0) return true;
+  bool filterparent = !Disabled(m, kDisableFilterparent);
+  return filterparent && weld1 != 0 && weld2 != 0 && (weld1 == parent2 || weld2 == parent1);
+}
+
+// The world box holding a body's geoms' bounding spheres grown by their margins.
+void BodyBox(const Model& m, const Data& d, int b, double* lo, double* hi) {
+  for (int i = 0; i < m.body_geomnum[b]; i++) {
+    int g = m.body_geomadr[b] + i;
+    double margin = Enabled(m, kEnableOverride) ? 0.5 * m.opt.o_margin : m.geom_margin[g];
+    for (int k = 0; k < 3; k++) {
+      double c = d.geom_xpos[3 * g + k], r = m.geom_rbound[g] + margin;
+      lo[k] = i == 0 ? c - r : std::min(lo[k], c - r);
+      hi[k] = i == 0 ? c + r : std::max(hi[k], c + r);
+    }
+  }
+}
+
+// Body pairs worth testing, as sorted unique signatures (b1 << 16) + b2, b1 < b2.
+std::vector<int> BroadPhase(const Model& m, const Data& d) {
+  std::vector<int> pairs;
+  auto add = [&](int b1, int b2) {
+    if (BitmaskRejects(m.body_contype[b1], m.body_conaffinity[b1], m.body_contype[b2],
+                       m.body_conaffinity[b2])) {
+      return;
+    }
+    pairs.push_back((std::min(b1, b2) << 16) + std::max(b1, b2));
+  };
+  // The world's geoms and static bodies with planes meet every moving body.
+  for (int b1 = 0; b1 < m.nbody; b1++) {
+    if (!CanCollide(m, b1)) continue;
+    if (!((b1 == 0 && m.body_geomnum[b1] > 0) || (m.body_weldid[b1] == 0 && HasPlane(m, b1)))) {
+      continue;
+    }
+    for (int b2 = 0; b2 < m.nbody; b2++) {
+      if (CanCollide(m, b2) && !BodyPairFiltered(m, b1, b2, true)) add(b1, b2);
+    }
+  }
+  // Other bodies meet when their boxes overlap.
+  std::vector<double> box(6 * m.nbody);
+  for (int b = 1; b < m.nbody; b++) {
+    if (CanCollide(m, b)) BodyBox(m, d, b, &box[6 * b], &box[6 * b + 3]);
+  }
+  for (int b1 = 1; b1 < m.nbody; b1++) {
+    if (!CanCollide(m, b1)) continue;
+    for (int b2 = b1 + 1; b2 < m.nbody; b2++) {
+      if (!CanCollide(m, b2) || BodyPairFiltered(m, b1, b2, false)) continue;
+      const double* x1 = &box[6 * b1];
+      const double* x2 = &box[6 * b2];
+      bool overlap = true;
+      for (int k = 0; k < 3; k++) overlap = overlap && x1[k] <= x2[k + 3] && x2[k] <= x1[k + 3];
+      if (overlap) add(b1, b2);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+// ------------------------------------------------------------ one body pair
+
+// The geom pairs of bodies b1 < b2 that no explicit pair in [start, end) covers.
+void CollideBodies(const Model& m, Data& d, int b1, int b2, int start, int end) {
+  for (int g1 = m.body_geomadr[b1]; g1 < m.body_geomadr[b1] + m.body_geomnum[b1]; g1++) {
+    for (int g2 = m.body_geomadr[b2]; g2 < m.body_geomadr[b2] + m.body_geomnum[b2]; g2++) {
+      CollideUnlessPaired(m, d, g1, g2, start, end);
+    }
+  }
+}
+
+}  // namespace
+
+void Collision(const Model& m, Data& d) {
+  d.ncon = 0;
+  if (Disabled(m, kDisableConstraint) || Disabled(m, kDisableContact) || m.nbody < 2) return;
+
+  std::vector<int> bodypairs = BroadPhase(m, d);
+  int pairadr = 0, exadr = 0;
+  for (int signature : bodypairs) {
+    // Explicit pairs up to this signature come first.
+    int start = pairadr;
+    while (pairadr < m.npair && m.pair_signature[pairadr] <= signature) {
+      CollideGeoms(m, d, -1, -1, pairadr++);
+    }
+    // Excluded body pairs.
+    while (exadr < m.nexclude && m.exclude_signature[exadr] < signature) exadr++;
+    if (exadr < m.nexclude && m.exclude_signature[exadr] == signature) continue;
+    CollideBodies(m, d, signature >> 16, signature & 0xFFFF, start, pairadr);
+  }
+  // Explicit pairs past the last body pair.
+  while (pairadr < m.npair) CollideGeoms(m, d, -1, -1, pairadr++);
+}
+
+}  // namespace simlab
