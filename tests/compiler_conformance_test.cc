@@ -176,6 +176,11 @@ TEST(CompilerConformance, RefsiteDampratio) {
   CheckModel("refsite_dampratio", Local("refsite_dampratio.xml"));
 }
 TEST(CompilerConformance, Muscles) { CheckModel("muscles", Local("muscles.xml")); }
+// body_gravcomp and jnt_actgravcomp (the gravity compensation bench).
+TEST(CompilerConformance, Gravcomp) {
+  CheckModel("gravcomp_arm",
+             std::string(SIMLAB_SOURCE_DIR) + "/tests/conformance/gravcomp/base/arm.xml");
+}
 TEST(CompilerConformance, SpatialTendons) {
   // wrap_type/objid/prm (side sites, divisors), tendon_length0 and lengthspring.
   for (const char* name : {"wrap_sphere", "wrap_cylinder", "pulley", "armature"}) {
