@@ -213,6 +213,10 @@ TEST(CompilerConformance, LengthRangeBySimulation) {
   CheckModel("lengthrange_sim", Local("lengthrange_sim.xml"));
 }
 TEST(CompilerConformance, Arm26) { CheckModel("arm26", Corpus("tendon_arm/arm26.xml")); }
+// Meshes (tests/meshes): files and inline data, inertia modes, hulls, fitted primitives.
+TEST(CompilerConformance, MeshAssets) {
+  CheckModel("mesh_assets", std::string(SIMLAB_SOURCE_DIR) + "/tests/meshes/mesh_assets.xml");
+}
 
 }  // namespace
 }  // namespace simlab

@@ -110,8 +110,8 @@ TEST(MjcfErrors, NotSupportedYet) {
               {"bad.xml:2:", "sensors is not supported yet"});
   ExpectError("<mujoco>\n<equality>\n<flex flex=\"f\"/>\n</equality>\n</mujoco>",
               {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
-  ExpectError("<mujoco>\n<asset>\n<mesh name=\"m\" file=\"m.stl\"/>\n</asset>\n</mujoco>",
-              {"bad.xml:3:", "<mesh name=\"m\">", "not supported yet"});
+  ExpectError("<mujoco>\n<asset>\n<hfield name=\"h\" file=\"h.png\"/>\n</asset>\n</mujoco>",
+              {"bad.xml:3:", "<hfield name=\"h\">", "not supported yet"});
   ExpectError("<mujoco>\n<compiler fusestatic=\"true\"/>\n</mujoco>", {"bad.xml:2:", "fusestatic", "not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body>\n<composite/>\n</body>\n</worldbody>\n</mujoco>",
               {"bad.xml:4:", "<composite> is not supported yet"});

@@ -17,7 +17,7 @@ import { fileURLToPath, pathToFileURL } from 'node:url';
 
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
-  'nkey', 'nM', 'nmocap', 'neq'];
+  'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -33,7 +33,9 @@ const ARRAYS = [
   'geom_type', 'geom_contype', 'geom_conaffinity', 'geom_condim', 'geom_bodyid', 'geom_group',
   'geom_priority', 'geom_sameframe', 'geom_solmix', 'geom_solref', 'geom_solimp', 'geom_size',
   'geom_rbound', 'geom_pos', 'geom_quat', 'geom_friction', 'geom_margin', 'geom_gap',
-  'geom_rgba', 'geom_fluid',
+  'geom_rgba', 'geom_fluid', 'geom_dataid',
+  'mesh_vertadr', 'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_graphadr', 'mesh_scale',
+  'mesh_pos', 'mesh_quat', 'mesh_vert', 'mesh_face', 'mesh_graph',
   'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
   'site_quat', 'site_rgba',
   'tendon_adr', 'tendon_num', 'tendon_limited', 'tendon_actfrclimited', 'tendon_solref_lim',

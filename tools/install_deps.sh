@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake make
   libeigen3-dev libpugixml-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev libqhull-dev
 
 )
 

@@ -34,6 +34,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // The tree: flatten, compile bodies and their elements, check masses.
   CompileState state;
   FlattenTree(spec, &state);
+  CompileMeshes(spec, &state);
   CompileBodies(&state);
   CheckMovingBodies(state);
 
@@ -41,9 +42,11 @@ Model Compile(const mjcf::ModelSpec& spec) {
   Model m;
   CompileOption(spec, &m);
   TreeSizes(state, &m);
+  MeshSizes(state, &m);
   SectionSizes(spec, &m);
   m.Allocate();
   LayoutTree(state, &m);
+  LayoutMeshes(state, &m);
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);

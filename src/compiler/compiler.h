@@ -38,10 +38,26 @@ struct BodyState {
   int dofnum = 0;
 };
 
+// A compiled mesh (mesh.cc): vertices in its inertial frame, triangles, the convex
+// hull graph (empty if none is needed), and the pose of that frame in the mesh file's.
+struct MeshState {
+  const mjcf::MeshSpec* spec = nullptr;
+  std::vector<double> vert;
+  std::vector<int> face;
+  std::vector<int> graph;
+  double pos[3] = {0, 0, 0};
+  double quat[4] = {1, 0, 0, 0};
+  double aamm[6] = {0, 0, 0, 0, 0, 0};  // bounding box (min, max) in the inertial frame
+  double boxsz[3] = {0, 0, 0};           // half-sizes of the equivalent inertia box
+  double volume = 0;                     // volume, or surface area for shell inertia
+};
+
 // A geom while compiling (pose in the body frame, mass properties).
 struct GeomState {
   const mjcf::GeomSpec* spec = nullptr;
   int body = 0;
+  const MeshState* mesh = nullptr;  // its mesh (mesh geoms, and primitives fitted to one)
+  int meshid = -1;                  // geom_dataid: the mesh of a mesh geom
   double size[3] = {0, 0, 0};
   double pos[3] = {0, 0, 0};
   double quat[4] = {1, 0, 0, 0};
@@ -76,6 +92,7 @@ struct CompileState {
   std::vector<JointState> joints;
   std::vector<GeomState> geoms;
   std::vector<SiteState> sites;
+  std::vector<MeshState> meshes;
 };
 
 // The whole compilation.
@@ -85,6 +102,14 @@ Model Compile(const mjcf::ModelSpec& spec);
 void CompileOption(const mjcf::ModelSpec& spec, Model* m);
 void TreeSizes(const CompileState& state, Model* m);
 void FlattenTree(const mjcf::ModelSpec& spec, CompileState* state);
+// Meshes and the geoms that use them (mesh.cc): before the bodies, which need them.
+void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state);
+void MeshSizes(const CompileState& state, Model* m);
+// A geom with a mesh: a primitive type is fitted to it (size), and the geom frame is
+// offset by the mesh's inertial frame. A mesh geom's size is its bounding box.
+void MeshGeomFrame(const mjcf::CompilerSpec& c, GeomState* g);
+void MeshGeomSize(GeomState* g);
+void LayoutMeshes(const CompileState& state, Model* m);
 void CompileBodies(CompileState* state);
 void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g);
 void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>& geoms,

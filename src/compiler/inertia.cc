@@ -191,9 +191,8 @@ void CheckSize(const mjcf::GeomSpec& s, const double* size) {
 
 void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) {
   const mjcf::GeomSpec& s = *g->spec;
-  if (s.type == kGeomMesh || s.type == kGeomHfield || s.type == kGeomSdf || !s.mesh.empty() ||
-      !s.hfield.empty()) {
-    ThrowAt(s.src, "mesh, hfield and sdf geoms are not supported yet");
+  if (s.type == kGeomHfield || s.type == kGeomSdf || !s.hfield.empty()) {
+    ThrowAt(s.src, "hfield and sdf geoms are not supported yet");
   }
   if (s.condim != 1 && s.condim != 3 && s.condim != 4 && s.condim != 6) {
     ThrowAt(s.src, "condim must be 1, 3, 4 or 6");
@@ -209,11 +208,17 @@ void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) 
   } else if (const char* err = ResolveOrientation(g->quat, c.degree, c.eulerseq, s.alt)) {
     ThrowAt(s.src, std::string("orientation error: ") + err);
   }
+  if (g->mesh) MeshGeomFrame(c, g);
   CheckSize(s, g->size);
+  if (g->meshid >= 0) MeshGeomSize(g);
 
-  // Mass from mass or density, then the principal inertia in the geom frame.
+  // Mass from mass or density, then the principal inertia in the geom frame. A mesh
+  // geom has its mesh's volume and the inertia of the mesh's equivalent box.
+  bool mesh = g->meshid >= 0;
+  int inertia_type = mesh ? kGeomBox : s.type;
+  const double* inertia_size = mesh ? g->mesh->boxsz : g->size;
   if (infer_inertia) {
-    double volume = Volume(s.type, s.shellinertia, g->size);
+    double volume = mesh ? g->mesh->volume : Volume(s.type, s.shellinertia, g->size);
     double density = s.density;
     if (!std::isnan(s.mass)) {
       if (s.mass == 0) {
@@ -221,11 +226,11 @@ void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) 
       } else if (volume > kEps) {
         g->mass = s.mass;
         density = s.mass / volume;
-        SetInertia(s.type, s.shellinertia, g->mass, g->size, g->inertia);
+        SetInertia(inertia_type, s.shellinertia, g->mass, inertia_size, g->inertia);
       }
     } else if (density != 0) {
       g->mass = density * volume;
-      SetInertia(s.type, s.shellinertia, g->mass, g->size, g->inertia);
+      SetInertia(inertia_type, s.shellinertia, g->mass, inertia_size, g->inertia);
     }
     if (g->mass < 0 || g->inertia[0] < 0 || g->inertia[1] < 0 || g->inertia[2] < 0 || density < 0) {
       ThrowAt(s.src, "mass, inertia and density must not be negative (mass=" +
@@ -248,7 +253,8 @@ double GeomRBound(const GeomState& g) {
     case kGeomCapsule: return s[0] + s[1];
     case kGeomCylinder: return std::sqrt(s[0] * s[0] + s[1] * s[1]);
     case kGeomEllipsoid: return std::max(std::max(s[0], s[1]), s[2]);
-    case kGeomBox: return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    case kGeomBox:
+    case kGeomMesh: return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     default: return 0;
   }
 }

@@ -164,7 +164,9 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
       ReadEquality(c, &def->equality, true);
     } else if (tag == "pair") {
       ReadPair(c, &def->pair, true);
-    } else if (tag == "mesh" || tag == "material") {
+    } else if (tag == "mesh") {
+      ReadMesh(c, &def->mesh, true);
+    } else if (tag == "material") {
       // Settings for features that do not change the compiled fields we produce.
       continue;
     } else if (tag == "general" || tag == "motor" || tag == "position" ||

@@ -57,6 +57,8 @@ class Reader {
   void Equality(const XmlElement& e);
   void ReadEquality(const XmlElement& e, EqualitySpec* eq, bool in_default) const;
   void ReadPair(const XmlElement& e, PairSpec* pair, bool in_default) const;
+  // mesh assets (reader_mesh.cc)
+  void ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) const;
   void Camera(const XmlElement& e, bool in_default) const;
   void Light(const XmlElement& e, bool in_default) const;
 

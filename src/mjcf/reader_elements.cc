@@ -95,8 +95,7 @@ void Reader::ReadGeom(const XmlElement& e, GeomSpec* g, bool in_default) const {
   e.Number("gap", &g->gap);
   e.Text("hfield", &g->hfield);
   e.Text("mesh", &g->mesh);
-  double fitscale = 1;
-  e.Number("fitscale", &fitscale);
+  e.Number("fitscale", &g->fitscale);
   e.Numbers("rgba", g->rgba);
   int fluidshape = g->fluid_ellipsoid ? 1 : 0;
   e.Enum("fluidshape", &fluidshape, {{"none", 0}, {"ellipsoid", 1}});

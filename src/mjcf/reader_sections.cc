@@ -23,8 +23,10 @@ void Reader::Compiler(const XmlElement& e) {
   e.Number("boundinertia", &c.boundinertia);
   e.Number("settotalmass", &c.settotalmass);
   e.Bool("balanceinertia", &c.balanceinertia);
-  e.Bool("strippath", &flag);
-  e.Bool("fitaabb", &flag);
+  e.Bool("strippath", &c.strippath);
+  e.Text("meshdir", &c.meshdir);
+  e.Text("assetdir", &c.assetdir);
+  e.Bool("fitaabb", &c.fitaabb);
   int global = 0;
   if (e.Enum("coordinate", &global, {{"local", 0}, {"global", 1}}) && global) {
     e.Fail("global coordinates are no longer supported (as in MuJoCo)");
@@ -268,7 +270,12 @@ void Reader::Asset(const XmlElement& e) {
       FindClass(c, "class");
     } else if (c.tag() == "model") {
       AssetModel(c);
-    } else if (c.tag() == "mesh" || c.tag() == "hfield" || c.tag() == "skin") {
+    } else if (c.tag() == "mesh") {
+      const DefaultClass* cls = FindClass(c, "class");
+      MeshSpec mesh = cls ? cls->mesh : classes_.at("main")->mesh;
+      ReadMesh(c, &mesh, false);
+      spec_->meshes.push_back(std::move(mesh));
+    } else if (c.tag() == "hfield" || c.tag() == "skin") {
       NotSupported(c, "<" + c.tag() + "> assets");
     } else {
       Unknown(c);

@@ -110,6 +110,7 @@ struct GeomSpec {
   std::array<double, 5> fluidcoef = {0.5, 0.25, 1.5, 1.0, 1.0};
   std::string mesh;
   std::string hfield;
+  double fitscale = 1;  // scale of a primitive fitted to a mesh
   FramePtr frame;
 };
 
@@ -273,6 +274,26 @@ struct ExcludeSpec {
   std::string body1, body2;
 };
 
+// How a mesh's mass properties are computed (mjtMeshInertia).
+enum MeshInertia : int { kMeshConvex = 0, kMeshExact = 1, kMeshLegacy = 2, kMeshShell = 3 };
+
+// A mesh asset (MuJoCo's mjsMesh): a file, or inline vertices and faces, with the
+// reference frame and scale applied when compiling. Vertices are single precision as
+// MuJoCo reads them.
+struct MeshSpec {
+  Source src;
+  std::string file;          // as written (it names the mesh when `name` is absent)
+  std::string path;          // file resolved against the model folder and meshdir
+  std::string content_type;
+  std::vector<float> vertex;
+  std::vector<int> face;
+  std::array<double, 3> refpos = {0, 0, 0};
+  std::array<double, 4> refquat = {1, 0, 0, 0};
+  std::array<double, 3> scale = {1, 1, 1};
+  int inertia = kMeshLegacy;
+  int maxhullvert = -1;      // -1: no limit
+};
+
 // A keyframe that came with an attached model (defined in mjcf/compose.h).
 struct AttachedKey;
 
@@ -296,6 +317,7 @@ struct DefaultClass {
   ActuatorSpec actuator;
   EqualitySpec equality;
   PairSpec pair;
+  MeshSpec mesh;
 };
 
 // <compiler> settings that affect the compiled model.
@@ -320,6 +342,11 @@ struct CompilerSpec {
   int inertiafromgeom = kAuto;
   std::array<int, 2> inertiagrouprange = {0, 5};
   bool alignfree = false;
+  // Mesh files: folders (meshdir over assetdir), and whether to drop a file's folders.
+  std::string meshdir;
+  std::string assetdir;
+  bool strippath = false;
+  bool fitaabb = false;  // primitives fitted to a mesh's bounding box, not its inertia box
   LengthRangeSpec lengthrange;
 };
 
@@ -335,6 +362,7 @@ struct ModelSpec {
   std::vector<EqualitySpec> equalities;
   std::vector<PairSpec> pairs;
   std::vector<ExcludeSpec> excludes;
+  std::vector<MeshSpec> meshes;
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
   // <statistic>: values given by the model (undefined: computed by the compiler).

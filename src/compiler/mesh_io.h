@@ -1,0 +1,29 @@
+// Mesh files as MuJoCo reads them: binary STL (repeated vertices merged), Wavefront OBJ
+// (polygons cut into triangles the way MuJoCo's OBJ loader does), and ASCII STL, which
+// simlab reads as well (MuJoCo 3.5 refuses it).
+#ifndef SIMLAB_COMPILER_MESH_IO_H_
+#define SIMLAB_COMPILER_MESH_IO_H_
+
+#include <string>
+#include <vector>
+
+#include "mjcf/spec.h"
+
+namespace simlab::compiler {
+
+// Vertices (single precision, x y z per vertex) and triangles (vertex indices) of a file.
+struct MeshData {
+  std::vector<float> vert;
+  std::vector<int> face;
+};
+
+// Reads mesh.path; the file type comes from content_type or the extension. A negative
+// scale product reverses the triangles' winding, as in MuJoCo. Throws at mesh.src.
+MeshData ReadMeshFile(const mjcf::MeshSpec& mesh);
+
+// Merges exactly equal vertices (first occurrence kept, in order) and renumbers faces.
+void MergeRepeatedVertices(MeshData* data);
+
+}  // namespace simlab::compiler
+
+#endif  // SIMLAB_COMPILER_MESH_IO_H_

@@ -1,0 +1,121 @@
+// MJCF reader: <mesh> assets and the mesh settings of default classes. Files are only
+// located here (against the model's folder and <compiler meshdir/assetdir>); the
+// compiler reads and processes them (src/compiler/mesh.cc).
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+#include "mjcf/error.h"
+#include "mjcf/reader.h"
+
+namespace simlab::mjcf {
+
+namespace {
+
+// The whitespace-separated tokens of an attribute.
+std::vector<std::string> AttributeTokens(const XmlElement& e, const char* name) {
+  std::istringstream in(e.node().attribute(name).value());
+  std::vector<std::string> tokens;
+  for (std::string t; in >> t;) tokens.push_back(t);
+  return tokens;
+}
+
+// Parses a whole token; false if it is not a number of that kind.
+bool ParseFloat(const std::string& t, float* out) {
+  errno = 0;
+  char* end = nullptr;
+  *out = std::strtof(t.c_str(), &end);
+  return end != t.c_str() && *end == '\0' && !(errno == ERANGE && std::isinf(*out));
+}
+
+bool ParseInt(const std::string& t, int* out) {
+  errno = 0;
+  char* end = nullptr;
+  long v = std::strtol(t.c_str(), &end, 10);
+  *out = static_cast<int>(v);
+  return end != t.c_str() && *end == '\0' && errno != ERANGE && v == *out;
+}
+
+// A list of any length. Vertex coordinates are rounded to single precision once per
+// token, as MuJoCo's float reader does.
+template <typename T>
+std::vector<T> ReadList(const XmlElement& e, const char* name, bool (*parse)(const std::string&, T*)) {
+  std::vector<T> out;
+  for (const std::string& t : AttributeTokens(e, name)) {
+    T value;
+    if (!parse(t, &value)) e.Fail("bad number '" + t + "' in '" + name + "'");
+    out.push_back(value);
+  }
+  return out;
+}
+
+bool IsAbsolute(const std::string& path) { return !path.empty() && path[0] == '/'; }
+
+// `dir` + `rel`, unless `rel` is absolute.
+std::string JoinPath(const std::string& dir, const std::string& rel) {
+  if (dir.empty() || IsAbsolute(rel)) return rel;
+  return dir.back() == '/' ? dir + rel : dir + "/" + rel;
+}
+
+// The folder part of a path ("" for a bare file name).
+std::string FolderOf(const std::string& path) {
+  size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+// A file name without folders and extension: the name of an unnamed mesh.
+std::string StemOf(const std::string& path) {
+  std::string base = path.substr(path.find_last_of('/') + 1);
+  size_t dot = base.find_last_of('.');
+  return dot == std::string::npos ? base : base.substr(0, dot);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- <mesh>
+
+void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) const {
+  if (in_default) {
+    e.CheckAttributes({"scale", "maxhullvert", "inertia"});
+  } else {
+    e.CheckAttributes({"name", "class", "content_type", "file", "vertex", "normal", "texcoord",
+                       "face", "refpos", "refquat", "scale", "smoothnormal", "maxhullvert",
+                       "inertia", "builtin", "params", "material"});
+    mesh->src = e.src();
+  }
+
+  // Settings a default class can carry.
+  e.Numbers("scale", mesh->scale);
+  e.Enum("inertia", &mesh->inertia, {{"convex", kMeshConvex}, {"exact", kMeshExact},
+                                     {"legacy", kMeshLegacy}, {"shell", kMeshShell}});
+  if (e.Int("maxhullvert", &mesh->maxhullvert) && mesh->maxhullvert != -1 &&
+      mesh->maxhullvert < 4) {
+    e.Fail("maxhullvert must be larger than 3");
+  }
+  if (in_default) return;
+
+  // Geometry: a file or inline data; normals and texture coordinates are checked only.
+  if (e.Has("builtin")) NotSupported(e, "builtin meshes");
+  if (e.Has("file")) {
+    e.RequiredText("file", &mesh->file);
+    std::string dir = spec_->compiler.meshdir.empty() ? spec_->compiler.assetdir
+                                                      : spec_->compiler.meshdir;
+    std::string file = spec_->compiler.strippath ? mesh->file.substr(mesh->file.find_last_of('/') + 1)
+                                                 : mesh->file;
+    mesh->path = JoinPath(JoinPath(FolderOf(file_), dir), file);
+  }
+  e.Text("content_type", &mesh->content_type);
+  mesh->vertex = ReadList(e, "vertex", ParseFloat);
+  mesh->face = ReadList(e, "face", ParseInt);
+  ReadList(e, "normal", ParseFloat);
+  ReadList(e, "texcoord", ParseFloat);
+  bool smooth = false;
+  e.Bool("smoothnormal", &smooth);
+  e.Numbers("refpos", mesh->refpos);
+  e.Numbers("refquat", mesh->refquat);
+  if (mesh->src.name.empty()) mesh->src.name = StemOf(mesh->file);
+}
+
+}  // namespace simlab::mjcf
