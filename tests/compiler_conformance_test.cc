@@ -217,6 +217,11 @@ TEST(CompilerConformance, Arm26) { CheckModel("arm26", Corpus("tendon_arm/arm26.
 TEST(CompilerConformance, MeshAssets) {
   CheckModel("mesh_assets", std::string(SIMLAB_SOURCE_DIR) + "/tests/meshes/mesh_assets.xml");
 }
+TEST(CompilerConformance, MeshFit) {
+  for (const char* name : {"mesh_fit", "mesh_fitaabb"}) {
+    CheckModel(name, std::string(SIMLAB_SOURCE_DIR) + "/tests/meshes/" + name + ".xml");
+  }
+}
 
 }  // namespace
 }  // namespace simlab

@@ -57,7 +57,7 @@ struct GeomState {
   const mjcf::GeomSpec* spec = nullptr;
   int body = 0;
   const MeshState* mesh = nullptr;  // its mesh (mesh geoms, and primitives fitted to one)
-  int meshid = -1;                  // geom_dataid: the mesh of a mesh geom
+  int meshid = -1;                  // geom_dataid: the mesh it names, or -1
   double size[3] = {0, 0, 0};
   double pos[3] = {0, 0, 0};
   double quat[4] = {1, 0, 0, 0};

@@ -210,11 +210,11 @@ void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) 
   }
   if (g->mesh) MeshGeomFrame(c, g);
   CheckSize(s, g->size);
-  if (g->meshid >= 0) MeshGeomSize(g);
+  if (s.type == kGeomMesh) MeshGeomSize(g);
 
   // Mass from mass or density, then the principal inertia in the geom frame. A mesh
   // geom has its mesh's volume and the inertia of the mesh's equivalent box.
-  bool mesh = g->meshid >= 0;
+  bool mesh = s.type == kGeomMesh;
   int inertia_type = mesh ? kGeomBox : s.type;
   const double* inertia_size = mesh ? g->mesh->boxsz : g->size;
   if (infer_inertia) {

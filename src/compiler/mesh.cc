@@ -355,8 +355,9 @@ void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state) {
   }
   for (size_t i = 0; i < state->geoms.size(); i++) {
     if (ids[i] < 0) continue;
+    // geom_dataid keeps the mesh of a fitted primitive too (as MuJoCo 3.5.1 does).
     state->geoms[i].mesh = &state->meshes[ids[i]];
-    state->geoms[i].meshid = state->geoms[i].spec->type == kGeomMesh ? ids[i] : -1;
+    state->geoms[i].meshid = ids[i];
   }
 }
 
