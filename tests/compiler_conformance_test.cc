@@ -217,8 +217,9 @@ TEST(CompilerConformance, Arm26) { CheckModel("arm26", Corpus("tendon_arm/arm26.
 TEST(CompilerConformance, MeshAssets) {
   CheckModel("mesh_assets", std::string(SIMLAB_SOURCE_DIR) + "/tests/meshes/mesh_assets.xml");
 }
+// Fitted primitives; and a point cloud (faces from its hull, maxhullvert) and a torus.
 TEST(CompilerConformance, MeshFit) {
-  for (const char* name : {"mesh_fit", "mesh_fitaabb"}) {
+  for (const char* name : {"mesh_fit", "mesh_fitaabb", "mesh_cloud"}) {
     CheckModel(name, std::string(SIMLAB_SOURCE_DIR) + "/tests/meshes/" + name + ".xml");
   }
 }
