@@ -12,8 +12,8 @@
 // MuJoCo comes from the oracle's node_modules: $SIMLAB_ORACLE, else ../shared/oracle
 // beside the repository.
 import fs from 'node:fs';
-import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+
+import { loadOracleModel } from './oracle_model.mjs';
 
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
@@ -60,30 +60,9 @@ const OPTIONS = ['timestep', 'impratio', 'tolerance', 'ls_tolerance', 'gravity',
   'jacobian', 'solver', 'iterations', 'ls_iterations', 'noslip_iterations', 'disableflags',
   'enableflags', 'disableactuator'];
 
-// Copy a folder into MuJoCo's virtual file system.
-function copyTree(mj, hostDir, vfsDir) {
-  for (const entry of fs.readdirSync(hostDir, { withFileTypes: true })) {
-    const host = path.join(hostDir, entry.name);
-    const vfs = `${vfsDir}/${entry.name}`;
-    if (entry.isDirectory()) {
-      try { mj.FS.mkdir(vfs); } catch { /* exists */ }
-      copyTree(mj, host, vfs);
-    } else if (entry.isFile()) {
-      mj.FS.writeFile(vfs, fs.readFileSync(host));
-    }
-  }
-}
-
 const [modelPath, outPath] = process.argv.slice(2);
 if (!modelPath) throw new Error('usage: node dump_model.mjs MODEL.xml [OUT.json]');
-const here = path.dirname(fileURLToPath(import.meta.url));
-const oracle = process.env.SIMLAB_ORACLE || path.join(here, '..', '..', 'shared', 'oracle');
-const entry = path.join(oracle, 'node_modules', 'mujoco', 'mujoco.js');
-const { default: loadMujoco } = await import(pathToFileURL(entry).href);
-const mj = await loadMujoco();
-try { mj.FS.mkdir('/model'); } catch { /* exists */ }
-copyTree(mj, path.dirname(path.resolve(modelPath)), '/model');
-const model = mj.MjModel.mj_loadXML(`/model/${path.basename(modelPath)}`);
+const { mj, model } = await loadOracleModel(modelPath);
 
 // Sizes, arrays (typed arrays become plain lists), options.
 const out = { engine: `mujoco ${mj.mj_versionString()}`, sizes: {}, arrays: {}, opt: {} };
