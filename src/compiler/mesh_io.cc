@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -301,6 +302,35 @@ MeshData ReadObj(const mjcf::MeshSpec& mesh, const std::string& bytes) {
   return out;
 }
 
+// ---------------------------------------------------------------- MSH
+
+// MuJoCo's binary format: counts of vertices, normals, texture coordinates and faces
+// (ints), then the floats of each, then the faces (ints).
+MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
+  const std::string where = "MSH file '" + mesh.path + "'";
+  if (bytes.size() < 4 * sizeof(int)) ThrowAt(mesh.src, "missing header in " + where);
+  int n[4];  // vertices, normals, texcoords, faces
+  std::memcpy(n, bytes.data(), sizeof(n));
+  if (n[0] < 4 || n[1] < 0 || n[2] < 0 || n[3] < 0 || (n[1] > 0 && n[1] != n[0]) ||
+      (n[2] > 0 && n[2] != n[0]) || n[0] > (1 << 26) || n[3] > (1 << 26)) {
+    ThrowAt(mesh.src, "invalid sizes in " + where);
+  }
+  size_t floats = 3 * static_cast<size_t>(n[0]) + 3 * static_cast<size_t>(n[1]) + 2 * static_cast<size_t>(n[2]);
+  if (bytes.size() != sizeof(n) + floats * sizeof(float) + 3 * static_cast<size_t>(n[3]) * sizeof(int)) {
+    ThrowAt(mesh.src, "unexpected file size in " + where);
+  }
+  MeshData out;
+  out.vert.resize(3 * static_cast<size_t>(n[0]));
+  out.face.resize(3 * static_cast<size_t>(n[3]));
+  std::memcpy(out.vert.data(), bytes.data() + sizeof(n), out.vert.size() * sizeof(float));
+  std::memcpy(out.face.data(), bytes.data() + sizeof(n) + floats * sizeof(float),
+              out.face.size() * sizeof(int));
+  if (!RightHanded(mesh)) {
+    for (size_t i = 0; i < out.face.size(); i += 3) std::swap(out.face[i + 1], out.face[i + 2]);
+  }
+  return out;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- entry points
@@ -321,9 +351,10 @@ void MergeRepeatedVertices(MeshData* data) {
 
 MeshData ReadMeshFile(const mjcf::MeshSpec& mesh) {
   std::string kind = FileKind(mesh);
-  if (kind == "msh") ThrowAt(mesh.src, "MSH mesh files are not supported yet");
   std::string bytes = ReadBytes(mesh);
-  MeshData data = kind == "stl" ? ReadStl(mesh, bytes) : ReadObj(mesh, bytes);
+  MeshData data = kind == "stl" ? ReadStl(mesh, bytes)
+                  : kind == "obj" ? ReadObj(mesh, bytes)
+                                  : ReadMsh(mesh, bytes);
   for (float c : data.vert) {
     if (!std::isfinite(c)) ThrowAt(mesh.src, "mesh file '" + mesh.path + "' has a vertex that is not finite");
   }

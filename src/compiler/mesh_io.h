@@ -1,6 +1,6 @@
 // Mesh files as MuJoCo reads them: binary STL (repeated vertices merged), Wavefront OBJ
-// (polygons cut into triangles the way MuJoCo's OBJ loader does), and ASCII STL, which
-// simlab reads as well (MuJoCo 3.5 refuses it).
+// (polygons cut into triangles the way MuJoCo's OBJ loader does), MuJoCo's binary MSH,
+// and ASCII STL, which simlab reads as well (MuJoCo 3.5 refuses it).
 #ifndef SIMLAB_COMPILER_MESH_IO_H_
 #define SIMLAB_COMPILER_MESH_IO_H_
 
