@@ -8,8 +8,8 @@
 #   oracle_rollout MODEL STEPS STATE CTRL TOL CASES
 #       goldens/<name>.jsonl = rollout.mjs MODEL, recording every $EVERY steps; STATE is
 #       "-", "key:K" (start from keyframe K) or a state file; CTRL is "-" or a CSV.
-#       Checks that MuJoCo found no contacts and no non-finite values; appends the case
-#       line "MODEL GOLDEN STEPS STATE CTRL TOL" to CASES.
+#       Checks that MuJoCo found no contacts (unless CONTACTS=yes) and no non-finite
+#       values; appends the case line "MODEL GOLDEN STEPS STATE CTRL TOL" to CASES.
 #   oracle_case MODEL STEPS STATE TOL CASES
 #       ctrl/<name>.csv = ctrlgen.mjs MODEL, then oracle_rollout with it.
 #   case_folder CASES
@@ -17,6 +17,8 @@
 #   integrator_models BASE
 #       models/<name>__I.xml for I in (Euler RK4 implicit implicitfast): BASE with
 #       integrator="I" added to its <option timestep=...> tag; prints their paths.
+#   base_cases STEPS TOL CASES
+#       oracle_case (no state) for every integrator model of every $OUT/base/*.xml.
 #   derive CORPUS SRC VARIANT WHAT SED-ARGS...
 #       models/SRC__VARIANT.xml = sed SED-ARGS on CORPUS/SRC.xml, with a comment saying
 #       WHAT was changed; fails if sed changed nothing.
@@ -38,7 +40,8 @@ oracle_rollout() {
   [ "$ctrl" = - ] || args+=(--ctrl "$ctrl")
   echo "rollout $model"
   node "$ORACLE/rollout.mjs" "$model" "${args[@]}"
-  ! grep -q '"ncon":[1-9]' "$golden" || { echo "$golden: MuJoCo found contacts" >&2; exit 1; }
+  [ "${CONTACTS:-no}" = yes ] || ! grep -q '"ncon":[1-9]' "$golden" \
+    || { echo "$golden: MuJoCo found contacts" >&2; exit 1; }
   ! grep -qiE 'null|nan|infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
   echo "$model $golden $steps $state $ctrl $tol" >> "$cases"
 }
@@ -65,6 +68,15 @@ integrator_models() {
     model="$OUT/models/${name}__$integrator.xml"
     sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
     echo "$model"
+  done
+}
+
+base_cases() {
+  local base model
+  for base in "$OUT"/base/*.xml; do
+    for model in $(integrator_models "$base"); do
+      oracle_case "$model" "$1" - "$2" "$3"
+    done
   done
 }
 

@@ -41,6 +41,9 @@ void MakeInertia(const Model& m, Data& d);
 void FactorInertia(const Model& m, Data& d);
 // actuator_length, actuator_moment (transmission.cc).
 void Transmission(const Model& m, Data& d);
+// The same for body transmissions (adhesion), from the contacts and their constraint
+// rows: run after MakeConstraint (transmission.cc).
+void BodyTransmission(const Model& m, Data& d);
 
 // ------------------------------------------------------------ Jacobians (jacobian.cc)
 

@@ -14,8 +14,8 @@
 //                        that relative pose projected on the gear in the refsite frame
 //   slider-crank:        l = a.v - sqrt((a.v)^2 + r^2 - v.v) for the slider axis a, the
 //                        vector v from slider to crank site and the rod length r
-//   body (adhesion):     l = 0, moment = 0 until contacts exist (its moment is the mean
-//                        of the body's contact normal Jacobians)
+//   body (adhesion):     l = 0, moment = minus the mean normal Jacobian of the contacts
+//                        that involve the body (BodyTransmission, after the contact rows)
 #include <algorithm>
 #include <cmath>
 
@@ -208,7 +208,80 @@ void SliderCrankTransmission(const Model& m, Data& d, int i, int id, double* mom
   for (int v = 0; v < nv; v++) moment[v] *= gear;
 }
 
+// Weights on the constraint rows of a contact that make the rows' weighted sum its
+// normal Jacobian: the first row (frictionless or elliptic), else the mean of the
+// pyramid's 2 (dim - 1) edges, whose frictional parts cancel.
+void MarkNormalRows(const Model& m, const Contact& con, double* weights) {
+  if (con.efc_address < 0) return;
+  if (con.dim == 1 || m.opt.cone == kConeElliptic) {
+    weights[con.efc_address] = 1;
+    return;
+  }
+  int edges = 2 * (con.dim - 1);
+  for (int k = 0; k < edges; k++) weights[con.efc_address + k] = 0.5 / (con.dim - 1);
+}
+
+// exclude += the normal Jacobian of a contact in the gap (which has no rows): the
+// normal times the difference of the two bodies' point Jacobians at the contact.
+void AddGapNormalJacobian(const Model& m, Data& d, const Contact& con, int b1, int b2,
+                          double* exclude) {
+  int nv = m.nv;
+  StackFrame frame(d);
+  double* jac1 = frame.Alloc(3 * nv);
+  double* jac2 = frame.Alloc(3 * nv);
+  Jacobian(m, d, jac1, nullptr, con.pos, b1);
+  Jacobian(m, d, jac2, nullptr, con.pos, b2);
+  for (int v = 0; v < nv; v++) {
+    double normal = 0;
+    for (int k = 0; k < 3; k++) normal += con.frame[k] * (jac2[k * nv + v] - jac1[k * nv + v]);
+    exclude[v] += normal;
+  }
+}
+
+// Body transmission of an adhesion actuator on `body`: contacts with rows contribute
+// their normal rows of efc_J, contacts in the gap their normal Jacobian; the moment is
+// minus the mean over all of them (pulling the body toward what it touches).
+void BodyMoment(const Model& m, Data& d, int body, double* moment) {
+  int nv = m.nv;
+  StackFrame frame(d);
+  double* weights = frame.Alloc(d.nefc);
+  double* exclude = frame.Alloc(nv);
+  int count = 0;
+  for (int c = 0; c < d.ncon; c++) {
+    const Contact& con = d.contact[c];
+    if (con.geom[0] < 0 || con.geom[1] < 0) continue;
+    int b1 = m.geom_bodyid[con.geom[0]], b2 = m.geom_bodyid[con.geom[1]];
+    if (b1 != body && b2 != body) continue;
+    if (con.exclude == 0) {
+      MarkNormalRows(m, con, weights);
+      count++;
+    } else if (con.exclude == 1) {
+      AddGapNormalJacobian(m, d, con, b1, b2, exclude);
+      count++;
+    }
+  }
+  if (count == 0) return;
+
+  // moment = -(J^T weights + exclude) / count, summed row by row as MuJoCo does.
+  for (int r = 0; r < d.nefc; r++) {
+    if (weights[r] == 0) continue;
+    const double* row = &d.efc_J[static_cast<size_t>(r) * nv];
+    for (int v = 0; v < nv; v++) moment[v] += row[v] * weights[r];
+  }
+  for (int v = 0; v < nv; v++) moment[v] = (moment[v] + exclude[v]) * (-1.0 / count);
+}
+
 }  // namespace
+
+void BodyTransmission(const Model& m, Data& d) {
+  for (int i = 0; i < m.nu; i++) {
+    if (m.actuator_trntype[i] != kTrnBody) continue;
+    double* moment = &d.actuator_moment[static_cast<size_t>(i) * m.nv];
+    std::fill(moment, moment + m.nv, 0.0);
+    d.actuator_length[i] = 0;
+    BodyMoment(m, d, m.actuator_trnid[2 * i], moment);
+  }
+}
 
 void Transmission(const Model& m, Data& d) {
   for (int i = 0; i < m.nu; i++) {
@@ -238,8 +311,8 @@ void Transmission(const Model& m, Data& d) {
         SliderCrankTransmission(m, d, i, id, moment);
         break;
       default:
-        // Body transmission (adhesion): its moment averages the Jacobians of the body's
-        // contacts, which arrive with collision detection; until then it is zero.
+        // Body transmission (adhesion): it needs this step's contacts and their rows,
+        // so FwdPosition fills it later (BodyTransmission); zero until then.
         d.actuator_length[i] = 0;
     }
   }

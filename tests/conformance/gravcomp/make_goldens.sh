@@ -9,7 +9,9 @@
 #      gravcomp, tilted gravity) in each integrator I of (Euler RK4 implicit implicitfast):
 #      models/<name>__I.xml is the base with integrator="I" added to its <option> tag.
 #   2. Flag variants: arm with gravity disabled (no compensation either), noactuator with
-#      only the negative gravcomp left (MuJoCo then skips compensation altogether).
+#      only the negative gravcomp left (MuJoCo then skips compensation altogether), arm
+#      with springs and dampers disabled (MuJoCo's passive stage, gravcomp included, is
+#      skipped).
 #   (MuJoCo's refsite.xml, gravcomp on every body and actuatorgravcomp on every joint, is
 #   an actuation case, unchanged: tools/make_actuation_goldens.sh.)
 #   For each: ctrl/<name>.csv = node ctrlgen.mjs MODEL --steps 500, and
@@ -29,18 +31,17 @@ CASES=tests/conformance/gravcomp_cases.txt
 case_folder "$CASES"
 
 # --- 1. our models in every integrator ----------------------------------------------------
-for base in "$OUT"/base/*.xml; do
-  for model in $(integrator_models "$base"); do
-    oracle_case "$model" "$STEPS" - "$TOL" "$CASES"
-  done
-done
+base_cases "$STEPS" "$TOL" "$CASES"
 
 # --- 2. flag variants ---------------------------------------------------------------------
 derive "$OUT/base" arm nogravity "gravity disabled, which disables compensation too" \
   -e 's|<flag contact="disable"/>|<flag contact="disable" gravity="disable"/>|'
 derive "$OUT/base" noactuator negativeonly "only the negative gravcomp kept" \
   -e 's| gravcomp="0.8"||' -e 's| gravcomp="1"||'
-for model in "$OUT/models/arm__nogravity.xml" "$OUT/models/noactuator__negativeonly.xml"; do
+derive "$OUT/base" arm nopassive "springs and dampers disabled, which skips compensation too" \
+  -e 's|<flag contact="disable"/>|<flag contact="disable" spring="disable" damper="disable"/>|'
+for model in "$OUT/models/arm__nogravity.xml" "$OUT/models/noactuator__negativeonly.xml" \
+             "$OUT/models/arm__nopassive.xml"; do
   oracle_case "$model" "$STEPS" - "$TOL" "$CASES"
 done
 echo "wrote $(wc -l < "$CASES") cases to $CASES"
