@@ -246,12 +246,125 @@ void LimitRows(const Model& m, Data& d) {
   }
 }
 
+// ---------------------------------------------------------------- contact rows
+
+// Does MuJoCo build this model's constraint Jacobian sparse (jacobian="sparse", or
+// "auto" with 60 dofs or more)? It then skips contacts that move no dof.
+bool SparseJacobian(const Model& m) {
+  return m.opt.jacobian == kJacobianSparse || (m.opt.jacobian == kJacobianAuto && m.nv >= 60);
+}
+
+// Contact rows in the contact frame: the normal (and tangents for dim > 1) from the
+// translation Jacobian difference at the contact point, torsion and rolling (dim > 3)
+// from the rotation difference. `jac` receives dim x nv.
+void ContactJacobian(const Model& m, Data& d, const Contact& c, double* jac, double* scratch) {
+  int nv = m.nv;
+  double* jac1p = scratch;
+  double* jac2p = jac1p + 3 * nv;
+  double* jac1r = jac2p + 3 * nv;
+  double* jac2r = jac1r + 3 * nv;
+  int b1 = m.geom_bodyid[c.geom[0]], b2 = m.geom_bodyid[c.geom[1]];
+  bool rotation = c.dim > 3;
+  Jacobian(m, d, jac1p, rotation ? jac1r : nullptr, c.pos, b1);
+  Jacobian(m, d, jac2p, rotation ? jac2r : nullptr, c.pos, b2);
+  for (int k = 0; k < 3 * nv; k++) {
+    jac1p[k] = jac2p[k] - jac1p[k];
+    if (rotation) jac1r[k] = jac2r[k] - jac1r[k];
+  }
+  // Rotate the differences into the contact frame.
+  int translation_rows = c.dim > 1 ? 3 : 1;
+  for (int r = 0; r < c.dim; r++) {
+    const double* axis = c.frame + 3 * (r < translation_rows ? r : r - 3);
+    const double* dif = r < translation_rows ? jac1p : jac1r;
+    double* row = jac + r * nv;
+    for (int v = 0; v < nv; v++) row[v] = 0;
+    for (int k = 0; k < 3; k++) {
+      for (int v = 0; v < nv; v++) row[v] += axis[k] * dif[k * nv + v];
+    }
+  }
+}
+
+// One contact's rows: frictionless (1 row), a pyramid (a pair of opposing edges per
+// friction direction: normal +- mu_k tangent_k) or an elliptic cone (dim rows).
+void ContactRowsOf(const Model& m, Data& d, int i, double* jac, double* edges,
+                   double* scratch) {
+  Contact& c = d.contact[i];
+  int nv = m.nv;
+  ContactJacobian(m, d, c, jac, scratch);
+  if (c.dim == 1) {
+    AddRows(m, d, jac, &c.dist, c.includemargin, 0, 1, kCnstrContactFrictionless, i);
+  } else if (m.opt.cone == kConePyramidal) {
+    double pos[2] = {c.dist, c.dist};
+    for (int k = 1; k < c.dim; k++) {
+      double mu = c.friction[k - 1];
+      for (int v = 0; v < nv; v++) {
+        edges[v] = jac[v] + mu * jac[k * nv + v];
+        edges[nv + v] = jac[v] - mu * jac[k * nv + v];
+      }
+      AddRows(m, d, edges, pos, c.includemargin, 0, 2, kCnstrContactPyramidal, i);
+    }
+  } else {
+    // Only the normal row has a distance and a margin.
+    double pos[6] = {c.dist, 0, 0, 0, 0, 0};
+    int first = d.nefc;
+    AddRows(m, d, jac, pos, 0, 0, c.dim, kCnstrContactElliptic, i);
+    d.efc_margin[first] = c.includemargin;
+  }
+}
+
+// Rows of every contact not excluded by its gap (MuJoCo mj_instantiateContact).
+void ContactRows(const Model& m, Data& d) {
+  if ((m.opt.disableflags & kDisableContact) || d.ncon == 0 || m.nv == 0) return;
+  StackFrame frame(d);
+  double* jac = frame.Alloc(6 * static_cast<size_t>(m.nv));
+  double* edges = frame.Alloc(2 * static_cast<size_t>(m.nv));
+  double* scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
+  bool sparse = SparseJacobian(m);
+  for (int i = 0; i < d.ncon; i++) {
+    Contact& c = d.contact[i];
+    if (c.exclude) continue;
+    // A sparse Jacobian skips contacts between bodies that both lack dofs.
+    if (sparse && m.body_weldid[m.geom_bodyid[c.geom[0]]] == 0 &&
+        m.body_weldid[m.geom_bodyid[c.geom[1]]] == 0) {
+      c.efc_address = -1;
+      c.exclude = 3;
+      continue;
+    }
+    c.efc_address = d.nefc;
+    ContactRowsOf(m, d, i, jac, edges, scratch);
+  }
+}
+
 // ---------------------------------------------------------------- softness
 
 // Inverse weight of one side of a joint or tendon coupling.
 double CouplingWeight(const Model& m, int eq, int obj) {
   return m.eq_type[eq] == kEqJoint ? m.dof_invweight0[m.jnt_dofadr[obj]]
                                    : m.tendon_invweight0[obj];
+}
+
+// diagApprox of the rows of the contact starting at row i, from the translational and
+// rotational inverse weights of both bodies; returns its number of rows.
+int ContactDiagApprox(const Model& m, Data& d, int i) {
+  const Contact& c = d.contact[d.efc_id[i]];
+  int b1 = m.geom_bodyid[c.geom[0]], b2 = m.geom_bodyid[c.geom[1]];
+  double tran = m.body_invweight0[2 * b1] + m.body_invweight0[2 * b2];
+  double rot = m.body_invweight0[2 * b1 + 1] + m.body_invweight0[2 * b2 + 1];
+  double* diag = &d.efc_diagApprox[i];
+  if (d.efc_type[i] == kCnstrContactFrictionless) {
+    diag[0] = tran;
+    return 1;
+  }
+  if (d.efc_type[i] == kCnstrContactElliptic) {
+    for (int j = 0; j < c.dim; j++) diag[j] = j < 3 ? tran : rot;
+    return c.dim;
+  }
+  // Pyramid edge pairs: the normal plus the friction-scaled tangential weight.
+  for (int j = 0; j < c.dim - 1; j++) {
+    double mu = c.friction[j];
+    diag[2 * j] = diag[2 * j + 1] = tran + mu * mu * (j < 2 ? tran : rot);
+  }
+  return 2 * (c.dim - 1);
 }
 
 // efc_diagApprox: the inverse weights of what each row moves (MuJoCo mj_diagApprox).
@@ -279,16 +392,30 @@ void DiagApprox(const Model& m, Data& d) {
       }
       case kCnstrFrictionDof: diag = m.dof_invweight0[id]; break;
       case kCnstrLimitJoint: diag = m.dof_invweight0[m.jnt_dofadr[id]]; break;
-      default: diag = m.tendon_invweight0[id]; break;  // tendon friction and limits
+      case kCnstrFrictionTendon:
+      case kCnstrLimitTendon: diag = m.tendon_invweight0[id]; break;
+      default: i += ContactDiagApprox(m, d, i) - 1; break;
     }
   }
 }
 
-// solref and solimp of row i, made safe as MuJoCo does (getsolparam).
-void SolverParams(const Model& m, const Data& d, int i, double* solref, double* solimp) {
+// A solref made safe: mixed standard/direct form falls back to `fallback`; a time
+// constant is kept at least two time steps unless refsafe is disabled.
+void SafeSolref(const Model& m, double* solref, const double* fallback) {
+  if ((solref[0] > 0) != (solref[1] > 0)) std::copy_n(fallback, kNRef, solref);
+  if (!(m.opt.disableflags & kDisableRefsafe) && solref[0] > 0) {
+    solref[0] = std::max(solref[0], 2 * m.opt.timestep);
+  }
+}
+
+// solref, solreffriction (contacts only, else zero) and solimp of row i, made safe as
+// MuJoCo does (getsolparam).
+void SolverParams(const Model& m, const Data& d, int i, double* solref, double* solreffriction,
+                  double* solimp) {
   int id = d.efc_id[i];
   const double* ref = nullptr;
   const double* imp = nullptr;
+  std::fill_n(solreffriction, kNRef, 0.0);
   switch (d.efc_type[i]) {
     case kCnstrEquality: ref = &m.eq_solref[kNRef * id]; imp = &m.eq_solimp[kNImp * id]; break;
     case kCnstrLimitJoint: ref = &m.jnt_solref[kNRef * id]; imp = &m.jnt_solimp[kNImp * id]; break;
@@ -297,23 +424,23 @@ void SolverParams(const Model& m, const Data& d, int i, double* solref, double* 
       ref = &m.tendon_solref_lim[kNRef * id];
       imp = &m.tendon_solimp_lim[kNImp * id];
       break;
-    default:
+    case kCnstrFrictionTendon:
       ref = &m.tendon_solref_fri[kNRef * id];
       imp = &m.tendon_solimp_fri[kNImp * id];
+      break;
+    default:
+      ref = d.contact[id].solref;
+      imp = d.contact[id].solimp;
+      std::copy_n(d.contact[id].solreffriction, kNRef, solreffriction);
       break;
   }
   std::copy_n(ref, kNRef, solref);
   std::copy_n(imp, kNImp, solimp);
 
-  // Mixed standard/direct solref falls back to the default; time constants are kept at
-  // least two time steps unless refsafe is disabled.
-  if ((solref[0] > 0) != (solref[1] > 0)) {
-    solref[0] = 0.02;
-    solref[1] = 1;
-  }
-  if (!(m.opt.disableflags & kDisableRefsafe) && solref[0] > 0) {
-    solref[0] = std::max(solref[0], 2 * m.opt.timestep);
-  }
+  const double kDefaultSolref[kNRef] = {0.02, 1};
+  const double kZeroSolref[kNRef] = {0, 0};
+  SafeSolref(m, solref, kDefaultSolref);
+  SafeSolref(m, solreffriction, kZeroSolref);
   solimp[0] = std::clamp(solimp[0], kMinImp, kMaxImp);
   solimp[1] = std::clamp(solimp[1], kMinImp, kMaxImp);
   solimp[2] = std::max(0.0, solimp[2]);
@@ -376,6 +503,8 @@ namespace {
 // norm of their error vector for the impedance of all their rows.
 int RowGroup(const Model& m, const Data& d, int i, double* pos) {
   *pos = d.efc_pos[i];
+  if (d.efc_type[i] == kCnstrContactElliptic) return d.contact[d.efc_id[i]].dim;
+  if (d.efc_type[i] == kCnstrContactPyramidal) return 2 * (d.contact[d.efc_id[i]].dim - 1);
   if (d.efc_type[i] != kCnstrEquality) return 1;
   int type = m.eq_type[d.efc_id[i]];
   int dim = type == kEqWeld ? 6 : type == kEqConnect ? 3 : 1;
@@ -387,32 +516,68 @@ int RowGroup(const Model& m, const Data& d, int i, double* pos) {
   return dim;
 }
 
+// efc_KBIP of row r: stiffness K and damping B from solref (standard form: time
+// constant and damping ratio; direct form: -stiffness, -damping), impedance and slope.
+// Friction-loss rows and the frictional rows of elliptic contacts have no stiffness.
+void SetKBIP(Data& d, int r, bool no_stiffness, const double* ref, const double* solimp,
+             double imp, double slope) {
+  double* kbip = &d.efc_KBIP[4 * r];
+  double dmax = solimp[1];
+  if (no_stiffness) {
+    kbip[0] = 0;
+  } else if (ref[0] > 0) {
+    kbip[0] = 1 / std::max(kMinVal, dmax * dmax * ref[0] * ref[0] * ref[1] * ref[1]);
+  } else {
+    kbip[0] = -ref[0] / std::max(kMinVal, dmax * dmax);
+  }
+  kbip[1] = ref[1] > 0 ? 2 / std::max(kMinVal, dmax * ref[0]) : -ref[1] / std::max(kMinVal, dmax);
+  kbip[2] = imp;
+  kbip[3] = slope;
+}
+
+// Frictional contact rows: R of the first friction direction is the normal's divided
+// by impratio, which sets the regularized cone's mu; elliptic rows scale the other
+// directions by their friction, pyramid edges all share one R (MuJoCo's match of the
+// two cone models). Returns the contact's number of rows.
+int ContactFrictionR(const Model& m, Data& d, int i) {
+  Contact& c = d.contact[d.efc_id[i]];
+  double* R = &d.efc_R[i];
+  R[1] = R[0] / std::max(kMinVal, m.opt.impratio);
+  c.mu = c.friction[0] * std::sqrt(R[1] / R[0]);
+  if (d.efc_type[i] == kCnstrContactElliptic) {
+    for (int j = 1; j < c.dim - 1; j++) {
+      R[j + 1] = R[1] * c.friction[0] * c.friction[0] / (c.friction[j] * c.friction[j]);
+    }
+    return c.dim;
+  }
+  double r_pyramid = 2 * c.mu * c.mu * R[0];
+  for (int j = 0; j < 2 * (c.dim - 1); j++) R[j] = r_pyramid;
+  return 2 * (c.dim - 1);
+}
+
 // efc_R, efc_D, efc_KBIP from solref/solimp; diagApprox then matches R (mj_makeImpedance).
 void MakeImpedance(const Model& m, Data& d) {
   for (int i = 0; i < d.nefc;) {
-    double solref[kNRef], solimp[kNImp], pos, imp, slope;
-    SolverParams(m, d, i, solref, solimp);
+    double solref[kNRef], solreffriction[kNRef], solimp[kNImp], pos, imp, slope;
+    SolverParams(m, d, i, solref, solreffriction, solimp);
     int dim = RowGroup(m, d, i, &pos);
     Impedance(solimp, pos, d.efc_margin[i], &imp, &slope);
+    bool use_friction_ref = solreffriction[0] != 0 || solreffriction[1] != 0;
     for (int r = i; r < i + dim; r++) {
       d.efc_R[r] = std::max(kMinVal, (1 - imp) * d.efc_diagApprox[r] / imp);
-      double* kbip = &d.efc_KBIP[4 * r];
-      bool friction = d.efc_type[r] == kCnstrFrictionDof || d.efc_type[r] == kCnstrFrictionTendon;
-      double dmax2 = solimp[1] * solimp[1];
-      // Stiffness: standard (timeconst, dampratio) or direct (-stiffness, -damping) form.
-      if (friction) {
-        kbip[0] = 0;
-      } else if (solref[0] > 0) {
-        kbip[0] = 1 / std::max(kMinVal, dmax2 * solref[0] * solref[0] * solref[1] * solref[1]);
-      } else {
-        kbip[0] = -solref[0] / std::max(kMinVal, dmax2);
-      }
-      kbip[1] = solref[1] > 0 ? 2 / std::max(kMinVal, solimp[1] * solref[0])
-                              : -solref[1] / std::max(kMinVal, solimp[1]);
-      kbip[2] = imp;
-      kbip[3] = slope;
+      int type = d.efc_type[r];
+      bool elliptic_friction = type == kCnstrContactElliptic && r > i;
+      bool friction = type == kCnstrFrictionDof || type == kCnstrFrictionTendon;
+      const double* ref = elliptic_friction && use_friction_ref ? solreffriction : solref;
+      SetKBIP(d, r, friction || elliptic_friction, ref, solimp, imp, slope);
     }
     i += dim;
+  }
+  for (int i = d.ne + d.nf; i < d.nefc; i++) {
+    int type = d.efc_type[i];
+    if (type == kCnstrContactPyramidal || type == kCnstrContactElliptic) {
+      i += ContactFrictionR(m, d, i) - 1;
+    }
   }
   for (int i = 0; i < d.nefc; i++) {
     d.efc_D[i] = 1 / d.efc_R[i];
@@ -430,6 +595,7 @@ void MakeConstraint(const Model& m, Data& d) {
   EqualityRows(m, d);
   FrictionRows(m, d);
   LimitRows(m, d);
+  ContactRows(m, d);
   if (d.nefc == 0) return;
   DiagApprox(m, d);
   MakeImpedance(m, d);
