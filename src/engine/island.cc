@@ -15,7 +15,7 @@ namespace simlab {
 namespace {
 
 // The trees row `r` acts on, as MuJoCo finds them: by the element for limits, dof
-// friction and connect/weld, else by scanning the row. `trees` is reused between rows.
+// friction, contacts (their geoms' bodies) and connect/weld, else by scanning the row. `trees` is reused between rows.
 void RowTrees(const Model& m, const Data& d, int r, std::vector<int>* trees) {
   trees->clear();
   int id = d.efc_id[r];
@@ -24,6 +24,13 @@ void RowTrees(const Model& m, const Data& d, int r, std::vector<int>* trees) {
     trees->push_back(m.dof_treeid[id]);
   } else if (type == kCnstrLimitJoint) {
     trees->push_back(m.dof_treeid[m.jnt_dofadr[id]]);
+  } else if (type >= kCnstrContactFrictionless) {
+    // The moving side first (the world's tree is -1).
+    int t1 = m.body_treeid[m.geom_bodyid[d.contact[id].geom[0]]];
+    int t2 = m.body_treeid[m.geom_bodyid[d.contact[id].geom[1]]];
+    if (t1 < 0) std::swap(t1, t2);
+    trees->push_back(t1);
+    trees->push_back(t2);
   } else if (type == kCnstrEquality && (m.eq_type[id] == kEqConnect || m.eq_type[id] == kEqWeld)) {
     trees->push_back(m.body_treeid[EqualityBody(m, id, 0)]);
     trees->push_back(m.body_treeid[EqualityBody(m, id, 1)]);
