@@ -2,7 +2,8 @@
 // from the current state; Step checks the state, runs Forward, then integrates.
 //
 //   position:     Kinematics, ComPos, Tendon, MakeInertia, FactorInertia, Transmission,
-//                 then the constraint rows (MakeConstraint, ProjectConstraint)
+//                 then the constraint rows (MakeConstraint, ProjectConstraint), with the
+//                 adhesion actuators' body transmission between them (it uses the rows)
 //   velocity:     tendon/actuator velocities, ComVel, Passive, constraint reference
 //                 accelerations, Rne (bias forces)
 //   acceleration: Actuation, SmoothAcceleration, Constraint
@@ -95,6 +96,7 @@ void FwdPosition(const Model& m, Data& d) {
   FwdPositionSmooth(m, d);
   Collision(m, d);
   MakeConstraint(m, d);
+  BodyTransmission(m, d);
   ProjectConstraint(m, d);
 }
 
