@@ -582,50 +582,64 @@ void CrossRectangle(const double* start, const double* dir, const double* ext, A
   }
 }
 
-// Face contact: the incident box's face nearest the reference face, clipped to it.
-int BoxFaceContacts(Contact* con, const BoxPair& bp, const BestAxis& best, double margin) {
-  int face = best.code % 6;
-  bool on_box2 = best.code >= 6;
-  FaceTurn turn = TurnForFace(face);
-  // Reference box (owns the face) and incident box, in the turned reference frame.
-  double r[9], rt[9], p[3], ref_size[3], ext[3];
-  const double* inc_size = on_box2 ? bp.b1.size : bp.b2.size;
-  if (on_box2) {
-    TurnColumns(r, turn, bp.rot);
-    TurnVec(p, turn, bp.pos12);
-    TurnVec(ref_size, turn, bp.b2.size);
-  } else {
-    TurnRows(r, turn, bp.rot);
-    TurnVec(p, turn, bp.pos21);
-    TurnVec(ref_size, turn, bp.b1.size);
-  }
-  Transpose3(rt, r);
-  for (int i = 0; i < 3; i++) ext[i] = std::abs(ref_size[i]);
-  double hz = ext[2];
-  p[2] -= hz;
+// A face contact's frame: turned so the reference face (of box 2 when on_box2) faces
+// +z. r: the incident box's axes as rows of rt (r = rt^T), p: its centre relative to the
+// face's centre, ext: the reference box's half sizes.
+struct FaceFrame {
+  FaceTurn turn;
+  bool on_box2;
+  double r[9], rt[9], p[3], ext[3];
+  const double* inc_size;  // the incident box's half sizes
+};
 
-  // The incident box's lowest corner and its edges not too steep to the face.
+FaceFrame FaceContactFrame(const BoxPair& bp, const BestAxis& best) {
+  FaceFrame f;
+  f.turn = TurnForFace(best.code % 6);
+  f.on_box2 = best.code >= 6;
+  f.inc_size = f.on_box2 ? bp.b1.size : bp.b2.size;
+  double ref_size[3];
+  if (f.on_box2) {
+    TurnColumns(f.r, f.turn, bp.rot);
+    TurnVec(f.p, f.turn, bp.pos12);
+    TurnVec(ref_size, f.turn, bp.b2.size);
+  } else {
+    TurnRows(f.r, f.turn, bp.rot);
+    TurnVec(f.p, f.turn, bp.pos21);
+    TurnVec(ref_size, f.turn, bp.b1.size);
+  }
+  Transpose3(f.rt, f.r);
+  for (int i = 0; i < 3; i++) f.ext[i] = std::abs(ref_size[i]);
+  f.p[2] -= f.ext[2];
+  return f;
+}
+
+// The incident box's lowest corner (pts[0]) and its edges from there that are not too
+// steep to the face (pts[1], pts[2]); pts[3..5] are the other corners of that face.
+// Returns 1 + the number of edges.
+int IncidentFace(const FaceFrame& f, double pts[6][3]) {
   int low = 0;
   for (int i = 0; i < 3; i++) {
-    if (r[6 + i] < 0) low += 1 << i;
+    if (f.r[6 + i] < 0) low += 1 << i;
   }
-  double pts[6][3] = {};
-  math::Copy3(pts[0], p);
+  math::Copy3(pts[0], f.p);
   for (int i = 0; i < 3; i++) {
-    math::AddScaled3(pts[0], rt + 3 * i, inc_size[i] * ((low & (1 << i)) ? 1 : -1));
+    math::AddScaled3(pts[0], f.rt + 3 * i, f.inc_size[i] * ((low & (1 << i)) ? 1 : -1));
   }
   int m = 1;
   for (int i = 0; i < 3; i++) {
-    if (std::abs(r[6 + i]) < 0.5) {
-      math::Scale3(pts[m++], rt + 3 * i, inc_size[i] * ((low & (1 << i)) ? -2 : 2));
+    if (std::abs(f.r[6 + i]) < 0.5) {
+      math::Scale3(pts[m++], f.rt + 3 * i, f.inc_size[i] * ((low & (1 << i)) ? -2 : 2));
     }
   }
   math::Add3(pts[3], pts[0], pts[1]);
   math::Add3(pts[4], pts[0], pts[2]);
   math::Add3(pts[5], pts[3], pts[2]);
+  return m;
+}
 
-  // Incident edges crossing the reference face's border.
-  ClipPoints clip;
+// Clips the incident face (m - 1 edges) against the reference face: edges crossing
+// its border, its corners under the incident face, the incident corners over it.
+void ClipIncidentFace(const double pts[6][3], int m, const double* ext, ClipPoints& clip) {
   double lines[4][6];
   int nlines = 0;
   auto add_line = [&](const double* start, const double* dir) {
@@ -647,17 +661,15 @@ int BoxFaceContacts(Contact* con, const BoxPair& bp, const BestAxis& best, doubl
 
   // Reference face corners inside the incident face (a parallelogram).
   double det = ParallelogramDet(pts);
-  if (m > 2) {
-    for (int i = 0; i < 4; i++) {
-      double cx, cy, u, v;
-      RectCorner(i, ext, cx, cy);
-      ParallelogramCoords(pts, cx, cy, det, u, v);
-      if (u <= 0 || v <= 0 || u >= 1 || v >= 1) continue;
-      double* q = clip.point[clip.n++];
-      q[0] = cx;
-      q[1] = cy;
-      q[2] = pts[0][2] + u * pts[1][2] + v * pts[2][2];
-    }
+  for (int i = 0; i < 4 && m > 2; i++) {
+    double cx, cy, u, v;
+    RectCorner(i, ext, cx, cy);
+    ParallelogramCoords(pts, cx, cy, det, u, v);
+    if (u <= 0 || v <= 0 || u >= 1 || v >= 1) continue;
+    double* q = clip.point[clip.n++];
+    q[0] = cx;
+    q[1] = cy;
+    q[2] = pts[0][2] + u * pts[1][2] + v * pts[2][2];
   }
 
   // Incident face corners over the reference face (the lowest corner always).
@@ -667,8 +679,10 @@ int BoxFaceContacts(Contact* con, const BoxPair& bp, const BestAxis& best, doubl
     if (i && (q[1] <= -ext[1] || q[1] >= ext[1])) continue;
     math::Copy3(clip.point[clip.n++], q);
   }
+}
 
-  // Keep points within the margin; the contact lies halfway down to the face.
+// Keeps the points within the margin; each contact lies halfway down to the face.
+void KeepWithinMargin(ClipPoints& clip, double margin) {
   int kept = 0;
   for (int i = 0; i < clip.n; i++) {
     if (clip.point[i][2] > margin) continue;
@@ -678,13 +692,23 @@ int BoxFaceContacts(Contact* con, const BoxPair& bp, const BestAxis& best, doubl
     kept++;
   }
   clip.n = kept;
+}
+
+// Face contact: the incident box's face nearest the reference face, clipped to it.
+int BoxFaceContacts(Contact* con, const BoxPair& bp, const BestAxis& best, double margin) {
+  FaceFrame f = FaceContactFrame(bp, best);
+  double pts[6][3] = {};
+  int m = IncidentFace(f, pts);
+  ClipPoints clip;
+  ClipIncidentFace(pts, m, f.ext, clip);
+  KeepWithinMargin(clip, margin);
 
   // Back to world; the normal is the face's, pointing from box 1 to box 2.
   double back[9], normal[3];
-  UnturnMat(back, on_box2 ? bp.b2.mat : bp.b1.mat, turn);
-  double flip = on_box2 ? -1 : 1;
+  UnturnMat(back, f.on_box2 ? bp.b2.mat : bp.b1.mat, f.turn);
+  double flip = f.on_box2 ? -1 : 1;
   for (int i = 0; i < 3; i++) normal[i] = flip * back[3 * i + 2];
-  return EmitContacts(con, clip, back, on_box2 ? bp.b2.pos : bp.b1.pos, hz, normal);
+  return EmitContacts(con, clip, back, f.on_box2 ? bp.b2.pos : bp.b1.pos, f.ext[2], normal);
 }
 
 // The reference face and frame of an edge-edge contact: box 1's face adjacent to its
@@ -829,29 +853,33 @@ void EdgeIncidentCorners(ClipPoints& clip, const double flat[4][2], const double
   }
 }
 
-// Edge contact: box 2's face along its nearest edge, projected along the normal onto
-// box 1's reference face and clipped against it, plus corners of either face.
-int BoxEdgeContacts(Contact* con, const BoxPair& bp, const BestAxis& best, double margin) {
-  EdgeFrame f = EdgeContactFrame(bp, best);
+// Box 2's face along its nearest edge, in the turned frame of box 1: the nearest edge
+// (corners 0, 1) and the parallel edge across the face (corners 2, 3).
+void Box2FaceCorners(const BoxPair& bp, const BestAxis& best, const EdgeFrame& f,
+                     double corner[4][3]) {
   int q2 = (best.code - 12) % 3;
   const double* size2 = bp.b2.size;
-  const double* ext = f.ext;
-
-  // Box 2's face: its nearest edge (points 0, 1) and the parallel edge across the face
-  // (points 2, 3), in the turned frame of box 1.
-  double corner[4][3];
+  double s1 = (best.edge2 & (1 << f.ax1)) ? 1 : -1;
+  double s2 = (best.edge2 & (1 << f.ax2)) ? 1 : -1;
   for (int side = 0; side < 2; side++) {
     double* e0 = corner[2 * side];
     double* e1 = corner[2 * side + 1];
-    double s1 = (best.edge2 & (1 << f.ax1)) ? 1 : -1;
     math::Copy3(e0, f.p);
     math::AddScaled3(e0, f.rt + 3 * f.ax1, size2[f.ax1] * (side ? -s1 : s1));
-    math::AddScaled3(e0, f.rt + 3 * f.ax2,
-                     size2[f.ax2] * ((best.edge2 & (1 << f.ax2)) ? 1 : -1));
+    math::AddScaled3(e0, f.rt + 3 * f.ax2, size2[f.ax2] * s2);
     math::Copy3(e1, e0);
     math::AddScaled3(e0, f.rt + 3 * q2, size2[q2]);
     math::AddScaled3(e1, f.rt + 3 * q2, -size2[q2]);
   }
+}
+
+// Edge contact: box 2's face along its nearest edge, projected along the normal onto
+// box 1's reference face and clipped against it, plus corners of either face.
+int BoxEdgeContacts(Contact* con, const BoxPair& bp, const BestAxis& best, double margin) {
+  EdgeFrame f = EdgeContactFrame(bp, best);
+  const double* ext = f.ext;
+  double corner[4][3];
+  Box2FaceCorners(bp, best, f, corner);
   double axi[3][3];
   math::Copy3(axi[0], corner[0]);
   Sub3(axi[1], corner[1], corner[0]);
