@@ -13,9 +13,7 @@
 #      frictionless contacts (condim 1 on the moving box, which has priority).
 #   For each: ctrl/<name>.csv = node ctrlgen.mjs MODEL --steps 500, and
 #   goldens/<model>.jsonl = rollout.mjs MODEL --steps 500 --every 10 --ctrl ...
-#   3. stack with islands disabled. The stack cases with islands on are written to
-#      adhesion_pending_cases.txt (not read by the test) until our islands join trees
-#      that touch.
+#   3. stack with islands disabled.
 #   Writes tests/conformance/adhesion_cases.txt (model, golden, steps, state or -, ctrl,
 #   tolerance).
 # Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
@@ -46,13 +44,8 @@ for name in plane ceiling; do
   oracle_case "$OUT/models/${name}__frictionless.xml" "$STEPS" - "$TOL" "$CASES"
 done
 
-# --- 3. box on box with islands off; with islands on, pending -------------------------------
+# --- 3. box on box with islands off (the same answer, without the island split) ------------
 derive "$OUT/base" stack noisland "islands disabled" \
   -e 's|<option timestep="0.002"/>|<option timestep="0.002"><flag island="disable"/></option>|'
 oracle_case "$OUT/models/stack__noisland.xml" "$STEPS" - "$TOL" "$CASES"
-# Our islands do not join two trees through a contact yet, so the box-on-box cases with
-# islands on go to a list the test does not read until they do.
-PENDING=tests/conformance/adhesion_pending_cases.txt
-grep -E '/stack__[A-Za-z0-9]+\.xml' "$CASES" | grep -v noisland > "$PENDING"
-grep -vxF -f "$PENDING" "$CASES" > "$CASES.tmp" && mv "$CASES.tmp" "$CASES"
-echo "wrote $(wc -l < "$CASES") cases to $CASES, $(wc -l < "$PENDING") to $PENDING"
+echo "wrote $(wc -l < "$CASES") cases to $CASES"
