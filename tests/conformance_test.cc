@@ -38,7 +38,8 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 // (tests/conformance/tendon/make_goldens.sh); the fluid-force list
 // (tests/conformance/fluid/make_goldens.sh); gravity compensation
 // (tests/conformance/gravcomp/make_goldens.sh); adhesion
-// (tests/conformance/adhesion/make_goldens.sh).
+// (tests/conformance/adhesion/make_goldens.sh); contact scenes and the gantry lab
+// scenario (tools/make_contact_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
   for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
@@ -46,7 +47,8 @@ std::vector<Case> ReadCases() {
                            "tests/conformance/constraint_cases.txt",
                            "tests/conformance/fluid_cases.txt",
                            "tests/conformance/gravcomp_cases.txt",
-                           "tests/conformance/adhesion_cases.txt"}) {
+                           "tests/conformance/adhesion_cases.txt",
+                           "tests/conformance/contact_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {

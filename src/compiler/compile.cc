@@ -57,6 +57,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
   ComputeConstants(&m);
   EqualityConstants(&m);
+  AutoSpringDamper(state, &m);
   ComputeLengthRanges(spec, &m);
 
   // Statistics the model gives replace the computed ones (after the length ranges,

@@ -122,6 +122,8 @@ void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileEqualities(const mjcf::ModelSpec& spec, Model* m);
+// Stiffness and damping of joints given as springdamper (constants.cc).
+void AutoSpringDamper(const CompileState& state, Model* m);
 // Explicit pairs, exclusions and body_contype/conaffinity (contact.cc).
 void CompileContacts(const mjcf::ModelSpec& spec, Model* m);
 // eq_data computed from the body poses at qpos0 (connect and weld between bodies).

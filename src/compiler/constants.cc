@@ -85,4 +85,26 @@ void ComputeConstants(Model* m) {
   ComputeInvWeights(m, d);
 }
 
+// Joints with springdamper="timeconst dampratio" get the stiffness and damping of that
+// spring for the joint's mean inertia at qpos0, 1 / mean(dof_invweight0) (MuJoCo's
+// AutoSpringDamper, run after the constants).
+void AutoSpringDamper(const CompileState& state, Model* m) {
+  for (int j = 0; j < m->njnt; j++) {
+    const std::array<double, 2>& sd = state.joints[j].spec->springdamper;
+    double timeconst = sd[0], dampratio = sd[1];
+    if (timeconst <= 0 || dampratio <= 0) continue;
+    int adr = m->jnt_dofadr[j];
+    int type = m->jnt_type[j];
+    int ndof = type == kJointFree ? 6 : type == kJointBall ? 3 : 1;
+    double invweight = 0;
+    for (int i = 0; i < ndof; i++) invweight += m->dof_invweight0[adr + i];
+    double inertia = ndof / std::max(kMinVal, invweight);
+    m->jnt_stiffness[j] =
+        inertia / std::max(kMinVal, timeconst * timeconst * dampratio * dampratio);
+    for (int i = 0; i < ndof; i++) {
+      m->dof_damping[adr + i] = 2 * inertia / std::max(kMinVal, timeconst);
+    }
+  }
+}
+
 }  // namespace simlab::compiler

@@ -58,8 +58,9 @@ void Reader::ReadJoint(const XmlElement& e, JointSpec* j, bool in_default) const
   e.Number("frictionloss", &j->frictionloss);
   e.Bool("actuatorgravcomp", &j->actgravcomp);
   e.Vector("user");
-  if (j->springdamper[0] != 0 || j->springdamper[1] != 0) {
-    NotSupported(e, "springdamper");
+  if ((j->springdamper[0] != 0 || j->springdamper[1] != 0) &&
+      (j->springdamper[0] <= 0 || j->springdamper[1] <= 0)) {
+    e.Fail("springdamper values must both be positive when given");
   }
 }
 

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# make_contact_goldens.sh — the contact conformance cases (issue 5): MuJoCo's contact
+# scenes from the corpus and the gantry gripper's lab scenario, rolled out by MuJoCo
+# 3.5.1 (the oracle).
+#
+# Usage:  tools/make_contact_goldens.sh          (from any working directory)
+#
+# What it does (idempotent: tests/conformance/contact is deleted and rebuilt):
+#   1. Copies unchanged: actuation/activation.xml, core_constraint/dofless_contact.xml,
+#      core_constraint/dofless_weld.xml, model/humanoid/humanoid.xml.
+#   2. Derives sensor/contact*.xml without their <sensor> section (sensors: issue 6);
+#      contact_subtree*.xml attach humanoid.xml, which is copied beside them.
+#   3. Each model: ctrlgen.mjs controls, rollout.mjs --steps 200 --every 10; the humanoid
+#      also from each of its four keyframes.
+#   4. The lab scenario on models/gantry_gripper.xml (with the gripper.xml it attaches)
+#      from keyframe 0 with the lab's
+#      control files (tests/models/compose/gantry_lab_{slow,jump}.csv, made by
+#      make_lab_ctrl.py): lower, close, raise slowly (the cube is lifted) or in one jump
+#      (the cube slips), over the whole file.
+#   Writes tests/conformance/contact_cases.txt (model, golden, steps, state, ctrl, tol);
+#   tolerance 1e-8 relative.
+# Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
+set -euo pipefail
+
+source "$(dirname "$0")/oracle_case.sh"
+SHARED_CORPUS="$(cd "$ROOT/../shared/corpus/mujoco" && pwd)"
+STEPS=200
+TOL=1e-8
+CONTACTS=yes
+
+cd "$ROOT"
+OUT=tests/conformance/contact
+CASES=tests/conformance/contact_cases.txt
+case_folder "$CASES"
+
+# --- 1. corpus models, unchanged ------------------------------------------------------------
+for rel in test/engine/testdata/actuation/activation.xml \
+           test/engine/testdata/core_constraint/dofless_contact.xml \
+           test/engine/testdata/core_constraint/dofless_weld.xml \
+           model/humanoid/humanoid.xml; do
+  cp "$SHARED_CORPUS/$rel" "$OUT/models/"
+done
+
+# --- 2. sensor scenes without their sensors --------------------------------------------------
+SENSOR="$SHARED_CORPUS/test/engine/testdata/sensor"
+for name in contact contact_net contact_sorted contact_subtree contact_subtree_partial; do
+  derive "$SENSOR" "$name" nosensor "its <sensor> section removed" \
+    -e '/<sensor>/,/<\/sensor>/d'
+done
+
+# --- 3. rollouts ----------------------------------------------------------------------------
+for model in "$OUT"/models/*.xml; do
+  oracle_case "$model" "$STEPS" - "$TOL" "$CASES"
+done
+for key in 0 1 2 3; do
+  cp "$OUT/models/humanoid.xml" "$OUT/models/humanoid__key$key.xml"
+  oracle_case "$OUT/models/humanoid__key$key.xml" "$STEPS" "key:$key" "$TOL" "$CASES"
+done
+
+# --- 4. the gantry gripper lab scenario --------------------------------------------------------
+for run in slow jump; do
+  ctrl="tests/models/compose/gantry_lab_$run.csv"
+  steps=$(grep -vc '^#' "$ctrl")
+  cp models/gantry_gripper.xml "$OUT/models/gantry_lab_$run.xml"
+  cp models/gripper.xml "$OUT/models/gripper.xml"
+  oracle_rollout "$OUT/models/gantry_lab_$run.xml" "$steps" key:0 "$ctrl" "$TOL" "$CASES"
+done
