@@ -1,0 +1,105 @@
+// Convex collision detection between two convex shapes given by support functions:
+// GJK for the distance (or a proof of overlap), then EPA for the penetration depth and
+// the witness points of a penetrating pair. This is MuJoCo's native CCD
+// (engine_collision_gjk.c) in our own words; the steps follow it closely, because the
+// witness points EPA returns depend on the exact sequence of polytope expansions.
+//
+// The shapes themselves (support functions of each geom type, margins, the pairs'
+// special cases) live in collision_convex.cc.
+#ifndef SIMLAB_ENGINE_COLLISION_GJK_H_
+#define SIMLAB_ENGINE_COLLISION_GJK_H_
+
+#include "engine/collision.h"
+
+namespace simlab::ccd {
+
+struct ConvexShape;
+
+// The farthest point of a shape in a unit direction, in world coordinates.
+using SupportFn = void (*)(double res[3], ConvexShape* shape, const double dir[3]);
+
+// One geom as the convex collider sees it. Pose and size are copies, so a caller may
+// perturb the pose (the multi-contact search does) without touching Data.
+struct ConvexShape {
+  int geom = -1;
+  int type = 0;            // GeomType
+  double pos[3] = {0, 0, 0};
+  double mat[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double size[3] = {0, 0, 0};
+  double margin = 0;       // inflates the shape by margin/2 in every direction
+  SupportFn support = nullptr;
+
+  // Meshes: the vertices (local frame), and the convex-hull graph (null if absent).
+  const double* vert = nullptr;
+  int nvert = 0;
+  const int* graph = nullptr;
+
+  // Box corner (bits x, y, z) or mesh vertex of the last support point; the mesh search
+  // warm-starts from it. meshindex is the last vertex in the hull graph's numbering.
+  int vertindex = -1;
+  int meshindex = -1;
+};
+
+// Limits for one query (MuJoCo's mjCCDConfig).
+struct CcdConfig {
+  int max_iterations = 35;   // for GJK and EPA each
+  double tolerance = 1e-6;
+  int max_contacts = 1;      // 0: only decide overlap, no penetration depth
+  double dist_cutoff = 0;    // report distances of separated shapes up to this
+};
+
+// A vertex of the Minkowski difference shape1 - shape2, with the two support points.
+struct CcdVertex {
+  double vert[3];   // vert1 - vert2
+  double vert1[3];  // on shape 1
+  double vert2[3];  // on shape 2
+  int index1;       // box corner or mesh vertex of vert1 (-1 for smooth shapes)
+  int index2;
+};
+
+// The answer of one query (MuJoCo's mjCCDStatus).
+struct CcdStatus {
+  double dist = 0;                 // distance, negative when penetrating
+  double x1[3 * kMaxContactPair];  // witness points on shape 1
+  double x2[3 * kMaxContactPair];  // witness points on shape 2
+  int nx = 0;                      // number of witness pairs
+
+  int max_iterations = 0;
+  double tolerance = 0;
+  int max_contacts = 0;
+  double dist_cutoff = 0;
+
+  int gjk_iterations = 0;
+  int epa_iterations = 0;
+  int epa_status = -1;             // kEpaNoContact, kEpaSuccess or a failure reason
+  CcdVertex simplex[4];
+  int nsimplex = 0;
+};
+
+// EPA outcomes (MuJoCo's mjtEPAStatus).
+enum EpaStatus : int {
+  kEpaNoContact = -1,
+  kEpaSuccess = 0,
+  kEpaP2InvalidFaces,
+  kEpaP2Nonconvex,
+  kEpaP2OriginOnFace,
+  kEpaP3BadNormal,
+  kEpaP3InvalidV4,
+  kEpaP3InvalidV5,
+  kEpaP3MissingOrigin,
+  kEpaP3OriginOnFace,
+  kEpaP4MissingOrigin,
+};
+
+// The distance between two shapes: positive when apart (a huge value beyond the cutoff),
+// negative when penetrating, with witness points in status (MuJoCo's mjc_ccd).
+double Collide(const CcdConfig& config, CcdStatus* status, ConvexShape* s1, ConvexShape* s2);
+
+// Support functions of a sphere's centre and a capsule's axis segment: GJK runs on these
+// first and inflates the answer by the radius (collision_convex.cc).
+void CentreSupport(double res[3], ConvexShape* shape, const double dir[3]);
+void SegmentSupport(double res[3], ConvexShape* shape, const double dir[3]);
+
+}  // namespace simlab::ccd
+
+#endif  // SIMLAB_ENGINE_COLLISION_GJK_H_
