@@ -37,7 +37,8 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 // (tools/make_actuation_goldens.sh) and the spatial tendon list
 // (tests/conformance/tendon/make_goldens.sh); the fluid-force list
 // (tests/conformance/fluid/make_goldens.sh); gravity compensation
-// (tests/conformance/gravcomp/make_goldens.sh); adhesion
+// (tests/conformance/gravcomp/make_goldens.sh); friction cones and noslip
+// (tests/conformance/solver/make_goldens.sh); adhesion
 // (tests/conformance/adhesion/make_goldens.sh); contact scenes and the gantry lab
 // scenario (tools/make_contact_goldens.sh).
 std::vector<Case> ReadCases() {
@@ -48,7 +49,8 @@ std::vector<Case> ReadCases() {
                            "tests/conformance/fluid_cases.txt",
                            "tests/conformance/gravcomp_cases.txt",
                            "tests/conformance/adhesion_cases.txt",
-                           "tests/conformance/contact_cases.txt"}) {
+                           "tests/conformance/contact_cases.txt",
+                           "tests/conformance/solver_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {

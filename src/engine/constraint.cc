@@ -121,16 +121,18 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const std::vector<int>& d
   return p;
 }
 
-// Copies a solved problem's results back into Data.
+// Copies a solved problem's results back into Data. Row states only with `states`: MuJoCo
+// copies an island's forces back but not its states, so after island solves efc_state
+// keeps the warm start's evaluation (at qacc_smooth or the warm start).
 void Scatter(const ConstraintProblem& p, const std::vector<int>& dofs,
-             const std::vector<int>& rows, Data& d) {
+             const std::vector<int>& rows, bool states, Data& d) {
   for (int i = 0; i < p.nv; i++) {
     d.qacc[dofs[i]] = p.qacc[i];
     d.qfrc_constraint[dofs[i]] = p.qfrc_constraint[i];
   }
   for (int r = 0; r < p.nefc; r++) {
     d.efc_force[rows[r]] = p.force[r];
-    d.efc_state[rows[r]] = p.state[r];
+    if (states) d.efc_state[rows[r]] = p.state[r];
   }
   d.solver_niter += p.niter;
 }
@@ -151,7 +153,7 @@ void SolveIslands(const Model& m, Data& d, const Islands& islands) {
     for (int i = 0; i < p.nv; i++) inertia += p.M[p.M_rowadr[i] + p.M_rownnz[i] - 1];
     p.scale = 1 / inertia;
     SolvePrimal(m, p, newton);
-    Scatter(p, dofs, rows, d);
+    Scatter(p, dofs, rows, false, d);
   }
 }
 
@@ -163,7 +165,7 @@ void SolveWhole(const Model& m, Data& d) {
   ConstraintProblem p = MakeProblem(m, d, dofs, rows);
   p.scale = 1 / (m.stat.meaninertia * std::max(1, m.nv));
   SolvePrimal(m, p, m.opt.solver == kSolverNewton);
-  Scatter(p, dofs, rows, d);
+  Scatter(p, dofs, rows, true, d);
 }
 
 }  // namespace
