@@ -174,6 +174,7 @@ struct Data {
 
   // Contacts of the last collision stage: the first ncon entries (capacity grows as needed).
   std::vector<Contact> contact;
+  std::vector<int> broadphase_pairs;  // scratch of the collision stage's broad phase
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData.
   std::vector<double> stack;

@@ -14,6 +14,7 @@
 
 #include "engine/collision.h"
 #include "engine/engine.h"
+#include "engine/stack.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -191,7 +192,7 @@ int OutsideBox(const double* point, const double* pos, const double* mat, const 
 int CleanBoxBox(const Model& m, const Data& d, Contact* con, int num, int g1, int g2,
                 double margin) {
   constexpr double kRemoveRatio = 1.01;
-  std::vector<char> bad(num, 0);
+  bool bad[kMaxContactPair] = {};
   double size1[3], size2[3];
   for (int k = 0; k < 3; k++) {
     size1[k] = m.geom_size[3 * g1 + k] + margin;
@@ -250,7 +251,9 @@ void CollideGeoms(const Model& m, Data& d, int g1, int g2, int ipair) {
     d.contact.resize(static_cast<size_t>(d.ncon + kMaxContactPair) * 2);
   }
   Contact* con = &d.contact[d.ncon];
-  std::fill(con, con + kMaxContactPair, Contact{});
+  // Narrow-phase functions write dist, pos and the normal, and a tangent only when
+  // they choose one: clear the tangents (the rest is set below).
+  for (int i = 0; i < kMaxContactPair; i++) std::fill(con[i].frame + 3, con[i].frame + 9, 0.0);
   int num = collide(m, d, con, g1, g2, margin);
   if (num <= 0) return;
   if (m.geom_type[g1] == kGeomBox && m.geom_type[g2] == kGeomBox) {
@@ -314,9 +317,11 @@ void BodyBox(const Model& m, const Data& d, int b, double* lo, double* hi) {
   }
 }
 
-// Body pairs worth testing, as sorted unique signatures (b1 << 16) + b2, b1 < b2.
-std::vector<int> BroadPhase(const Model& m, const Data& d) {
-  std::vector<int> pairs;
+// Body pairs worth testing, as sorted unique signatures (b1 << 16) + b2, b1 < b2, in
+// d.broadphase_pairs (reused between steps).
+void BroadPhase(const Model& m, Data& d) {
+  std::vector<int>& pairs = d.broadphase_pairs;
+  pairs.clear();
   auto add = [&](int b1, int b2) {
     if (BitmaskRejects(m.body_contype[b1], m.body_conaffinity[b1], m.body_contype[b2],
                        m.body_conaffinity[b2])) {
@@ -335,7 +340,8 @@ std::vector<int> BroadPhase(const Model& m, const Data& d) {
     }
   }
   // Other bodies meet when their boxes overlap.
-  std::vector<double> box(6 * m.nbody);
+  StackFrame frame(d);
+  double* box = frame.Alloc(6 * static_cast<size_t>(m.nbody));
   for (int b = 1; b < m.nbody; b++) {
     if (CanCollide(m, b)) BodyBox(m, d, b, &box[6 * b], &box[6 * b + 3]);
   }
@@ -352,7 +358,6 @@ std::vector<int> BroadPhase(const Model& m, const Data& d) {
   }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
 }
 
 // ------------------------------------------------------------ one body pair
@@ -372,9 +377,9 @@ void Collision(const Model& m, Data& d) {
   d.ncon = 0;
   if (Disabled(m, kDisableConstraint) || Disabled(m, kDisableContact) || m.nbody < 2) return;
 
-  std::vector<int> bodypairs = BroadPhase(m, d);
+  BroadPhase(m, d);
   int pairadr = 0, exadr = 0;
-  for (int signature : bodypairs) {
+  for (int signature : d.broadphase_pairs) {
     // Explicit pairs up to this signature come first.
     int start = pairadr;
     while (pairadr < m.npair && m.pair_signature[pairadr] <= signature) {
