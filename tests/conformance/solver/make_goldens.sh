@@ -11,11 +11,15 @@
 #   2. Variants of the elliptic Newton model: noslip (noslip_iterations 10, also with
 #      pyramidal cones and with PGS), impratio 10, islands disabled (one whole problem),
 #      and the implicitfast integrator.
-#   3. MuJoCo's actuation test model actuation/activation.xml (boxes on a plane, limits, a
+#   3. base/ball_chains.xml (spheres on slide/hinge chains: no free bodies, so our smooth
+#      dynamics match MuJoCo's nearly bit for bit and Newton and PGS are checked to 1e-9
+#      over 400 steps, CG to 1e-3): both cones x the three solvers, and noslip with
+#      Newton, CG and PGS.
+#   4. MuJoCo's actuation test model actuation/activation.xml (boxes on a plane, limits, a
 #      muscle) with elliptic cones, and with elliptic cones and noslip.
 #   For each: ctrl/<name>.csv = node ctrlgen.mjs MODEL --steps N, and
 #   goldens/<name>.jsonl = rollout.mjs MODEL --steps N --every 10 --ctrl ... (N = 100 for
-#   the bench, tolerances by bench_tol below; 400 and 1e-8 for the activation model).
+#   the bench, tolerances by bench_tol below; 400 steps for the others).
 #   CG and PGS cases run to a tight solver tolerance (TIGHT below).
 #   Writes tests/conformance/solver_cases.txt (model, golden, steps, state, ctrl, tolerance).
 # Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
@@ -87,7 +91,30 @@ model=$(bench_variant elliptic_noisland 'cone="elliptic"')
 sed -i 's|<option \([^/]*\)/>|<option \1><flag island="disable"/></option>|' "$model"
 oracle_case "$model" "$BENCH_STEPS" key:0 "$(bench_tol elliptic_noisland)" "$CASES"
 
-# --- 3. MuJoCo's activation model ----------------------------------------------------------
+# --- 3. the free-body-less bench, tightly ------------------------------------------------------
+CHAINS="$OUT/base/ball_chains.xml"
+CHAIN_VARIANTS=(
+  "pyramidal_Newton|"
+  "pyramidal_CG|solver=\"CG\""
+  "pyramidal_PGS|solver=\"PGS\""
+  "elliptic_Newton|cone=\"elliptic\""
+  "elliptic_CG|cone=\"elliptic\" solver=\"CG\""
+  "elliptic_PGS|cone=\"elliptic\" solver=\"PGS\""
+  "elliptic_noslip|cone=\"elliptic\" noslip_iterations=\"10\""
+  "elliptic_CG_noslip|cone=\"elliptic\" solver=\"CG\" noslip_iterations=\"10\""
+  "pyramidal_PGS_noslip|solver=\"PGS\" noslip_iterations=\"10\""
+)
+for variant in "${CHAIN_VARIANTS[@]}"; do
+  model="$OUT/models/ball_chains__${variant%%|*}.xml"
+  sed "s|<option timestep=|<option ${variant#*|} timestep=|" "$CHAINS" > "$model"
+  # CG stops at opt.tolerance: the last-bit differences left drift its answers apart by
+  # about the tolerance after 100-150 steps (worst 6e-4 measured over 400).
+  tol=1e-9
+  case "$variant" in *CG*) tol=1e-3 ;; esac
+  oracle_case "$model" "$STEPS" key:0 "$tol" "$CASES"
+done
+
+# --- 4. MuJoCo's activation model ----------------------------------------------------------
 derive "$CORPUS/actuation" activation elliptic "elliptic cones" \
   -e 's|<option density="1000"/>|<option density="1000" cone="elliptic"/>|'
 derive "$CORPUS/actuation" activation elliptic_noslip "elliptic cones and noslip" \
