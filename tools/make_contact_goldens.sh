@@ -6,7 +6,8 @@
 # Usage:  tools/make_contact_goldens.sh          (from any working directory)
 #
 # What it does (idempotent: tests/conformance/contact is deleted and rebuilt):
-#   1. Copies unchanged: actuation/activation.xml, core_constraint/dofless_contact.xml,
+#   1. Copies unchanged: actuation/activation.xml, actuation/actearly.xml (its spheres
+#      touch side by side: MuJoCo's sweep and prune decides), core_constraint/dofless_contact.xml,
 #      core_constraint/dofless_weld.xml, model/humanoid/humanoid.xml.
 #   2. Derives sensor/contact*.xml without their <sensor> section (sensors: issue 6);
 #      contact_subtree*.xml attach humanoid.xml, which is copied beside them.
@@ -35,6 +36,7 @@ case_folder "$CASES"
 
 # --- 1. corpus models, unchanged ------------------------------------------------------------
 for rel in test/engine/testdata/actuation/activation.xml \
+           test/engine/testdata/actuation/actearly.xml \
            test/engine/testdata/core_constraint/dofless_contact.xml \
            test/engine/testdata/core_constraint/dofless_weld.xml \
            model/humanoid/humanoid.xml; do

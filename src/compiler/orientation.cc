@@ -11,7 +11,6 @@ namespace simlab::compiler {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
-constexpr double kEigEps = 1e-12;  // convergence threshold of the Jacobi iteration
 }  // namespace
 
 double NormalizeVec(double* v, int n) {
@@ -142,66 +141,9 @@ void GlobalInertia(double global[6], const double local[3], const double quat[4]
   global[5] = entry(1, 2);
 }
 
-namespace {
-
-// One Jacobi step: the rotation (as a quaternion about axis `k`) that zeroes the
-// largest off-diagonal entry D(r, c) of the current D = V^T A V.
-bool JacobiRotation(const double d[9], double rot[4]) {
-  int r = 1, c = 2, k = 0;
-  if (std::abs(d[1]) > std::abs(d[2]) && std::abs(d[1]) > std::abs(d[5])) {
-    r = 0, c = 1, k = 2;
-  } else if (std::abs(d[2]) > std::abs(d[5])) {
-    r = 0, c = 2, k = 1;
-  }
-  if (std::abs(d[3 * r + c]) < kEigEps) return false;
-
-  // Symmetric Schur decomposition of the 2x2 block, as a half-angle rotation.
-  double tau = (d[4 * c] - d[4 * r]) / (2 * d[3 * r + c]);
-  double t = tau >= 0 ? 1.0 / (tau + std::sqrt(1 + tau * tau))
-                      : -1.0 / (-tau + std::sqrt(1 + tau * tau));
-  double cs = 1.0 / std::sqrt(1 + t * t);
-  if (cs > 1.0 - kEigEps) return false;
-  double s = std::sqrt(0.5 - 0.5 * cs);
-  rot[1] = rot[2] = rot[3] = 0;
-  rot[k + 1] = (tau >= 0) ? -s : s;
-  if (k == 1) rot[k + 1] = -rot[k + 1];
-  rot[0] = std::sqrt(1.0 - rot[k + 1] * rot[k + 1]);
-  NormalizeVec(rot, 4);
-  return true;
-}
-
-}  // namespace
-
 void Eig3(double eigval[3], double quat[4], const double mat[9]) {
-  math::SetIdentityQuat(quat);
-  for (int iter = 0; iter < 500; iter++) {
-    // D = V^T A V with V the rotation of quat.
-    double v[9], tmp[9], d[9];
-    math::QuatToMat(v, quat);
-    math::MulMatTMat3(tmp, v, mat);
-    math::MulMat3(d, tmp, v);
-    eigval[0] = d[0];
-    eigval[1] = d[4];
-    eigval[2] = d[8];
-    double rot[4], q[4];
-    if (!JacobiRotation(d, rot)) break;
-    math::MulQuat(q, quat, rot);
-    math::CopyQuat(quat, q);
-    NormalizeVec(quat, 4);
-  }
-
-  // Sort in decreasing order by swaps (0,1), (1,2), (0,1), each a quarter turn.
-  for (int j = 0; j < 3; j++) {
-    int a = j % 2;
-    if (eigval[a] + kEigEps < eigval[a + 1]) {
-      std::swap(eigval[a], eigval[a + 1]);
-      double rot[4] = {0.707106781186548, 0, 0, 0}, q[4];
-      rot[(a + 2) % 3 + 1] = rot[0];
-      math::MulQuat(q, quat, rot);
-      math::CopyQuat(quat, q);
-      NormalizeVec(quat, 4);
-    }
-  }
+  // The compiler's variant: quaternions normalized by division, as MuJoCo's compiler.
+  math::Eig3(eigval, quat, mat, [](double* q) { NormalizeVec(q, 4); });
 }
 
 const char* FullInertia(double quat[4], double inertia[3], const double full[6]) {

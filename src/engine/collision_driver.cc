@@ -5,9 +5,8 @@
 //
 // The contact order is MuJoCo's: body pairs by signature (body1 << 16) + body2, explicit
 // pairs of a signature before that body pair's own geom pairs, geom pairs in geom order.
-// Candidates are every body pair whose bounding boxes (geom bounding spheres grown by
-// their margins) overlap: a superset of MuJoCo's sweep-and-prune pairs, and the
-// narrow-phase filters that follow are MuJoCo's, so the contacts are the same.
+// Candidates come from MuJoCo's sweep and prune along the principal axis of the geoms,
+// with its single-precision ends, so that even touching boxes pair up as in MuJoCo.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -304,21 +303,86 @@ bool BodyPairFiltered(const Model& m, int b1, int b2, bool always1) {
   return filterparent && weld1 != 0 && weld2 != 0 && (weld1 == parent2 || weld2 == parent1);
 }
 
-// The world box holding a body's geoms' bounding spheres grown by their margins.
-void BodyBox(const Model& m, const Data& d, int b, double* lo, double* hi) {
+// The principal frame (rows) of the moving geoms' centres: sweep-and-prune runs along
+// its first axis, where the bodies spread most.
+void PrincipalFrame(const Model& m, const Data& d, double frame[9]) {
+  double cen[3] = {0, 0, 0}, cov[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  int count = 0;
+  for (int g = 0; g < m.ngeom; g++) {
+    if (!m.geom_bodyid[g]) continue;
+    math::Add3(cen, cen, &d.geom_xpos[3 * g]);
+    count++;
+  }
+  math::Scale3(cen, cen, 1.0 / count);
+  for (int g = 0; g < m.ngeom; g++) {
+    if (!m.geom_bodyid[g]) continue;
+    double dif[3];
+    math::Sub3(dif, &d.geom_xpos[3 * g], cen);
+    for (int r = 0; r < 3; r++) {
+      for (int c = 0; c < 3; c++) cov[3 * r + c] += dif[r] * dif[c];
+    }
+  }
+  for (double& x : cov) x *= 1.0 / count;
+  double eigval[3], quat[4];
+  math::Eig3(eigval, quat, cov, [](double* q) { math::NormalizeQuat(q); });
+  math::QuatToMat(frame, quat);
+}
+
+// A body's box in `frame`: its geoms' bounding spheres grown by their margins.
+void BodyBox(const Model& m, const Data& d, int b, const double* frame, double* lo,
+             double* hi) {
   for (int i = 0; i < m.body_geomnum[b]; i++) {
     int g = m.body_geomadr[b] + i;
     double margin = Enabled(m, kEnableOverride) ? 0.5 * m.opt.o_margin : m.geom_margin[g];
     for (int k = 0; k < 3; k++) {
-      double c = d.geom_xpos[3 * g + k], r = m.geom_rbound[g] + margin;
+      double c = math::Dot3(&d.geom_xpos[3 * g], frame + 3 * k);
+      double r = m.geom_rbound[g] + margin;
       lo[k] = i == 0 ? c - r : std::min(lo[k], c - r);
       hi[k] = i == 0 ? c + r : std::max(hi[k], c + r);
     }
   }
 }
 
+// One end of a body's interval on the sweep axis, in single precision as MuJoCo sorts.
+struct SweepEnd {
+  float value;
+  int body;
+  bool is_max;
+};
+
+// Sweep and prune (MuJoCo mj_SAP) over the given bodies' boxes (lo, hi per body, in
+// `boxes` at 6 per body): intervals on the first axis, sorted stably (ties keep
+// min-then-max in body order), each opening interval meets the open ones whose boxes
+// also overlap on the other two axes. Calls add(b1, b2) per candidate.
+template <typename Add>
+void SweepAndPrune(const std::vector<int>& bodies, const double* boxes, Add add) {
+  std::vector<SweepEnd> ends;
+  ends.reserve(2 * bodies.size());
+  for (int b : bodies) {
+    ends.push_back({static_cast<float>(boxes[6 * b]), b, false});
+    ends.push_back({static_cast<float>(boxes[6 * b + 3]), b, true});
+  }
+  std::stable_sort(ends.begin(), ends.end(),
+                   [](const SweepEnd& a, const SweepEnd& b) { return a.value < b.value; });
+  std::vector<int> open;
+  for (const SweepEnd& e : ends) {
+    if (e.is_max) {
+      open.erase(std::find(open.begin(), open.end(), e.body));
+      continue;
+    }
+    const double* x2 = boxes + 6 * e.body;
+    for (int b1 : open) {
+      const double* x1 = boxes + 6 * b1;
+      bool apart = false;
+      for (int k = 1; k < 3; k++) apart = apart || x1[k] > x2[k + 3] || x2[k] > x1[k + 3];
+      if (!apart) add(b1, e.body);
+    }
+    open.push_back(e.body);
+  }
+}
+
 // Body pairs worth testing, as sorted unique signatures (b1 << 16) + b2, b1 < b2, in
-// d.broadphase_pairs (reused between steps).
+// d.broadphase_pairs (reused between steps): MuJoCo's mj_broadphase.
 void BroadPhase(const Model& m, Data& d) {
   std::vector<int>& pairs = d.broadphase_pairs;
   pairs.clear();
@@ -339,22 +403,23 @@ void BroadPhase(const Model& m, Data& d) {
       if (CanCollide(m, b2) && !BodyPairFiltered(m, b1, b2, true)) add(b1, b2);
     }
   }
-  // Other bodies meet when their boxes overlap.
-  StackFrame frame(d);
-  double* box = frame.Alloc(6 * static_cast<size_t>(m.nbody));
-  for (int b = 1; b < m.nbody; b++) {
-    if (CanCollide(m, b)) BodyBox(m, d, b, &box[6 * b], &box[6 * b + 3]);
-  }
-  for (int b1 = 1; b1 < m.nbody; b1++) {
-    if (!CanCollide(m, b1)) continue;
-    for (int b2 = b1 + 1; b2 < m.nbody; b2++) {
-      if (!CanCollide(m, b2) || BodyPairFiltered(m, b1, b2, false)) continue;
-      const double* x1 = &box[6 * b1];
-      const double* x2 = &box[6 * b2];
-      bool overlap = true;
-      for (int k = 0; k < 3; k++) overlap = overlap && x1[k] <= x2[k + 3] && x2[k] <= x1[k + 3];
-      if (overlap) add(b1, b2);
+  // Other bodies meet when their boxes overlap in the principal frame.
+  bool moving_geoms = false;
+  for (int g = 0; g < m.ngeom; g++) moving_geoms = moving_geoms || m.geom_bodyid[g] != 0;
+  if (moving_geoms) {
+    double frame[9];
+    PrincipalFrame(m, d, frame);
+    StackFrame scratch(d);
+    double* boxes = scratch.Alloc(6 * static_cast<size_t>(m.nbody));
+    std::vector<int> bodies;
+    for (int b = 1; b < m.nbody; b++) {
+      if (!CanCollide(m, b)) continue;
+      bodies.push_back(b);
+      BodyBox(m, d, b, frame, &boxes[6 * b], &boxes[6 * b + 3]);
     }
+    SweepAndPrune(bodies, boxes, [&](int b1, int b2) {
+      if (!BodyPairFiltered(m, b1, b2, false)) add(b1, b2);
+    });
   }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

@@ -2,6 +2,7 @@
 #include "math/math.h"
 
 #include <cmath>
+#include <utility>
 #include <numbers>
 
 namespace simlab::math {
@@ -284,6 +285,70 @@ void TransformSpatial(double* res, const double* vec, bool is_force, const doubl
     MulMatTVec3(res + 3, rot_new_to_old, moved + 3);
   } else {
     for (int i = 0; i < 6; i++) res[i] = moved[i];
+  }
+}
+
+namespace {
+
+constexpr double kEigEps = 1e-12;  // Jacobi convergence threshold (1000 mjMINVAL)
+
+// One Jacobi step: the rotation (a quaternion about axis k) that zeroes the largest
+// off-diagonal entry D(r, c) of D = V^T A V; false when converged.
+bool JacobiRotation(const double d[9], double rot[4], void (*normalize)(double* q)) {
+  int r = 1, c = 2, k = 0;
+  if (std::abs(d[1]) > std::abs(d[2]) && std::abs(d[1]) > std::abs(d[5])) {
+    r = 0, c = 1, k = 2;
+  } else if (std::abs(d[2]) > std::abs(d[5])) {
+    r = 0, c = 2, k = 1;
+  }
+  if (std::abs(d[3 * r + c]) < kEigEps) return false;
+
+  // Symmetric Schur decomposition of the 2x2 block, as a half-angle rotation.
+  double tau = (d[4 * c] - d[4 * r]) / (2 * d[3 * r + c]);
+  double t = tau >= 0 ? 1.0 / (tau + std::sqrt(1 + tau * tau))
+                      : -1.0 / (-tau + std::sqrt(1 + tau * tau));
+  double cs = 1.0 / std::sqrt(1 + t * t);
+  if (cs > 1.0 - kEigEps) return false;
+  double s = std::sqrt(0.5 - 0.5 * cs);
+  rot[1] = rot[2] = rot[3] = 0;
+  rot[k + 1] = (tau >= 0) ? -s : s;
+  if (k == 1) rot[k + 1] = -rot[k + 1];
+  rot[0] = std::sqrt(1.0 - rot[k + 1] * rot[k + 1]);
+  normalize(rot);
+  return true;
+}
+
+}  // namespace
+
+void Eig3(double eigval[3], double quat[4], const double mat[9], void (*normalize)(double* q)) {
+  SetIdentityQuat(quat);
+  for (int iter = 0; iter < 500; iter++) {
+    // D = V^T A V with V the rotation of quat.
+    double v[9], tmp[9], d[9];
+    QuatToMat(v, quat);
+    MulMatTMat3(tmp, v, mat);
+    MulMat3(d, tmp, v);
+    eigval[0] = d[0];
+    eigval[1] = d[4];
+    eigval[2] = d[8];
+    double rot[4], q[4];
+    if (!JacobiRotation(d, rot, normalize)) break;
+    MulQuat(q, quat, rot);
+    CopyQuat(quat, q);
+    normalize(quat);
+  }
+
+  // Sort in decreasing order by swaps (0,1), (1,2), (0,1), each a quarter turn.
+  for (int j = 0; j < 3; j++) {
+    int a = j % 2;
+    if (eigval[a] + kEigEps < eigval[a + 1]) {
+      std::swap(eigval[a], eigval[a + 1]);
+      double rot[4] = {0.707106781186548, 0, 0, 0}, q[4];
+      rot[(a + 2) % 3 + 1] = rot[0];
+      MulQuat(q, quat, rot);
+      CopyQuat(quat, q);
+      normalize(quat);
+    }
   }
 }
 

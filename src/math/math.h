@@ -70,6 +70,12 @@ inline void CopyQuat(double* r, const double* q) { r[0] = q[0]; r[1] = q[1]; r[2
 double NormalizeQuat(double* q);
 // r = a * b (Hamilton product)
 void MulQuat(double* r, const double* a, const double* b);
+
+// Eigen-decomposition of a symmetric 3x3 matrix by Jacobi rotations kept as a unit
+// quaternion (MuJoCo's mju_eig3): eigenvalues in decreasing order, eigenvectors the
+// columns of quat's rotation matrix. `normalize` renormalizes the quaternion after each
+// rotation (the engine multiplies by the inverse norm, the compiler divides).
+void Eig3(double eigval[3], double quat[4], const double mat[9], void (*normalize)(double* q));
 // r = conj(q)
 inline void NegQuat(double* r, const double* q) { r[0] = q[0]; r[1] = -q[1]; r[2] = -q[2]; r[3] = -q[3]; }
 // r = q v q* (q unit)
