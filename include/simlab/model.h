@@ -207,6 +207,8 @@ struct Statistic {
   X(double, dof_armature, nv, 1)                   \
   X(double, dof_damping, nv, 1)                    \
   X(double, dof_invweight0, nv, 1)                 \
+  X(int, dof_simplenum, nv, 1)                     \
+  X(double, dof_M0, nv, 1)                         \
   /* inertia matrix sparsity: row i of the lower     \
      triangle holds i's ancestor dofs, then i */     \
   X(int, M_rownnz, nv, 1)                          \

@@ -136,6 +136,9 @@ void ComputeConstants(Model* m);
 // body_simple, body/dof/tendon_invweight0 and stat.meaninertia from a Data at qpos0
 // after the smooth position stage (invweight.cc; called by ComputeConstants).
 void ComputeInvWeights(Model* m, const Data& at_qpos0);
+// body_simple, and dof_simplenum: how many simple-body dofs run from each dof on
+// (invweight.cc); their rows of M are diagonal (MuJoCo's reduced M).
+void SimpleBodies(Model* m);
 // actuator_lengthrange where the <compiler><lengthrange> options ask for it (lengthrange.cc).
 void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m);
 

@@ -13,6 +13,7 @@
 #include "compiler/compiler.h"
 #include "engine/engine.h"
 #include "math/dot.h"
+#include "math/math.h"
 
 namespace simlab::compiler {
 
@@ -57,6 +58,28 @@ void SetTotalMass(double total, Model* m) {
   }
 }
 
+namespace {
+
+// dof_M0: the diagonal of M at qpos0 by the composite rigid body algorithm, in MuJoCo's
+// summation order; simple dofs keep it as their whole row.
+void SetM0(Model* m, Data& d) {
+  std::vector<double> crb = d.cinert;
+  for (int i = m->nbody - 1; i > 0; i--) {
+    int parent = m->body_parentid[i];
+    if (parent > 0) {
+      for (int k = 0; k < 10; k++) crb[10 * parent + k] += crb[10 * i + k];
+    }
+  }
+  for (int i = 0; i < m->nv; i++) {
+    double buf[6];
+    math::MulInertVec(buf, &crb[10 * m->dof_bodyid[i]], &d.cdof[6 * i]);
+    m->dof_M0[i] = m->dof_armature[i] + ActuatorArmature(*m, false, m->dof_jntid[i]) +
+                   math::Dot(&d.cdof[6 * i], buf, 6);
+  }
+}
+
+}  // namespace
+
 void ComputeConstants(Model* m) {
   // Subtree masses, leaves first.
   for (int b = 0; b < m->nbody; b++) m->body_subtreemass[b] = m->body_mass[b];
@@ -64,8 +87,15 @@ void ComputeConstants(Model* m) {
     m->body_subtreemass[m->body_parentid[b]] += m->body_subtreemass[b];
   }
 
-  // Tendon lengths at qpos0 and spring lengths at qpos_spring.
+  // Simple bodies and the constant diagonal of their rows of M, before anything at
+  // qpos0 uses M (MuJoCo mj_setM0).
+  SimpleBodies(m);
   Data d = MakeData(*m);
+  Kinematics(*m, d);
+  ComPos(*m, d);
+  SetM0(m, d);
+
+  // Tendon lengths at qpos0 and spring lengths at qpos_spring.
   FwdPositionSmooth(*m, d);
   for (int t = 0; t < m->ntendon; t++) m->tendon_length0[t] = d.ten_length[t];
   TendonSpringLengths(m, d);

@@ -22,46 +22,6 @@ bool AxisAligned(const double* axis) {
   return n == 1;
 }
 
-// body_simple: 1 when the body's inertia frame is its frame, it hangs from the world (or
-// a static child of it), has no child bodies and its joints sit at its origin on aligned
-// axes with at most one rotation first; 2 when those joints are all slides.
-void SimpleBodies(Model* m) {
-  for (int i = 0; i < m->nbody; i++) {
-    int parent = m->body_parentid[i];
-    bool simple = m->body_sameframe[i] == 1 &&
-                  (m->body_rootid[i] == i ||
-                   (m->body_parentid[parent] == 0 && m->body_dofnum[parent] == 0));
-    bool rotation = false, slides_only = true;
-    for (int j = m->body_jntadr[i]; j >= 0 && j < m->body_jntadr[i] + m->body_jntnum[i]; j++) {
-      int type = m->jnt_type[j];
-      const double* pos = &m->jnt_pos[3 * j];
-      bool scalar = type == kJointHinge || type == kJointSlide;
-      if (rotation || pos[0] != 0 || pos[1] != 0 || pos[2] != 0 ||
-          (scalar && !AxisAligned(&m->jnt_axis[3 * j]))) {
-        simple = false;
-      }
-      if (type == kJointBall || type == kJointHinge) rotation = true;
-      if (type != kJointSlide) slides_only = false;
-    }
-    m->body_simple[i] = simple ? (m->body_dofnum[i] > 0 && slides_only ? 2 : 1) : 0;
-  }
-  // A body with children is never simple.
-  for (int i = 1; i < m->nbody; i++) {
-    if (m->body_parentid[i] > 0) m->body_simple[m->body_parentid[i]] = 0;
-  }
-  // Nor is a body carrying a site or wrapping geom of a tendon with inertia.
-  for (int t = 0; t < m->ntendon; t++) {
-    if (m->tendon_armature[t] == 0) continue;
-    for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++) {
-      int obj = m->wrap_objid[w];
-      if (m->wrap_type[w] == kWrapSite) m->body_simple[m->site_bodyid[obj]] = 0;
-      if (m->wrap_type[w] == kWrapSphere || m->wrap_type[w] == kWrapCylinder) {
-        m->body_simple[m->geom_bodyid[obj]] = 0;
-      }
-    }
-  }
-}
-
 // A = rows M^-1 rows^T for `n` dense rows of length nv (n <= 6).
 void InverseInertia(const Model& m, const Data& d, const double* rows, int n, double* a) {
   std::vector<double> x(m.nv);
@@ -124,8 +84,53 @@ void JointWeight(const Model& m, const Data& d, int j, double* dof_weight) {
 
 }  // namespace
 
+// body_simple: 1 when the body's inertia frame is its frame, it hangs from the world (or
+// a static child of it), has no child bodies and its joints sit at its origin on aligned
+// axes with at most one rotation first; 2 when those joints are all slides.
+void SimpleBodies(Model* m) {
+  for (int i = 0; i < m->nbody; i++) {
+    int parent = m->body_parentid[i];
+    bool simple = m->body_sameframe[i] == 1 &&
+                  (m->body_rootid[i] == i ||
+                   (m->body_parentid[parent] == 0 && m->body_dofnum[parent] == 0));
+    bool rotation = false, slides_only = true;
+    for (int j = m->body_jntadr[i]; j >= 0 && j < m->body_jntadr[i] + m->body_jntnum[i]; j++) {
+      int type = m->jnt_type[j];
+      const double* pos = &m->jnt_pos[3 * j];
+      bool scalar = type == kJointHinge || type == kJointSlide;
+      if (rotation || pos[0] != 0 || pos[1] != 0 || pos[2] != 0 ||
+          (scalar && !AxisAligned(&m->jnt_axis[3 * j]))) {
+        simple = false;
+      }
+      if (type == kJointBall || type == kJointHinge) rotation = true;
+      if (type != kJointSlide) slides_only = false;
+    }
+    m->body_simple[i] = simple ? (m->body_dofnum[i] > 0 && slides_only ? 2 : 1) : 0;
+  }
+  // A body with children is never simple.
+  for (int i = 1; i < m->nbody; i++) {
+    if (m->body_parentid[i] > 0) m->body_simple[m->body_parentid[i]] = 0;
+  }
+  // Nor is a body carrying a site or wrapping geom of a tendon with inertia.
+  for (int t = 0; t < m->ntendon; t++) {
+    if (m->tendon_armature[t] == 0) continue;
+    for (int w = m->tendon_adr[t]; w < m->tendon_adr[t] + m->tendon_num[t]; w++) {
+      int obj = m->wrap_objid[w];
+      if (m->wrap_type[w] == kWrapSite) m->body_simple[m->site_bodyid[obj]] = 0;
+      if (m->wrap_type[w] == kWrapSphere || m->wrap_type[w] == kWrapCylinder) {
+        m->body_simple[m->geom_bodyid[obj]] = 0;
+      }
+    }
+  }
+  // dof_simplenum: the run of simple-body dofs starting at each dof.
+  int count = 0;
+  for (int i = m->nv - 1; i >= 0; i--) {
+    count = m->body_simple[m->dof_bodyid[i]] ? count + 1 : 0;
+    m->dof_simplenum[i] = count;
+  }
+}
+
 void ComputeInvWeights(Model* m, const Data& d) {
-  SimpleBodies(m);
 
   for (int b = 0; b < m->nbody; b++) BodyWeight(*m, d, b, &m->body_invweight0[2 * b]);
   for (int j = 0; j < m->njnt; j++) JointWeight(*m, d, j, m->dof_invweight0.data());

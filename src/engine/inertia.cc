@@ -56,10 +56,16 @@ void MakeInertia(const Model& m, Data& d) {
     }
   }
 
-  // Row i: armature on the diagonal, then cdof_j . (crb cdof_i) over ancestors j.
+  // Row i: armature on the diagonal, then cdof_j . (crb cdof_i) over ancestors j. Dofs
+  // of simple bodies have the constant diagonal dof_M0 and no couplings (MuJoCo's
+  // reduced M).
   for (int i = 0; i < m.nv; i++) {
     int adr = m.M_rowadr[i] + m.M_rownnz[i] - 1;
     for (int k = m.M_rowadr[i]; k < adr; k++) d.M[k] = 0;
+    if (m.dof_simplenum[i]) {
+      d.M[adr] = m.dof_M0[i];
+      continue;
+    }
     d.M[adr] = m.dof_armature[i] + ActuatorArmature(m, false, m.dof_jntid[i]);
     double f[6];
     MulInertVec(f, &d.crb[10 * m.dof_bodyid[i]], &d.cdof[6 * i]);

@@ -42,15 +42,15 @@ CASES=tests/conformance/solver_cases.txt
 case_folder "$CASES"
 BASE="$OUT/base/contact_cones.xml"
 
-# The bench's tolerance: our smooth dynamics are not yet bit-identical to MuJoCo's for free
-# bodies (MuJoCo keeps a "simple" body's mass matrix diagonal), so last-bit differences
-# enter every step and the bouncing, spinning contacts amplify them; measured worst errors
-# over 100 steps are about 2e-10 (elliptic Newton), 1e-6 (pyramidal Newton, noslip) and
-# 1e-5 (CG, PGS), and grow to 1e-3..1e-1 by step 200.
+# The bench's tolerance: free bodies bounce and spin on each other, which amplifies
+# last-bit differences. Since "simple" bodies keep MuJoCo's diagonal mass matrix
+# (dof_M0), the measured worst errors over 100 steps are 1e-10 (elliptic Newton), 1e-12
+# (elliptic PGS), 1e-9..1e-6 (pyramidal Newton, noslip, impratio, islands off) and up to
+# 1e-5 (CG); they grow with the horizon.
 bench_tol() {
   case "$1" in
     elliptic_Newton|elliptic_implicitfast) echo 1e-8 ;;
-    elliptic_impratio) echo 1e-7 ;;
+    elliptic_impratio) echo 1e-6 ;;
     *CG*|*PGS*) echo 1e-4 ;;
     *) echo 1e-5 ;;
   esac
