@@ -18,6 +18,10 @@
 #      control files (tests/models/compose/gantry_lab_{slow,jump}.csv, made by
 #      make_lab_ctrl.py): lower, close, raise slowly (the cube is lifted) or in one jump
 #      (the cube slips), over the whole file.
+#   5. tests/models/contact_params.xml (priority, solmix, condim 1/4/6, margin/gap, an
+#      explicit pair with solreffriction, an exclude) as written, with the global overrides
+#      enabled, and with elliptic cones: 200 steps (elliptic: tolerance 1e-6, measured
+#      worst 7e-7 in qacc as free bodies amplify last-bit differences).
 #   Writes tests/conformance/contact_cases.txt (model, golden, steps, state, ctrl, tol);
 #   tolerance 1e-8 relative.
 # Requirements: bash, GNU sed, node, and `npm ci` done in ../shared/oracle.
@@ -67,3 +71,13 @@ for run in slow jump; do
   cp models/gripper.xml "$OUT/models/gripper.xml"
   oracle_rollout "$OUT/models/gantry_lab_$run.xml" "$steps" key:0 "$ctrl" "$TOL" "$CASES"
 done
+
+# --- 5. contact parameters --------------------------------------------------------------------
+cp tests/models/contact_params.xml "$OUT/models/contact_params.xml"
+derive tests/models contact_params override "the global contact overrides enabled" \
+  -e 's|<option |<option><flag override="enable"/></option>\n  <option |'
+derive tests/models contact_params elliptic "elliptic friction cones" \
+  -e 's|<option |<option cone="elliptic" |'
+oracle_case "$OUT/models/contact_params.xml" "$STEPS" - "$TOL" "$CASES"
+oracle_case "$OUT/models/contact_params__override.xml" "$STEPS" - "$TOL" "$CASES"
+oracle_case "$OUT/models/contact_params__elliptic.xml" "$STEPS" - 1e-6 "$CASES"
