@@ -7,6 +7,7 @@
 #define SIMLAB_DATA_H_
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "simlab/model.h"
@@ -52,6 +53,16 @@ struct Contact {
   int vert[2] = {-1, -1};
   int exclude = 0;            // 1: within the gap, no rows made
   int efc_address = -1;       // first constraint row of this contact, or -1
+};
+
+// Scratch of the collision stage's broad phase, kept between steps so that it does not
+// allocate: candidate body pairs as signatures (b1 << 16) + b2, the collidable bodies,
+// and the sweep's interval ends (value, body + 0x10000 for an end) and open intervals.
+struct BroadPhaseScratch {
+  std::vector<int> pairs;
+  std::vector<int> bodies;
+  std::vector<std::pair<float, int>> ends;
+  std::vector<int> open;
 };
 
 struct WarningStat {
@@ -174,7 +185,7 @@ struct Data {
 
   // Contacts of the last collision stage: the first ncon entries (capacity grows as needed).
   std::vector<Contact> contact;
-  std::vector<int> broadphase_pairs;  // scratch of the collision stage's broad phase
+  BroadPhaseScratch broadphase;
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData.
   std::vector<double> stack;

@@ -22,32 +22,25 @@ std::vector<std::string> Names(const std::vector<T>& items) {
   return names;
 }
 
-int Find(const mjcf::ActuatorSpec& a, const std::vector<std::string>& names,
-         const std::string& name, const char* what) {
-  int id = name.empty() ? -1 : FindName(names, name);
-  if (id < 0) ThrowAt(a.src, std::string("unknown ") + what + " '" + name + "'");
-  return id;
-}
-
 // actuator_trnid: the target, and the slider or reference site where used.
 void ResolveTarget(const mjcf::ActuatorSpec& a, const CompileState& s, const Model& m, int* trnid) {
   trnid[0] = trnid[1] = -1;
   if (a.target.empty()) ThrowAt(a.src, "missing transmission target");
   switch (a.trntype) {
     case kTrnJoint:
-    case kTrnJointInParent: trnid[0] = Find(a, Names(s.joints), a.target, "joint"); break;
-    case kTrnTendon: trnid[0] = Find(a, m.tendon_names, a.target, "tendon"); break;
+    case kTrnJointInParent: trnid[0] = FindNamed(a.src, Names(s.joints), a.target, "joint"); break;
+    case kTrnTendon: trnid[0] = FindNamed(a.src, m.tendon_names, a.target, "tendon"); break;
     case kTrnSliderCrank:
       if (a.slidersite.empty()) ThrowAt(a.src, "missing slidersite for a slider-crank");
-      trnid[1] = Find(a, Names(s.sites), a.slidersite, "site");
+      trnid[1] = FindNamed(a.src, Names(s.sites), a.slidersite, "site");
       if (a.cranklength <= 0) ThrowAt(a.src, "cranklength must be positive");
-      trnid[0] = Find(a, Names(s.sites), a.target, "site");
+      trnid[0] = FindNamed(a.src, Names(s.sites), a.target, "site");
       break;
     case kTrnSite:
-      trnid[0] = Find(a, Names(s.sites), a.target, "site");
-      if (!a.refsite.empty()) trnid[1] = Find(a, Names(s.sites), a.refsite, "site");
+      trnid[0] = FindNamed(a.src, Names(s.sites), a.target, "site");
+      if (!a.refsite.empty()) trnid[1] = FindNamed(a.src, Names(s.sites), a.refsite, "site");
       break;
-    case kTrnBody: trnid[0] = Find(a, m.body_names, a.target, "body"); break;
+    case kTrnBody: trnid[0] = FindNamed(a.src, m.body_names, a.target, "body"); break;
     default: ThrowAt(a.src, "missing transmission target");
   }
 }

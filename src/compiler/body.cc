@@ -102,6 +102,13 @@ int FindName(const std::vector<std::string>& names, const std::string& name) {
   return -1;
 }
 
+int FindNamed(const mjcf::Source& src, const std::vector<std::string>& names,
+              const std::string& name, const std::string& kind) {
+  int id = name.empty() ? -1 : FindName(names, name);
+  if (id < 0) ThrowAt(src, "unknown " + kind + " '" + name + "'");
+  return id;
+}
+
 // ---------------------------------------------------------------- flatten
 
 void FlattenTree(const mjcf::ModelSpec& spec, CompileState* state) {

@@ -144,6 +144,10 @@ void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m);
 
 // Name lookup while compiling (-1 if absent).
 int FindName(const std::vector<std::string>& names, const std::string& name);
+// The id of the object named `name` (of the given kind, for the message), or an error
+// at the element `src` that names it ("unknown joint 'x'").
+int FindNamed(const mjcf::Source& src, const std::vector<std::string>& names,
+              const std::string& name, const std::string& kind);
 
 }  // namespace simlab::compiler
 

@@ -63,16 +63,10 @@ namespace {
 // dof_M0: the diagonal of M at qpos0 by the composite rigid body algorithm, in MuJoCo's
 // summation order; simple dofs keep it as their whole row.
 void SetM0(Model* m, Data& d) {
-  std::vector<double> crb = d.cinert;
-  for (int i = m->nbody - 1; i > 0; i--) {
-    int parent = m->body_parentid[i];
-    if (parent > 0) {
-      for (int k = 0; k < 10; k++) crb[10 * parent + k] += crb[10 * i + k];
-    }
-  }
+  CompositeInertia(*m, d);
   for (int i = 0; i < m->nv; i++) {
     double buf[6];
-    math::MulInertVec(buf, &crb[10 * m->dof_bodyid[i]], &d.cdof[6 * i]);
+    math::MulInertVec(buf, &d.crb[10 * m->dof_bodyid[i]], &d.cdof[6 * i]);
     m->dof_M0[i] = m->dof_armature[i] + ActuatorArmature(*m, false, m->dof_jntid[i]) +
                    math::Dot(&d.cdof[6 * i], buf, 6);
   }

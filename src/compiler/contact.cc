@@ -20,14 +20,6 @@ namespace {
 
 int Signature(int body1, int body2) { return (body1 << 16) + body2; }
 
-// The id of a named object, or an error at the element that names it.
-int FindNamed(const mjcf::Source& src, const std::vector<std::string>& names,
-              const std::string& name, const char* kind) {
-  int id = FindName(names, name);
-  if (id < 0) ThrowAt(src, std::string("unknown ") + kind + " '" + name + "'");
-  return id;
-}
-
 // The order of elements sorted by signature; ties keep their written order.
 std::vector<int> SortedBySignature(const std::vector<int>& signatures) {
   std::vector<int> order(signatures.size());

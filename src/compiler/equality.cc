@@ -40,20 +40,13 @@ const std::vector<std::string>& ObjectNames(const mjcf::EqualitySpec& eq, const 
   return m.body_names;
 }
 
-int FindObject(const mjcf::EqualitySpec& eq, const std::vector<std::string>& names,
-               const std::string& name, const std::string& kind) {
-  int id = name.empty() ? -1 : FindName(names, name);
-  if (id < 0) ThrowAt(eq.src, "unknown " + kind + " '" + name + "'");
-  return id;
-}
-
 // eq_obj1id, eq_obj2id: a missing second body is the world; a missing second joint or
 // tendon is -1. Both objects must differ; joints must be hinges or slides.
 void ResolveObjects(const mjcf::EqualitySpec& eq, int i, Model* m) {
   std::string kind;
   const std::vector<std::string>& names = ObjectNames(eq, *m, &kind);
-  int id1 = FindObject(eq, names, eq.name1, kind);
-  int id2 = eq.name2.empty() ? -1 : FindObject(eq, names, eq.name2, kind);
+  int id1 = FindNamed(eq.src, names, eq.name1, kind);
+  int id2 = eq.name2.empty() ? -1 : FindNamed(eq.src, names, eq.name2, kind);
   if (id2 < 0 && eq.objtype == kObjBody) id2 = 0;
   if (id1 == id2) ThrowAt(eq.src, kind + " '" + eq.name1 + "' is used twice");
   if (eq.type == kEqJoint) {

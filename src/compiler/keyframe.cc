@@ -1,10 +1,10 @@
 // Keyframes: missing values take the model's defaults (qpos0, zeros, mocap body
 // poses); short values are padded as MuJoCo pads them, from the values as written.
-#include <cmath>
 #include <functional>
 #include <string>
 
 #include "compiler/compiler.h"
+#include "compiler/orientation.h"
 #include "math/math.h"
 #include "mjcf/compose.h"
 #include "mjcf/error.h"
@@ -36,18 +36,10 @@ void FillRow(const mjcf::KeySpec& key, const char* what, const std::vector<doubl
   }
 }
 
-// A quaternion as MuJoCo's compiler normalizes it: divided by its norm (unless that is
-// within 1e-14 of 1, or the squared norm is below 1e-14), then once more by the
-// engine's rule (multiplied by the inverse norm) when the model is made.
-void CompilerNormalizeQuat(double* q) {
-  constexpr double kEps = 1e-14;  // the compiler's mjEPS
-  double norm2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  if (norm2 >= kEps) {
-    double norm = std::sqrt(norm2);
-    if (std::abs(norm - 1) > kEps) {
-      for (int i = 0; i < 4; i++) q[i] /= norm;
-    }
-  }
+// A quaternion as MuJoCo normalizes a keyframe's: the compiler's rule (division by the
+// norm), then the engine's (multiplication by the inverse norm) when the model is made.
+void KeyNormalizeQuat(double* q) {
+  NormalizeVec(q, 4);
   math::NormalizeQuat(q);
 }
 
@@ -55,8 +47,8 @@ void CompilerNormalizeQuat(double* q) {
 void NormalizeQuats(const Model& m, double* qpos) {
   for (int j = 0; j < m.njnt; j++) {
     int adr = m.jnt_qposadr[j];
-    if (m.jnt_type[j] == kJointBall) CompilerNormalizeQuat(qpos + adr);
-    if (m.jnt_type[j] == kJointFree) CompilerNormalizeQuat(qpos + adr + 3);
+    if (m.jnt_type[j] == kJointBall) KeyNormalizeQuat(qpos + adr);
+    if (m.jnt_type[j] == kJointFree) KeyNormalizeQuat(qpos + adr + 3);
   }
 }
 

@@ -67,20 +67,17 @@ void ResolveWrap(const mjcf::WrapSpec& w, const PathNames& names, const CompileS
   double prm = w.prm;
   switch (w.type) {
     case kWrapJoint:
-      objid = FindName(names.joints, w.target);
-      if (objid < 0) ThrowAt(w.src, "unknown joint '" + w.target + "'");
+      objid = FindNamed(w.src, names.joints, w.target, "joint");
       break;
     case kWrapSite:
-      objid = FindName(names.sites, w.target);
-      if (objid < 0) ThrowAt(w.src, "unknown site '" + w.target + "'");
+      objid = FindNamed(w.src, names.sites, w.target, "site");
       break;
     case kWrapPulley:
       if (w.prm < 0) ThrowAt(w.src, "pulley has a negative divisor");
       break;
     default: {
       // A geom: its type decides sphere or cylinder wrapping; prm holds the side site.
-      objid = FindName(names.geoms, w.target);
-      if (objid < 0) ThrowAt(w.src, "unknown geom '" + w.target + "'");
+      objid = FindNamed(w.src, names.geoms, w.target, "geom");
       int geom_type = state.geoms[objid].spec->type;
       if (geom_type != kGeomSphere && geom_type != kGeomCylinder) {
         ThrowAt(w.src, "geom '" + w.target + "' is not a sphere or cylinder");
@@ -88,8 +85,7 @@ void ResolveWrap(const mjcf::WrapSpec& w, const PathNames& names, const CompileS
       type = geom_type == kGeomCylinder ? kWrapCylinder : kWrapSphere;
       prm = -1;
       if (!w.sidesite.empty()) {
-        prm = FindName(names.sites, w.sidesite);
-        if (prm < 0) ThrowAt(w.src, "unknown side site '" + w.sidesite + "'");
+        prm = FindNamed(w.src, names.sites, w.sidesite, "side site");
       }
     }
   }

@@ -343,48 +343,41 @@ void BodyBox(const Model& m, const Data& d, int b, const double* frame, double* 
   }
 }
 
-// One end of a body's interval on the sweep axis, in single precision as MuJoCo sorts.
-struct SweepEnd {
-  float value;
-  int body;
-  bool is_max;
-};
-
-// Sweep and prune (MuJoCo mj_SAP) over the given bodies' boxes (lo, hi per body, in
-// `boxes` at 6 per body): intervals on the first axis, sorted stably (ties keep
-// min-then-max in body order), each opening interval meets the open ones whose boxes
-// also overlap on the other two axes. Calls add(b1, b2) per candidate.
+// Sweep and prune (MuJoCo mj_SAP) over the collidable bodies' boxes (lo, hi per body, in
+// `boxes` at 6 per body): interval ends on the first axis in single precision, sorted
+// stably (ties keep min-then-max in body order); each opening interval meets the open
+// ones whose boxes also overlap on the other two axes. Calls add(b1, b2) per candidate.
 template <typename Add>
-void SweepAndPrune(const std::vector<int>& bodies, const double* boxes, Add add) {
-  std::vector<SweepEnd> ends;
-  ends.reserve(2 * bodies.size());
-  for (int b : bodies) {
-    ends.push_back({static_cast<float>(boxes[6 * b]), b, false});
-    ends.push_back({static_cast<float>(boxes[6 * b + 3]), b, true});
+void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
+  constexpr int kEnd = 0x10000;
+  s.ends.clear();
+  for (int b : s.bodies) {
+    s.ends.emplace_back(static_cast<float>(boxes[6 * b]), b);
+    s.ends.emplace_back(static_cast<float>(boxes[6 * b + 3]), b + kEnd);
   }
-  std::stable_sort(ends.begin(), ends.end(),
-                   [](const SweepEnd& a, const SweepEnd& b) { return a.value < b.value; });
-  std::vector<int> open;
-  for (const SweepEnd& e : ends) {
-    if (e.is_max) {
-      open.erase(std::find(open.begin(), open.end(), e.body));
+  std::stable_sort(s.ends.begin(), s.ends.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  s.open.clear();
+  for (const auto& [value, id] : s.ends) {
+    if (id >= kEnd) {
+      s.open.erase(std::find(s.open.begin(), s.open.end(), id - kEnd));
       continue;
     }
-    const double* x2 = boxes + 6 * e.body;
-    for (int b1 : open) {
+    const double* x2 = boxes + 6 * id;
+    for (int b1 : s.open) {
       const double* x1 = boxes + 6 * b1;
       bool apart = false;
       for (int k = 1; k < 3; k++) apart = apart || x1[k] > x2[k + 3] || x2[k] > x1[k + 3];
-      if (!apart) add(b1, e.body);
+      if (!apart) add(b1, id);
     }
-    open.push_back(e.body);
+    s.open.push_back(id);
   }
 }
 
 // Body pairs worth testing, as sorted unique signatures (b1 << 16) + b2, b1 < b2, in
-// d.broadphase_pairs (reused between steps): MuJoCo's mj_broadphase.
+// d.broadphase.pairs: MuJoCo's mj_broadphase.
 void BroadPhase(const Model& m, Data& d) {
-  std::vector<int>& pairs = d.broadphase_pairs;
+  std::vector<int>& pairs = d.broadphase.pairs;
   pairs.clear();
   auto add = [&](int b1, int b2) {
     if (BitmaskRejects(m.body_contype[b1], m.body_conaffinity[b1], m.body_contype[b2],
@@ -403,21 +396,21 @@ void BroadPhase(const Model& m, Data& d) {
       if (CanCollide(m, b2) && !BodyPairFiltered(m, b1, b2, true)) add(b1, b2);
     }
   }
-  // Other bodies meet when their boxes overlap in the principal frame.
-  bool moving_geoms = false;
-  for (int g = 0; g < m.ngeom; g++) moving_geoms = moving_geoms || m.geom_bodyid[g] != 0;
-  if (moving_geoms) {
+  // Other bodies meet when their boxes overlap in the principal frame of the moving
+  // geoms (there is none when every geom is the world's).
+  if (m.ngeom > m.body_geomnum[0]) {
     double frame[9];
     PrincipalFrame(m, d, frame);
     StackFrame scratch(d);
     double* boxes = scratch.Alloc(6 * static_cast<size_t>(m.nbody));
-    std::vector<int> bodies;
+    std::vector<int>& bodies = d.broadphase.bodies;
+    bodies.clear();
     for (int b = 1; b < m.nbody; b++) {
       if (!CanCollide(m, b)) continue;
       bodies.push_back(b);
       BodyBox(m, d, b, frame, &boxes[6 * b], &boxes[6 * b + 3]);
     }
-    SweepAndPrune(bodies, boxes, [&](int b1, int b2) {
+    SweepAndPrune(d.broadphase, boxes, [&](int b1, int b2) {
       if (!BodyPairFiltered(m, b1, b2, false)) add(b1, b2);
     });
   }
@@ -444,7 +437,7 @@ void Collision(const Model& m, Data& d) {
 
   BroadPhase(m, d);
   int pairadr = 0, exadr = 0;
-  for (int signature : d.broadphase_pairs) {
+  for (int signature : d.broadphase.pairs) {
     // Explicit pairs up to this signature come first.
     int start = pairadr;
     while (pairadr < m.npair && m.pair_signature[pairadr] <= signature) {

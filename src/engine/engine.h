@@ -35,6 +35,8 @@ double ActuatorDamping(const Model& m, bool tendon, int id, double poly[kNPoly])
 // The damping force is -v (b + p0 |v| + p1 v^2); its slope in v (passive.cc).
 double DampingCoefficient(double linear, const double poly[kNPoly], double v);
 double DampingSlope(double linear, const double poly[kNPoly], double v);
+// crb: the composite inertia of each body's subtree, in com-based coordinates (inertia.cc).
+void CompositeInertia(const Model& m, Data& d);
 // crb and the joint-space inertia M (CSR lower triangle) and qM (inertia.cc).
 void MakeInertia(const Model& m, Data& d);
 // qLD, qLDiagInv: the L^T D L factorization of M (inertia.cc).

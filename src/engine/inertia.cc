@@ -46,7 +46,7 @@ double ActuatorArmature(const Model& m, bool tendon, int id) {
   return armature;
 }
 
-void MakeInertia(const Model& m, Data& d) {
+void CompositeInertia(const Model& m, Data& d) {
   // crb = cinert, accumulated from children to parents.
   d.crb = d.cinert;
   for (int i = m.nbody - 1; i > 0; i--) {
@@ -55,6 +55,10 @@ void MakeInertia(const Model& m, Data& d) {
       for (int k = 0; k < 10; k++) d.crb[10 * parent + k] += d.crb[10 * i + k];
     }
   }
+}
+
+void MakeInertia(const Model& m, Data& d) {
+  CompositeInertia(m, d);
 
   // Row i: armature on the diagonal, then cdof_j . (crb cdof_i) over ancestors j. Dofs
   // of simple bodies have the constant diagonal dof_M0 and no couplings (MuJoCo's
