@@ -7,9 +7,9 @@
 // MuJoCo's geom poses and contacts per key. Here the narrow-phase function of the pair
 // runs directly on MuJoCo's poses (GJK stops at a tolerance, so a last-bit difference
 // in the poses can move a shallow contact by 1e-7), and its contacts must match
-// MuJoCo's in number, depth, position and normal. Further, properties that hold by construction: the GJK distance
-// of separated spheres and the depth of overlapping ones are exact, and swapping the
-// shapes flips the normal.
+// MuJoCo's in number, depth, position and normal. Further, properties that hold by
+// construction: the GJK distance of separated spheres and the depth of overlapping ones
+// are exact, and swapping the shapes flips the normal.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -95,6 +95,9 @@ PairReport CompareModel(const std::string& name) {
   Data d = MakeData(m);
   PairReport report;
   std::ostringstream bad;
+  if (golden.size() != static_cast<size_t>(m.nkey)) {
+    bad << " " << m.nkey << " keys, golden " << golden.size() << ";";
+  }
   for (int k = 0; k < m.nkey; k++) {
     ResetDataKeyframe(m, d, k);
     Kinematics(m, d);

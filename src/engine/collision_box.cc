@@ -940,10 +940,10 @@ int CollideCapsuleBox(const Model& m, const Data& d, Contact* con, int g1, int g
   if (best.type == -4) return 0;
 
   // A second point along the segment, where the segment lies along the box.
-  double second = -4;
-  if (best.type >= 0 && best.type / 3 != 1) second = SecondPointAtCorner(seg, size, best);
-  else if (best.type >= 0) second = SecondPointAtEdge(seg, size, best);
-  else second = SecondPointAtFace(seg, size, best);
+  double second;
+  if (best.type < 0) second = SecondPointAtFace(seg, size, best);
+  else if (best.type / 3 != 1) second = SecondPointAtCorner(seg, size, best);
+  else second = SecondPointAtEdge(seg, size, best);
 
   int n = CapsuleSphereAt(con, margin, seg, best.seg_pos, capsule, box);
   if (second > -3) {

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "engine/collision.h"
+#include "engine/collision_geom.h"
 #include "engine/collision_gjk.h"
 #include "math/math.h"
 
@@ -361,16 +362,11 @@ int AddPlaneMeshContact(Contact* con, const ConvexShape& s, const double* local,
                         const double* plane_pos, const double* normal, const double* first,
                         double rbound) {
   double p[3], dif[3];
-  math::MulMatVec3(p, s.mat, local);
-  for (int k = 0; k < 3; k++) p[k] += s.pos[k];
+  ToWorld(p, &s, local);
   math::Sub3(dif, p, first);
   if (math::Norm3(dif) < kPlaneMeshSpacing * rbound) return 0;
   math::Sub3(dif, p, plane_pos);
-  con->dist = Dot3(normal, dif);
-  math::Copy3(con->pos, p);
-  math::AddScaled3(con->pos, normal, -0.5 * con->dist);
-  math::Copy3(con->frame, normal);
-  math::Zero3(con->frame + 3);
+  PlaneContactAt(*con, normal, p, Dot3(normal, dif));
   return 1;
 }
 
@@ -437,25 +433,21 @@ int CollideConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
 
 int CollidePlaneConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
                        double margin) {
-  const double* plane_pos = &d.geom_xpos[3 * g1];
-  const double* plane_mat = &d.geom_xmat[9 * g1];
-  double normal[3] = {plane_mat[2], plane_mat[5], plane_mat[8]};
-  double dir[3] = {-plane_mat[2], -plane_mat[5], -plane_mat[8]};
+  GeomPose plane = PoseOf(m, d, g1);
+  double normal[3], dir[3];
+  ZAxisOf(plane, normal);
+  math::Scale3(dir, normal, -1);
 
   // the deepest point of the convex geom below the plane
   ConvexShape s = MakeShape(m, d, g2, 0);
   double deepest[3], dif[3];
   PlaneSideSupport(deepest, &s, dir);
-  math::Sub3(dif, deepest, plane_pos);
+  math::Sub3(dif, deepest, plane.pos);
   double dist = Dot3(normal, dif);
   if (dist > margin) return 0;
-  con[0].dist = dist;
-  math::Copy3(con[0].pos, deepest);
-  math::AddScaled3(con[0].pos, normal, -0.5 * dist);
-  math::Copy3(con[0].frame, normal);
-  math::Zero3(con[0].frame + 3);
+  PlaneContactAt(con[0], normal, deepest, dist);
   if (m.geom_dataid[g2] == -1) return 1;
-  return MorePlaneMeshContacts(m, s, con, plane_pos, normal, margin);
+  return MorePlaneMeshContacts(m, s, con, plane.pos, normal, margin);
 }
 
 }  // namespace simlab

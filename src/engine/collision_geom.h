@@ -31,6 +31,15 @@ inline void SetContactNormal(Contact& con, const double* normal) {
   for (int i = 0; i < 9; i++) con.frame[i] = i < 3 ? normal[i] : 0;
 }
 
+// A plane contact at `point` of the other geom, at signed height `dist` above the plane:
+// the contact sits halfway back towards the plane.
+inline void PlaneContactAt(Contact& con, const double* normal, const double* point,
+                           double dist) {
+  SetContactNormal(con, normal);
+  con.dist = dist;
+  for (int i = 0; i < 3; i++) con.pos[i] = point[i] + normal[i] * (-dist * 0.5);
+}
+
 }  // namespace simlab
 
 #endif  // SIMLAB_ENGINE_COLLISION_GEOM_H_

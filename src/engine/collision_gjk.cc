@@ -317,7 +317,7 @@ int TetrahedronWalk(CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
                           status->simplex[3]};
   int s[4] = {0, 1, 2, 3};
   int k = status->gjk_iterations;
-  for (; k < status->max_iterations; k++) {
+  for (; k < status->config.max_iterations; k++) {
     // distance of each face's plane (face i omits vertex i), outward normals
     double dist[4], normals[12];
     dist[0] = PlaneDistance(normals + 0, simplex + s[2], simplex + s[1], simplex + s[3]);
@@ -373,17 +373,18 @@ void GjkApart(CcdStatus* status, int k) {
 // GJK from the start points status->x1, x2: the distance (or 0 if overlapping) in
 // status->dist, witness points in x1, x2, and the final simplex.
 void Gjk(CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
-  bool want_dist = status->dist_cutoff > 0;
+  const CcdConfig& config = status->config;
+  bool want_dist = config.dist_cutoff > 0;
   bool try_walk = !want_dist;  // contact only: decide overlap by the tetrahedron walk
   CcdVertex* simplex = status->simplex;
   int n = 0, k = 0;
   double x[3], lambda[4] = {1, 0, 0, 0};
-  double cutoff2 = status->dist_cutoff * status->dist_cutoff;
-  double epsilon = BothDiscrete(s1, s2) ? 0 : 0.5 * status->tolerance * status->tolerance;
+  double cutoff2 = config.dist_cutoff * config.dist_cutoff;
+  double epsilon = BothDiscrete(s1, s2) ? 0 : 0.5 * config.tolerance * config.tolerance;
   double x_norm = 0;
   Sub3(x, status->x1, status->x2);
 
-  for (; k < status->max_iterations; k++) {
+  for (; k < config.max_iterations; k++) {
     // support vertex towards the origin
     x_norm = Dot3(x, x);
     if (x_norm < kMinVal2) break;
@@ -403,7 +404,7 @@ void Gjk(CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
     double xs = Dot3(x, sk);
     if (!want_dist) {
       if (xs > 0) return GjkApart(status, k);
-    } else if (status->dist_cutoff < kHuge) {
+    } else if (config.dist_cutoff < kHuge) {
       if (xs > 0 && (xs * xs / Dot3(x, x)) >= cutoff2) return GjkApart(status, k);
     }
 
@@ -839,10 +840,10 @@ Face* Epa(CcdStatus* status, Polytope* pt, ConvexShape* s1, ConvexShape* s2) {
   double upper = kHuge, upper2 = kHuge;
   Face *face = nullptr, *previous = nullptr;
   bool discrete = BothDiscrete(s1, s2);
-  double tolerance = discrete ? kMinVal : status->tolerance;
+  double tolerance = discrete ? kMinVal : status->config.tolerance;
 
   int k = 0;
-  for (; k < status->max_iterations; k++) {
+  for (; k < status->config.max_iterations; k++) {
     previous = face;
 
     // the candidate face nearest the origin: a lower bound on the depth
@@ -929,17 +930,17 @@ bool CollideCores(const CcdConfig& config, CcdStatus* status, ConvexShape* s1,
                   ConvexShape* s2, double* result) {
   ConvexShape core1 = *s1, core2 = *s2;
   double radius1 = ShrinkToCore(&core1), radius2 = ShrinkToCore(&core2);
-  status->dist_cutoff += radius1 + radius2;
+  status->config.dist_cutoff += radius1 + radius2;
   Gjk(status, &core1, &core2);
-  status->dist_cutoff = config.dist_cutoff;
+  status->config.dist_cutoff = config.dist_cutoff;
 
   // the meshes' warm starts carry over to the full shapes
   s1->vertindex = core1.vertindex, s1->meshindex = core1.meshindex;
   s2->vertindex = core2.vertindex, s2->meshindex = core2.meshindex;
 
-  if (status->dist > status->tolerance) {
+  if (status->dist > status->config.tolerance) {
     Inflate(status, radius1, radius2);
-    if (status->dist > status->dist_cutoff) status->dist = kHuge;
+    if (status->dist > status->config.dist_cutoff) status->dist = kHuge;
     *result = status->dist;
     return true;
   }
@@ -977,10 +978,7 @@ double Collide(const CcdConfig& config, CcdStatus* status, ConvexShape* s1, Conv
   status->gjk_iterations = 0;
   status->epa_iterations = 0;
   status->epa_status = kEpaNoContact;
-  status->tolerance = config.tolerance;
-  status->max_iterations = config.max_iterations;
-  status->max_contacts = config.max_contacts;
-  status->dist_cutoff = config.dist_cutoff;
+  status->config = config;
 
   // spheres and capsules: try their cores first
   bool rounded = s1->type == kGeomSphere || s2->type == kGeomSphere ||

@@ -64,10 +64,8 @@ struct CcdStatus {
   double x2[3 * kMaxContactPair];  // witness points on shape 2
   int nx = 0;                      // number of witness pairs
 
-  int max_iterations = 0;
-  double tolerance = 0;
-  int max_contacts = 0;
-  double dist_cutoff = 0;
+  // The query's limits (the sphere and capsule core pass widens dist_cutoff for a while).
+  CcdConfig config;
 
   int gjk_iterations = 0;
   int epa_iterations = 0;

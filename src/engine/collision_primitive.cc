@@ -107,14 +107,6 @@ void RimTowardsPlane(const GeomPose& cyl, const double* normal, const double* ax
   }
 }
 
-// Writes one plane contact at `point` (a point of the other geom at signed height
-// `dist` above the plane): the contact sits halfway back towards the plane.
-void PlaneContactAt(Contact& con, const double* normal, const double* point, double dist) {
-  SetContactNormal(con, normal);
-  con.dist = dist;
-  for (int i = 0; i < 3; i++) con.pos[i] = point[i] + normal[i] * (-dist * 0.5);
-}
-
 // The two extra points of a plane-cylinder contact: on the near disk, 120 degrees to
 // either side of the lowest rim point.
 int CylinderSidePoints(Contact* con, const double* normal, const GeomPose& cyl,
@@ -274,9 +266,7 @@ int CollidePlaneBox(const Model& m, const Data& d, Contact* con, int g1, int g2,
 
     double point[3];
     math::Add3(point, rel, box.pos);
-    SetContactNormal(con[n], normal);
-    con[n].dist = center_height + below;
-    for (int i = 0; i < 3; i++) con[n].pos[i] = point[i] + normal[i] * (-con[n].dist / 2);
+    PlaneContactAt(con[n], normal, point, center_height + below);
     if (++n >= 4) break;
   }
   return n;

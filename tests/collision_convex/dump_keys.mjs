@@ -8,20 +8,12 @@
 // MuJoCo comes from the oracle's node_modules: $SIMLAB_ORACLE, else ../shared/oracle
 // beside the repository.
 import fs from 'node:fs';
-import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+
+import { loadOracleModel } from '../../tools/oracle_model.mjs';
 
 const [modelFile, outFile] = process.argv.slice(2);
 if (!modelFile || !outFile) throw new Error('usage: node dump_keys.mjs MODEL.xml OUT.json');
-const here = path.dirname(fileURLToPath(import.meta.url));
-const oracle = process.env.SIMLAB_ORACLE || path.join(here, '..', '..', '..', 'shared', 'oracle');
-const entry = path.join(oracle, 'node_modules', 'mujoco', 'mujoco.js');
-const { default: loadMujoco } = await import(pathToFileURL(entry).href);
-const mj = await loadMujoco();
-
-// The models are self-contained (inline meshes): only the file itself is needed.
-mj.FS.writeFile('/model.xml', fs.readFileSync(modelFile));
-const model = mj.MjModel.mj_loadXML('/model.xml');
+const { mj, model } = await loadOracleModel(modelFile);
 const data = new mj.MjData(model);
 
 const keys = [];
