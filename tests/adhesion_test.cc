@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "load_error.h"
 #include "simlab/simlab.h"
@@ -32,8 +33,8 @@ std::vector<double> MomentRow(const Model& m, const Data& d, int i) {
   return std::vector<double>(first, first + m.nv);
 }
 
-// The plane model at rest with control `ctrl`, after Forward.
-Data PlaneAtRest(const Model& m, double ctrl) {
+// The model in its initial state with control `ctrl`, after Forward.
+Data AtRest(const Model& m, double ctrl) {
   Data d = MakeData(m);
   d.ctrl[0] = ctrl;
   Forward(m, d);
@@ -42,7 +43,7 @@ Data PlaneAtRest(const Model& m, double ctrl) {
 
 TEST(Adhesion, PullsStraightIntoThePlane) {
   Model m = LoadXml(Adhesion("base/plane.xml"));
-  Data d = PlaneAtRest(m, 0.5);
+  Data d = AtRest(m, 0.5);
   ASSERT_EQ(d.ncon, 4);
   std::vector<double> moment = MomentRow(m, d, 0);
   for (int v = 0; v < 6; v++) {
@@ -57,7 +58,7 @@ TEST(Adhesion, SameMomentForEllipticCones) {
   Model pyramidal = LoadXml(Adhesion("base/plane.xml"));
   Model elliptic = LoadXml(Adhesion("models/plane__elliptic.xml"));
   ASSERT_EQ(elliptic.opt.cone, kConeElliptic);
-  Data dp = PlaneAtRest(pyramidal, 1), de = PlaneAtRest(elliptic, 1);
+  Data dp = AtRest(pyramidal, 1), de = AtRest(elliptic, 1);
   ASSERT_EQ(dp.ncon, de.ncon);
   ASSERT_NE(dp.nefc, de.nefc);  // pyramids have two rows per friction direction
   std::vector<double> mp = MomentRow(pyramidal, dp, 0), me = MomentRow(elliptic, de, 0);
@@ -66,9 +67,7 @@ TEST(Adhesion, SameMomentForEllipticCones) {
 
 TEST(Adhesion, ContactsInTheGapPullToo) {
   Model m = LoadXml(Adhesion("base/ceiling.xml"));
-  Data d = MakeData(m);
-  d.ctrl[0] = 1;
-  Forward(m, d);
+  Data d = AtRest(m, 1);
   ASSERT_GT(d.ncon, 0);
   for (int c = 0; c < d.ncon; c++) EXPECT_EQ(d.contact[c].exclude, 1) << "contact " << c;
   EXPECT_EQ(d.nefc, 0);

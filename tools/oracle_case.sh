@@ -72,9 +72,11 @@ integrator_models() {
 }
 
 base_cases() {
-  local base model
+  local base model models
   for base in "$OUT"/base/*.xml; do
-    for model in $(integrator_models "$base"); do
+    # (assigned first: a failure inside a for list's $(...) would not stop the script)
+    models="$(integrator_models "$base")" || exit 1
+    for model in $models; do
       oracle_case "$model" "$1" - "$2" "$3"
     done
   done

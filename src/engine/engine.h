@@ -41,11 +41,9 @@ void CompositeInertia(const Model& m, Data& d);
 void MakeInertia(const Model& m, Data& d);
 // qLD, qLDiagInv: the L^T D L factorization of M (inertia.cc).
 void FactorInertia(const Model& m, Data& d);
-// actuator_length, actuator_moment (transmission.cc).
+// actuator_length, actuator_moment (transmission.cc). Body transmissions (adhesion)
+// read the contacts and their constraint rows: run after MakeConstraint.
 void Transmission(const Model& m, Data& d);
-// The same for body transmissions (adhesion), from the contacts and their constraint
-// rows: run after MakeConstraint (transmission.cc).
-void BodyTransmission(const Model& m, Data& d);
 
 // ------------------------------------------------------------ Jacobians (jacobian.cc)
 

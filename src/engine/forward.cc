@@ -1,9 +1,9 @@
 // The pipeline (MuJoCo engine_forward.c). Forward computes everything that follows
 // from the current state; Step checks the state, runs Forward, then integrates.
 //
-//   position:     Kinematics, ComPos, Tendon, MakeInertia, FactorInertia, Transmission,
-//                 then the constraint rows (MakeConstraint, ProjectConstraint), with the
-//                 adhesion actuators' body transmission between them (it uses the rows)
+//   position:     Kinematics, ComPos, Tendon, MakeInertia, FactorInertia, Collision,
+//                 MakeConstraint, Transmission (adhesion's body transmission uses the
+//                 contact rows), ProjectConstraint
 //   velocity:     tendon/actuator velocities, ComVel, Passive, constraint reference
 //                 accelerations, Rne (bias forces)
 //   acceleration: Actuation, SmoothAcceleration, Constraint
@@ -81,22 +81,27 @@ void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
   }
 }
 
-}  // namespace
-
-void FwdPositionSmooth(const Model& m, Data& d) {
+// Poses, tendons and the factored inertia: the position stage before collisions.
+void KinematicsAndInertia(const Model& m, Data& d) {
   Kinematics(m, d);
   ComPos(m, d);
   Tendon(m, d);
   MakeInertia(m, d);
   FactorInertia(m, d);
+}
+
+}  // namespace
+
+void FwdPositionSmooth(const Model& m, Data& d) {
+  KinematicsAndInertia(m, d);
   Transmission(m, d);
 }
 
 void FwdPosition(const Model& m, Data& d) {
-  FwdPositionSmooth(m, d);
+  KinematicsAndInertia(m, d);
   Collision(m, d);
   MakeConstraint(m, d);
-  BodyTransmission(m, d);
+  Transmission(m, d);
   ProjectConstraint(m, d);
 }
 

@@ -83,9 +83,10 @@ void GravityCompensation(const Model& m, Data& d) {
 }  // namespace
 
 bool GravcompActive(const Model& m) {
-  if (m.opt.disableflags & kDisableGravity) return false;
-  const auto& g = m.opt.gravity;
-  if (g[0] == 0 && g[1] == 0 && g[2] == 0) return false;
+  // A gravity whose norm underflows to zero counts as none, as in MuJoCo.
+  if ((m.opt.disableflags & kDisableGravity) || math::Norm3(m.opt.gravity.data()) == 0) {
+    return false;
+  }
   // As MuJoCo's ngravcomp, only positive gravcomp values switch the feature on.
   for (int b = 0; b < m.nbody; b++) {
     if (m.body_gravcomp[b] > 0) return true;

@@ -15,7 +15,7 @@
 //   slider-crank:        l = a.v - sqrt((a.v)^2 + r^2 - v.v) for the slider axis a, the
 //                        vector v from slider to crank site and the rod length r
 //   body (adhesion):     l = 0, moment = minus the mean normal Jacobian of the contacts
-//                        that involve the body (BodyTransmission, after the contact rows)
+//                        that involve the body (so Transmission runs after MakeConstraint)
 #include <algorithm>
 #include <cmath>
 
@@ -222,20 +222,19 @@ void MarkNormalRows(const Model& m, const Contact& con, double* weights) {
 }
 
 // exclude += the normal Jacobian of a contact in the gap (which has no rows): the
-// normal times the difference of the two bodies' point Jacobians at the contact.
+// difference of the two bodies' point Jacobians at the contact, projected on the normal.
 void AddGapNormalJacobian(const Model& m, Data& d, const Contact& con, int b1, int b2,
                           double* exclude) {
   int nv = m.nv;
   StackFrame frame(d);
   double* jac1 = frame.Alloc(3 * nv);
   double* jac2 = frame.Alloc(3 * nv);
+  double* normal = frame.Alloc(nv);
   Jacobian(m, d, jac1, nullptr, con.pos, b1);
   Jacobian(m, d, jac2, nullptr, con.pos, b2);
-  for (int v = 0; v < nv; v++) {
-    double normal = 0;
-    for (int k = 0; k < 3; k++) normal += con.frame[k] * (jac2[k * nv + v] - jac1[k * nv + v]);
-    exclude[v] += normal;
-  }
+  for (int k = 0; k < 3 * nv; k++) jac2[k] -= jac1[k];
+  MulJacTVec(m, jac2, con.frame, normal);
+  for (int v = 0; v < nv; v++) exclude[v] += normal[v];
 }
 
 // Body transmission of an adhesion actuator on `body`: contacts with rows contribute
@@ -273,16 +272,6 @@ void BodyMoment(const Model& m, Data& d, int body, double* moment) {
 
 }  // namespace
 
-void BodyTransmission(const Model& m, Data& d) {
-  for (int i = 0; i < m.nu; i++) {
-    if (m.actuator_trntype[i] != kTrnBody) continue;
-    double* moment = &d.actuator_moment[static_cast<size_t>(i) * m.nv];
-    std::fill(moment, moment + m.nv, 0.0);
-    d.actuator_length[i] = 0;
-    BodyMoment(m, d, m.actuator_trnid[2 * i], moment);
-  }
-}
-
 void Transmission(const Model& m, Data& d) {
   for (int i = 0; i < m.nu; i++) {
     double* moment = &d.actuator_moment[static_cast<size_t>(i) * m.nv];
@@ -311,9 +300,9 @@ void Transmission(const Model& m, Data& d) {
         SliderCrankTransmission(m, d, i, id, moment);
         break;
       default:
-        // Body transmission (adhesion): it needs this step's contacts and their rows,
-        // so FwdPosition fills it later (BodyTransmission); zero until then.
+        // Body transmission (adhesion), from this step's contacts and their rows.
         d.actuator_length[i] = 0;
+        BodyMoment(m, d, id, moment);
     }
   }
 }

@@ -26,20 +26,16 @@ TOL=1e-9
 
 cd "$ROOT"
 OUT=tests/conformance/fluid
-rm -rf "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
-mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
 CASES=tests/conformance/fluid_cases.txt
-: > "$CASES"
+case_folder "$CASES"
 
-# --- 1. our models in every integrator ----------------------------------------------------
+# --- 1. our models in every integrator (one control file per base) -----------------------
 for base in "$OUT"/base/*.xml; do
   name="$(basename "$base" .xml)"
   ctrl="$OUT/ctrl/$name.csv"
   node "$ORACLE/ctrlgen.mjs" "$base" --steps "$STEPS" --out "$ctrl"
-  grep -q '<option timestep=' "$base" || { echo "$base: no <option timestep=...>" >&2; exit 1; }
-  for integrator in Euler RK4 implicit implicitfast; do
-    model="$OUT/models/${name}__$integrator.xml"
-    sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
+  models="$(integrator_models "$base")"
+  for model in $models; do
     oracle_rollout "$model" "$STEPS" "$OUT/base/$name.state.json" "$ctrl" "$TOL" "$CASES"
   done
 done

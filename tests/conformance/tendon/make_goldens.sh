@@ -20,10 +20,8 @@ TOL=1e-9
 
 cd "$ROOT"
 OUT=tests/conformance/tendon
-rm -rf "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
-mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
 CASES=tests/conformance/tendon_cases.txt
-: > "$CASES"
+case_folder "$CASES"
 for base in "$OUT"/base/*.xml; do
   name="$(basename "$base" .xml)"
   state="$OUT/base/$name.state.json"
@@ -33,10 +31,8 @@ for base in "$OUT"/base/*.xml; do
     ctrl="$OUT/ctrl/$name.csv"
     node "$ORACLE/ctrlgen.mjs" "$base" --steps "$STEPS" --out "$ctrl"
   fi
-  for integrator in Euler RK4 implicit implicitfast; do
-    model="$OUT/models/${name}__$integrator.xml"
-    grep -q '<option timestep=' "$base" || { echo "$base: no <option timestep=...>" >&2; exit 1; }
-    sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
+  models="$(integrator_models "$base")"
+  for model in $models; do
     oracle_rollout "$model" "$STEPS" "$state" "$ctrl" "$TOL" "$CASES"
   done
 done
