@@ -32,6 +32,11 @@ CollideFn CollisionFunction(int type1, int type2);
 // The whole collision stage: d.ncon and d.contact (collision_driver.cc).
 void Collision(const Model& m, Data& d);
 
+// Completes a contact frame (MuJoCo mju_makeFrame): row 0, the normal, is normalized;
+// row 1 is the given tangent, else the world y axis (z when the normal is near y), made
+// orthogonal to it; row 2 = row 0 x row 1 (collision_driver.cc).
+void CompleteContactFrame(double frame[9]);
+
 // ------------------------------------------------------------ narrow phase: analytic
 
 int CollidePlaneSphere(const Model& m, const Data& d, Contact* con, int g1, int g2,

@@ -235,19 +235,10 @@ int QueryContacts(const Model& m, ConvexShape* s1, ConvexShape* s2, Contact* con
 
 // Two unit tangents of the contact normal (as the driver's frame completion).
 void TangentAxes(const double* normal, double* t1, double* t2) {
-  double n[3];
-  math::Copy3(n, normal);
-  math::Normalize3(n);
-  math::Zero3(t1);
-  if (n[1] < 0.5 && n[1] > -0.5) {
-    t1[1] = 1;
-  } else {
-    t1[2] = 1;
-  }
-  double along = Dot3(n, t1);
-  for (int k = 0; k < 3; k++) t1[k] -= along * n[k];
-  math::Normalize3(t1);
-  math::Cross3(t2, n, t1);
+  double frame[9] = {normal[0], normal[1], normal[2], 0, 0, 0, 0, 0, 0};
+  CompleteContactFrame(frame);
+  math::Copy3(t1, frame + 3);
+  math::Copy3(t2, frame + 6);
 }
 
 // Turns a shape's pose by rot about the world point origin.

@@ -101,25 +101,6 @@ ContactParams PairParams(const Model& m, int ipair) {
   return p;
 }
 
-// Completes the contact frame: the normal is row 0; row 1 is the given tangent, else
-// the world y axis (z when the normal is near y), made orthogonal; row 2 = row0 x row1.
-void CompleteFrame(double* frame) {
-  math::Normalize3(frame);
-  double* y = frame + 3;
-  if (math::Dot3(y, y) < 0.25) {
-    math::Zero3(y);
-    if (frame[1] < 0.5 && frame[1] > -0.5) {
-      y[1] = 1;
-    } else {
-      y[2] = 1;
-    }
-  }
-  double along = math::Dot3(frame, y);
-  for (int k = 0; k < 3; k++) y[k] -= along * frame[k];
-  math::Normalize3(y);
-  math::Cross3(frame + 6, frame, y);
-}
-
 // Parameters of one new contact (mj_setContact), with the global overrides.
 void SetContact(const Model& m, const ContactParams& p, double includemargin, int g1, int g2,
                 Contact* c) {
@@ -138,7 +119,7 @@ void SetContact(const Model& m, const ContactParams& p, double includemargin, in
     c->friction[i] = std::max(kMinMu, override ? m.opt.o_friction[i] : p.friction[i]);
   }
   c->exclude = c->dist >= includemargin;
-  CompleteFrame(c->frame);
+  CompleteContactFrame(c->frame);
   c->efc_address = -1;
   c->mu = 0;
   std::fill(c->H, c->H + 36, 0.0);
@@ -430,6 +411,23 @@ void CollideBodies(const Model& m, Data& d, int b1, int b2, int start, int end) 
 }
 
 }  // namespace
+
+void CompleteContactFrame(double* frame) {
+  math::Normalize3(frame);
+  double* y = frame + 3;
+  if (math::Dot3(y, y) < 0.25) {
+    math::Zero3(y);
+    if (frame[1] < 0.5 && frame[1] > -0.5) {
+      y[1] = 1;
+    } else {
+      y[2] = 1;
+    }
+  }
+  double along = math::Dot3(frame, y);
+  for (int k = 0; k < 3; k++) y[k] -= along * frame[k];
+  math::Normalize3(y);
+  math::Cross3(frame + 6, frame, y);
+}
 
 void Collision(const Model& m, Data& d) {
   d.ncon = 0;
