@@ -65,6 +65,14 @@ struct BroadPhaseScratch {
   std::vector<int> open;
 };
 
+// Arrays the constraint solvers take each step (engine/constraint.h, SolverFrame), kept
+// between steps so that they only grow and a steady simulation does not allocate.
+struct SolverScratch {
+  std::vector<std::vector<double>> reals;
+  std::vector<std::vector<int>> ints;
+  size_t nreal = 0, nint = 0;  // arrays in use
+};
+
 struct WarningStat {
   int lastinfo = 0;  // info from the last time the warning was raised
   int number = 0;    // how many times it was raised
@@ -186,6 +194,7 @@ struct Data {
   // Contacts of the last collision stage: the first ncon entries (capacity grows as needed).
   std::vector<Contact> contact;
   BroadPhaseScratch broadphase;
+  SolverScratch solver_scratch;
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData.
   std::vector<double> stack;

@@ -9,6 +9,7 @@
 //   4. noslip (opt.noslip_iterations > 0): friction forces re-solved without R.
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <vector>
 
 #include "engine/constraint.h"
@@ -73,59 +74,75 @@ void WarmStart(const Model& m, Data& d, const Islands& islands) {
 
 // ---------------------------------------------------------------- problems
 
-// The problem over the given dofs (ascending) and rows (ascending).
-ConstraintProblem MakeProblem(const Model& m, Data& d, const std::vector<int>& dofs,
-                              const std::vector<int>& rows) {
+// dst[i] = src[index[i]] for i < n.
+template <class T>
+void Gather(const std::vector<T>& src, const int* index, int n, T* dst) {
+  for (int i = 0; i < n; i++) dst[i] = src[index[i]];
+}
+
+// The problem over the given dofs (ascending) and rows (ascending), in arrays of `frame`.
+ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, const int* rows,
+                              int nefc, SolverFrame& frame) {
   ConstraintProblem p;
-  p.nv = static_cast<int>(dofs.size());
-  p.nefc = static_cast<int>(rows.size());
-  std::vector<int> local(m.nv, -1);
-  for (int i = 0; i < p.nv; i++) local[dofs[i]] = i;
+  p.nv = nv;
+  p.nefc = nefc;
+  int* local = frame.Ints(m.nv);
+  int nnz = 0;
+  for (int i = 0; i < nv; i++) {
+    local[dofs[i]] = i;
+    nnz += m.M_rownnz[dofs[i]];
+  }
 
   // Inertia rows of the dofs: their ancestors are in the same tree, so in the problem.
-  for (int i = 0; i < p.nv; i++) {
-    int v = dofs[i];
-    p.M_rowadr.push_back(static_cast<int>(p.M_colind.size()));
-    p.M_rownnz.push_back(m.M_rownnz[v]);
-    for (int k = m.M_rowadr[v]; k < m.M_rowadr[v] + m.M_rownnz[v]; k++) {
-      p.M_colind.push_back(local[m.M_colind[k]]);
-      p.M.push_back(d.M[k]);
-      p.qLD.push_back(d.qLD[k]);
-    }
-    p.qLDiagInv.push_back(d.qLDiagInv[v]);
-    p.qfrc_smooth.push_back(d.qfrc_smooth[v]);
-    p.qacc_smooth.push_back(d.qacc_smooth[v]);
-    p.qacc.push_back(d.qacc[v]);
+  for (int** a : {&p.M_rownnz, &p.M_rowadr}) *a = frame.Ints(nv);
+  p.M_colind = frame.Ints(nnz);
+  for (double** a : {&p.M, &p.qLD}) *a = frame.Reals(nnz);
+  for (double** a : {&p.qLDiagInv, &p.qfrc_smooth, &p.qacc_smooth, &p.qacc, &p.qfrc_constraint}) {
+    *a = frame.Reals(nv);
   }
-  p.qfrc_constraint.assign(p.nv, 0.0);
+  int adr = 0;
+  for (int i = 0; i < nv; i++) {
+    int v = dofs[i];
+    p.M_rowadr[i] = adr;
+    p.M_rownnz[i] = m.M_rownnz[v];
+    for (int k = m.M_rowadr[v]; k < m.M_rowadr[v] + m.M_rownnz[v]; k++, adr++) {
+      p.M_colind[adr] = local[m.M_colind[k]];
+      p.M[adr] = d.M[k];
+      p.qLD[adr] = d.qLD[k];
+    }
+  }
+  Gather(d.qLDiagInv, dofs, nv, p.qLDiagInv);
+  Gather(d.qfrc_smooth, dofs, nv, p.qfrc_smooth);
+  Gather(d.qacc_smooth, dofs, nv, p.qacc_smooth);
+  Gather(d.qacc, dofs, nv, p.qacc);
 
   // Rows, with the Jacobian restricted to the problem's dofs.
-  p.J.assign(static_cast<size_t>(p.nefc) * p.nv, 0.0);
-  for (int r = 0; r < p.nefc; r++) {
+  p.J = frame.Reals(static_cast<size_t>(nefc) * nv);
+  for (double** a : {&p.D, &p.R, &p.frictionloss, &p.aref, &p.force}) *a = frame.Reals(nefc);
+  for (int** a : {&p.type, &p.id, &p.state}) *a = frame.Ints(nefc);
+  for (int r = 0; r < nefc; r++) {
     int e = rows[r];
     if (d.efc_type[e] == kCnstrEquality) p.ne++;
     if (d.efc_type[e] == kCnstrFrictionDof || d.efc_type[e] == kCnstrFrictionTendon) p.nf++;
-    for (int i = 0; i < p.nv; i++) {
-      p.J[static_cast<size_t>(r) * p.nv + i] = d.efc_J[static_cast<size_t>(e) * m.nv + dofs[i]];
+    for (int i = 0; i < nv; i++) {
+      p.J[static_cast<size_t>(r) * nv + i] = d.efc_J[static_cast<size_t>(e) * m.nv + dofs[i]];
     }
-    p.D.push_back(d.efc_D[e]);
-    p.R.push_back(d.efc_R[e]);
-    p.frictionloss.push_back(d.efc_frictionloss[e]);
-    p.aref.push_back(d.efc_aref[e]);
-    p.type.push_back(d.efc_type[e]);
-    p.id.push_back(d.efc_id[e]);
   }
+  Gather(d.efc_D, rows, nefc, p.D);
+  Gather(d.efc_R, rows, nefc, p.R);
+  Gather(d.efc_frictionloss, rows, nefc, p.frictionloss);
+  Gather(d.efc_aref, rows, nefc, p.aref);
+  Gather(d.efc_type, rows, nefc, p.type);
+  Gather(d.efc_id, rows, nefc, p.id);
   p.contact = d.contact.data();
-  p.force.assign(p.nefc, 0.0);
-  p.state.assign(p.nefc, 0);
   return p;
 }
 
 // Copies a solved problem's results back into Data. Row states only with `states`: MuJoCo
 // copies an island's forces back but not its states, so after island solves efc_state
 // keeps the warm start's evaluation (at qacc_smooth or the warm start).
-void Scatter(const ConstraintProblem& p, const std::vector<int>& dofs,
-             const std::vector<int>& rows, bool states, Data& d) {
+void Scatter(const ConstraintProblem& p, const int* dofs, const int* rows, bool states,
+             Data& d) {
   for (int i = 0; i < p.nv; i++) {
     d.qacc[dofs[i]] = p.qacc[i];
     d.qfrc_constraint[dofs[i]] = p.qfrc_constraint[i];
@@ -137,34 +154,43 @@ void Scatter(const ConstraintProblem& p, const std::vector<int>& dofs,
   d.solver_niter += p.niter;
 }
 
+// The indices i < n with label[i] == wanted, into `out`; returns their count.
+int Select(const int* label, int n, int wanted, int* out) {
+  int count = 0;
+  for (int i = 0; i < n; i++) {
+    if (label[i] == wanted) out[count++] = i;
+  }
+  return count;
+}
+
 // Newton or CG on each island; the scale is the island's total dof inertia.
 void SolveIslands(const Model& m, Data& d, const Islands& islands) {
   bool newton = m.opt.solver == kSolverNewton;
   for (int island = 0; island < islands.nisland; island++) {
-    std::vector<int> dofs, rows;
-    for (int v = 0; v < m.nv; v++) {
-      if (islands.dof_island[v] == island) dofs.push_back(v);
-    }
-    for (int r = 0; r < d.nefc; r++) {
-      if (islands.efc_island[r] == island) rows.push_back(r);
-    }
-    ConstraintProblem p = MakeProblem(m, d, dofs, rows);
+    SolverFrame frame(d.solver_scratch);
+    int* dofs = frame.Ints(m.nv);
+    int* rows = frame.Ints(d.nefc);
+    int nv = Select(islands.dof_island.data(), m.nv, island, dofs);
+    int nefc = Select(islands.efc_island.data(), d.nefc, island, rows);
+    ConstraintProblem p = MakeProblem(m, d, dofs, nv, rows, nefc, frame);
     double inertia = 0;
     for (int i = 0; i < p.nv; i++) inertia += p.M[p.M_rowadr[i] + p.M_rownnz[i] - 1];
     p.scale = 1 / inertia;
-    SolvePrimal(m, p, newton);
+    SolvePrimal(m, p, newton, d.solver_scratch);
     Scatter(p, dofs, rows, false, d);
   }
 }
 
 // Newton or CG on the whole model at once (islands disabled).
 void SolveWhole(const Model& m, Data& d) {
-  std::vector<int> dofs(m.nv), rows(d.nefc);
+  SolverFrame frame(d.solver_scratch);
+  int* dofs = frame.Ints(m.nv);
+  int* rows = frame.Ints(d.nefc);
   for (int v = 0; v < m.nv; v++) dofs[v] = v;
   for (int r = 0; r < d.nefc; r++) rows[r] = r;
-  ConstraintProblem p = MakeProblem(m, d, dofs, rows);
+  ConstraintProblem p = MakeProblem(m, d, dofs, m.nv, rows, d.nefc, frame);
   p.scale = 1 / (m.stat.meaninertia * std::max(1, m.nv));
-  SolvePrimal(m, p, m.opt.solver == kSolverNewton);
+  SolvePrimal(m, p, m.opt.solver == kSolverNewton, d.solver_scratch);
   Scatter(p, dofs, rows, true, d);
 }
 
@@ -178,7 +204,8 @@ void ProjectConstraint(const Model& m, Data& d) {
   if (nefc == 0 || !dual) return;
 
   // B = J L^-1 D^-1/2 row by row (M = L^T D L), so that J M^-1 J^T = B B^T.
-  std::vector<double> b(static_cast<size_t>(nefc) * nv);
+  SolverFrame frame(d.solver_scratch);
+  double* b = frame.Reals(static_cast<size_t>(nefc) * nv);
   for (int r = 0; r < nefc; r++) {
     double* x = &b[static_cast<size_t>(r) * nv];
     std::copy_n(&d.efc_J[static_cast<size_t>(r) * nv], nv, x);

@@ -43,30 +43,63 @@ struct RowSet {
 // The rows of the whole model.
 RowSet DataRows(Data& d);
 
-// One constraint problem: the whole model, or one island of it. Dof arrays have nv
-// entries, row arrays nefc; the first ne rows are equalities, the next nf friction.
+// Arrays for a solver taken from Data::solver_scratch, returned when the frame ends (as
+// StackFrame, for doubles and ints; each array keeps its capacity for the next step).
+//
+//   SolverFrame frame(d.solver_scratch);
+//   double* x = frame.Reals(n);   // n zeros, valid until `frame` goes out of scope
+class SolverFrame {
+ public:
+  explicit SolverFrame(SolverScratch& s) : s_(s), nreal_(s.nreal), nint_(s.nint) {}
+  ~SolverFrame() {
+    s_.nreal = nreal_;
+    s_.nint = nint_;
+  }
+  SolverFrame(const SolverFrame&) = delete;
+  SolverFrame& operator=(const SolverFrame&) = delete;
+
+  double* Reals(size_t n) { return Take(s_.reals, s_.nreal, n); }
+  int* Ints(size_t n) { return Take(s_.ints, s_.nint, n); }
+
+ private:
+  // The next array of the pool, zeroed; a new one when the pool is used up (moving the
+  // pool's vectors keeps their buffers, so arrays handed out before stay valid).
+  template <class T>
+  static T* Take(std::vector<std::vector<T>>& pool, size_t& used, size_t n) {
+    if (used == pool.size()) pool.emplace_back();
+    std::vector<T>& array = pool[used++];
+    array.assign(n, T{});
+    return array.data();
+  }
+
+  SolverScratch& s_;
+  size_t nreal_, nint_;
+};
+
+// One constraint problem: the whole model, or one island of it, in arrays of a
+// SolverFrame. Dof arrays have nv entries, row arrays nefc; the first ne rows are
+// equalities, the next nf friction.
 struct ConstraintProblem {
   int nv = 0, ne = 0, nf = 0, nefc = 0;
 
   // dofs: inertia in the tree-sparse lower-triangle layout of Model::M_*, with its
   // L^T D L factor, and the smooth force/acceleration; qacc is the solver's iterate.
-  std::vector<int> M_rownnz, M_rowadr, M_colind;
-  std::vector<double> M, qLD, qLDiagInv;
-  std::vector<double> qfrc_smooth, qacc_smooth, qacc, qfrc_constraint;
+  int *M_rownnz = nullptr, *M_rowadr = nullptr, *M_colind = nullptr;
+  double *M = nullptr, *qLD = nullptr, *qLDiagInv = nullptr;
+  double *qfrc_smooth = nullptr, *qacc_smooth = nullptr, *qacc = nullptr;
+  double* qfrc_constraint = nullptr;
 
   // rows: dense Jacobian (nefc x nv) and the per-row data the cost needs; id is efc_id
   // (the contact of a contact row), contact is Data's contact list.
-  std::vector<double> J, D, R, frictionloss, aref, force;
-  std::vector<int> type, id, state;
+  double *J = nullptr, *D = nullptr, *R = nullptr, *frictionloss = nullptr;
+  double *aref = nullptr, *force = nullptr;
+  int *type = nullptr, *id = nullptr, *state = nullptr;
   Contact* contact = nullptr;
 
   double scale = 1;  // 1 / (total inertia): makes tolerances unit-free
   int niter = 0;     // iterations the solver used
 
-  RowSet Rows() {
-    return RowSet{ne, nf, nefc, D.data(), R.data(), frictionloss.data(), type.data(),
-                  id.data(), contact};
-  }
+  RowSet Rows() const { return RowSet{ne, nf, nefc, D, R, frictionloss, type, id, contact}; }
 };
 
 // Row states and forces for jar = J a - aref, and optionally the constraint cost s(jar)
@@ -74,11 +107,6 @@ struct ConstraintProblem {
 // get state kStateCone; with cone_hessian their cost's Hessian goes to contact[id].H.
 void ConstraintUpdate(const RowSet& rows, const double* jar, int* state, double* force,
                       double* cost, bool cone_hessian);
-
-// Rows of one elliptic contact starting at row i (its dim), or 1 for any other row.
-inline int RowBlock(const RowSet& rows, int i) {
-  return rows.type[i] == kCnstrContactElliptic ? rows.contact[rows.id[i]].dim : 1;
-}
 
 // ---------------------------------------------------------------- small dense algebra
 // (MuJoCo's mju_cholFactor, mju_cholSolve, mju_cholUpdate and the QCQP helpers.)
@@ -101,8 +129,9 @@ bool QCQP2(double* res, const double* A, const double* b, const double* d, doubl
 bool QCQP3(double* res, const double* A, const double* b, const double* d, double r);
 bool QCQP(double* res, const double* A, const double* b, const double* d, double r, int n);
 
-// The primal solvers: Newton (flg_newton) or nonlinear conjugate gradient.
-void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton);
+// The primal solvers: Newton (flg_newton) or nonlinear conjugate gradient; their work
+// arrays come from `scratch`.
+void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton, SolverScratch& scratch);
 // Projected Gauss-Seidel on the dual problem (whole model; uses efc_AR).
 void SolvePGS(const Model& m, Data& d);
 // MuJoCo's noslip post-pass (opt.noslip_iterations > 0): Gauss-Seidel on the friction
@@ -112,16 +141,14 @@ void SolveNoSlip(const Model& m, Data& d);
 // ---------------------------------------------------------------- dual solver helpers
 // Shared by PGS (solver_pgs.cc) and noslip (noslip.cc); `no_r` drops R from AR's diagonal.
 
-// Row states of a dual solution (MuJoCo dualState).
-void DualState(Data& d);
 // The dual solvers' loop: sweep(iter) returns its cost decrease; sweeps run until that
 // decrease (scaled by the total inertia) is below `tolerance` or `maxiter` ran, updating
 // the row states after each; then joint space: qfrc_constraint = J^T f and
 // qacc = qacc_smooth + M^-1 qfrc_constraint.
 void RunDualSweeps(const Model& m, Data& d, int maxiter, double tolerance,
                    const std::function<double(int)>& sweep);
-// 1 / diag(AR) (or of AR - R, floored at kMinVal) for every row.
-std::vector<double> InverseDiagAR(const Data& d, bool no_r);
+// inv = 1 / diag(AR) (or of AR - R, floored at kMinVal) for every row.
+void InverseDiagAR(const Data& d, bool no_r, double* inv);
 // The dim x dim diagonal block of AR at row `start` (minus R, floored at 1e-10).
 void BlockAR(const Data& d, int start, int dim, bool no_r, double* block);
 // res = b + AR f over rows start..start+dim-1 (minus R f).

@@ -10,7 +10,6 @@
 // space as PGS. Sweeps stop when the cost decrease, scaled by the total inertia, falls
 // below opt.noslip_tolerance.
 #include <algorithm>
-#include <vector>
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
@@ -22,7 +21,7 @@ namespace {
 
 // Friction-loss rows: unconstrained minimum along each row, clamped to its interval.
 // (The sweeps subtract their cost changes from one running sum, in MuJoCo's order.)
-void SweepFrictionLoss(Data& d, const std::vector<double>& ar_inv, double* improvement) {
+void SweepFrictionLoss(Data& d, const double* ar_inv, double* improvement) {
   for (int r = d.ne; r < d.ne + d.nf; r++) {
     double res;
     Residual(d, r, 1, true, &res);
@@ -97,8 +96,10 @@ void SweepContacts(Data& d, double* improvement) {
 }  // namespace
 
 void SolveNoSlip(const Model& m, Data& d) {
-  std::vector<double> ar_inv = InverseDiagAR(d, true);
-  auto sweep = [&d, &ar_inv](int iter) {
+  SolverFrame frame(d.solver_scratch);
+  double* ar_inv = frame.Reals(d.nefc);
+  InverseDiagAR(d, true, ar_inv);
+  auto sweep = [&d, ar_inv](int iter) {
     // The first sweep also counts removing R from the cost.
     double improvement = 0;
     if (iter == 0) {

@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <vector>
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
@@ -25,6 +24,8 @@ namespace simlab {
 using math::Dot;
 
 // ---------------------------------------------------------------- dual helpers
+
+namespace {
 
 // The zone of an elliptic contact's forces f (rows i..): inside the cone (no force
 // pattern of a separating contact: satisfied), under its mirror (quadratic), between.
@@ -39,8 +40,8 @@ int EllipticDualState(const Contact& con, const double* f) {
   return kStateCone;
 }
 
-// Row states of a dual solution: friction signs are the primal's opposite; one-sided
-// rows with a positive force are active; elliptic contacts by their zone.
+// Row states of a dual solution (MuJoCo dualState): friction signs are the primal's
+// opposite; one-sided rows with a positive force are active; elliptic contacts by zone.
 void DualState(Data& d) {
   for (int r = 0; r < d.nefc; r++) {
     int& state = d.efc_state[r];
@@ -61,14 +62,14 @@ void DualState(Data& d) {
   }
 }
 
-std::vector<double> InverseDiagAR(const Data& d, bool no_r) {
+}  // namespace
+
+void InverseDiagAR(const Data& d, bool no_r, double* inv) {
   int nefc = d.nefc;
-  std::vector<double> inv(nefc);
   for (int r = 0; r < nefc; r++) {
     double diag = d.efc_AR[static_cast<size_t>(r) * (nefc + 1)];
     inv[r] = 1 / (no_r ? std::max(kMinVal, diag - d.efc_R[r]) : diag);
   }
-  return inv;
 }
 
 void BlockAR(const Data& d, int start, int dim, bool no_r, double* block) {
@@ -188,7 +189,7 @@ void UpdateElliptic(Data& d, int i, int dim, const double* A, const double* res,
 }
 
 // One Gauss-Seidel sweep over the rows and elliptic blocks; returns the cost decrease.
-double Sweep(Data& d, const std::vector<double>& ar_inv) {
+double Sweep(Data& d, const double* ar_inv) {
   double improvement = 0;
   for (int i = 0; i < d.nefc; i++) {
     bool elliptic = d.efc_type[i] == kCnstrContactElliptic;
@@ -232,9 +233,11 @@ void RunDualSweeps(const Model& m, Data& d, int maxiter, double tolerance,
 }
 
 void SolvePGS(const Model& m, Data& d) {
-  std::vector<double> ar_inv = InverseDiagAR(d, false);
+  SolverFrame frame(d.solver_scratch);
+  double* ar_inv = frame.Reals(d.nefc);
+  InverseDiagAR(d, false, ar_inv);
   RunDualSweeps(m, d, m.opt.iterations, m.opt.tolerance,
-                [&d, &ar_inv](int) { return Sweep(d, ar_inv); });
+                [&d, ar_inv](int) { return Sweep(d, ar_inv); });
 }
 
 }  // namespace simlab

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <vector>
+#include <initializer_list>
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
@@ -54,6 +54,9 @@ void ConeHessian(Contact* con, const double* U, double N, double T, double Dm) {
   }
 }
 
+// The cone zone's mass Dm = D_0 / (mu^2 (1 + mu^2)) of a contact with first-row D_0.
+double ConeMass(double D0, double mu) { return D0 / (mu * mu * (1 + mu * mu)); }
+
 // One elliptic contact's rows i..i+dim-1: zone, forces, state; returns its cost. With the
 // friction-scaled U (normal N = mu jar_0, tangents friction_j jar_j, norm T): the top zone
 // (N >= mu T) is free, the bottom zone (mu N + T <= 0) quadratic in every row, and in
@@ -81,7 +84,7 @@ double UpdateEllipticContact(const RowSet& rows, int i, const double* jar, int* 
     zone = kStateQuadratic;
   } else {
     // Middle zone: the force is -d cost / d jar.
-    double Dm = rows.D[i] / (mu * mu * (1 + mu * mu));
+    double Dm = ConeMass(rows.D[i], mu);
     double gap = N - mu * T;
     cost = 0.5 * Dm * gap * gap;
     force[i] = -Dm * gap * mu;
@@ -207,13 +210,12 @@ namespace {
 
 // res = M vec with the problem's block of M.
 void MulSym(const ConstraintProblem& p, const double* vec, double* res) {
-  MulSymLayout(p.nv, p.M_rownnz.data(), p.M_rowadr.data(), p.M_colind.data(), p.M.data(), vec,
-               res);
+  MulSymLayout(p.nv, p.M_rownnz, p.M_rowadr, p.M_colind, p.M, vec, res);
 }
 
 // res (rows) = J vec.
 void MulJ(const ConstraintProblem& p, const double* vec, double* res) {
-  math::MulMatVec(res, p.J.data(), vec, p.nefc, p.nv);
+  math::MulMatVec(res, p.J, vec, p.nefc, p.nv);
 }
 
 // ---------------------------------------------------------------- solver state
@@ -222,34 +224,48 @@ struct Primal {
   ConstraintProblem& p;
   bool newton;
   bool elliptic;  // the model's contacts use elliptic cones
-  // quad: 3 numbers per row; an elliptic contact's first row uses 9 (its rows have room).
-  std::vector<double> jaref, jv, ma, mv, grad, mgrad, search, quad;
-  std::vector<double> hessian;       // Newton: Cholesky factor of M + J^T D_active J (nv x nv)
-  std::vector<double> hessian_cone;  // the same plus the cone-zone contacts' Hessians
+  // Rows: J a - aref, J search, the old states; quad: 3 numbers per row (an elliptic
+  // contact's first row uses 9: its rows have room).
+  double *jaref, *jv, *quad;
+  int* oldstate;
+  // Dofs: M a, M search, the gradient, its preconditioned form and the direction; CG
+  // keeps the previous gradients and the change of the preconditioned one.
+  double *ma, *mv, *grad, *mgrad, *search, *gradold, *mgradold, *mgrad_change;
+  // Newton: Cholesky factor of M + J^T D_active J (nv x nv), the same plus the cone-zone
+  // contacts' Hessians, and room for update vectors (one per row of a contact).
+  double *hessian = nullptr, *hessian_cone = nullptr, *updates = nullptr;
   double cost = 0;
   double quad_gauss[3] = {0, 0, 0};
   int ncone = 0;  // rows in the cone state
   int ls_iter = 0;
 
-  Primal(ConstraintProblem& problem, bool is_newton, bool is_elliptic)
-      : p(problem), newton(is_newton), elliptic(is_elliptic), jaref(p.nefc), jv(p.nefc),
-        ma(p.nv), mv(p.nv), grad(p.nv), mgrad(p.nv), search(p.nv),
-        quad(3 * static_cast<size_t>(p.nefc)) {
-    if (newton) hessian.assign(static_cast<size_t>(p.nv) * p.nv, 0.0);
-    if (newton && elliptic) hessian_cone.assign(hessian.size(), 0.0);
+  Primal(ConstraintProblem& problem, bool is_newton, bool is_elliptic, SolverFrame& frame)
+      : p(problem), newton(is_newton), elliptic(is_elliptic) {
+    int nv = p.nv, nefc = p.nefc;
+    jaref = frame.Reals(nefc);
+    jv = frame.Reals(nefc);
+    quad = frame.Reals(3 * static_cast<size_t>(nefc));
+    oldstate = frame.Ints(nefc);
+    for (double** dof_array :
+         {&ma, &mv, &grad, &mgrad, &search, &gradold, &mgradold, &mgrad_change}) {
+      *dof_array = frame.Reals(nv);
+    }
+    size_t square = static_cast<size_t>(nv) * nv;
+    if (newton) hessian = frame.Reals(square);
+    if (newton && elliptic) hessian_cone = frame.Reals(square);
+    if (newton) updates = frame.Reals(6 * static_cast<size_t>(nv));
   }
 
   // The factor Newton steps with: with the cones' curvature when any contact is in the cone.
-  const double* NewtonFactor() const { return ncone ? hessian_cone.data() : hessian.data(); }
+  const double* NewtonFactor() const { return ncone ? hessian_cone : hessian; }
 };
 
 // Row states, forces, qfrc_constraint and the total cost at the current iterate.
 void UpdateConstraint(Primal& s) {
   ConstraintProblem& p = s.p;
-  ConstraintUpdate(p.Rows(), s.jaref.data(), p.state.data(), p.force.data(), &s.cost,
-                   s.newton && s.elliptic);
-  s.ncone = static_cast<int>(std::count(p.state.begin(), p.state.end(), kStateCone));
-  math::MulMatTVec(p.qfrc_constraint.data(), p.J.data(), p.force.data(), p.nefc, p.nv);
+  ConstraintUpdate(p.Rows(), s.jaref, p.state, p.force, &s.cost, s.newton && s.elliptic);
+  s.ncone = static_cast<int>(std::count(p.state, p.state + p.nefc, kStateCone));
+  math::MulMatTVec(p.qfrc_constraint, p.J, p.force, p.nefc, p.nv);
   double gauss = 0;
   for (int v = 0; v < p.nv; v++) {
     gauss += 0.5 * (s.ma[v] - p.qfrc_smooth[v]) * (p.qacc[v] - p.qacc_smooth[v]);
@@ -263,11 +279,10 @@ void UpdateGradient(Primal& s) {
   ConstraintProblem& p = s.p;
   for (int v = 0; v < p.nv; v++) s.grad[v] = s.ma[v] - p.qfrc_smooth[v] - p.qfrc_constraint[v];
   if (s.newton) {
-    CholSolve(s.NewtonFactor(), p.nv, s.grad.data(), s.mgrad.data());
+    CholSolve(s.NewtonFactor(), p.nv, s.grad, s.mgrad);
   } else {
-    s.mgrad = s.grad;
-    SolveSparseLayout(p.nv, p.M_rownnz.data(), p.M_rowadr.data(), p.M_colind.data(),
-                      p.qLD.data(), p.qLDiagInv.data(), s.mgrad.data());
+    std::copy(s.grad, s.grad + p.nv, s.mgrad);
+    SolveSparseLayout(p.nv, p.M_rownnz, p.M_rowadr, p.M_colind, p.qLD, p.qLDiagInv, s.mgrad);
   }
 }
 
@@ -276,8 +291,8 @@ void UpdateGradient(Primal& s) {
 void AddConeHessians(Primal& s) {
   ConstraintProblem& p = s.p;
   int nv = p.nv;
-  s.hessian_cone = s.hessian;
-  std::vector<double> ltj(6 * static_cast<size_t>(nv));
+  std::copy(s.hessian, s.hessian + static_cast<size_t>(nv) * nv, s.hessian_cone);
+  double* ltj = s.updates;
   for (int i = 0; i < p.nefc; i++) {
     if (p.state[i] != kStateCone) continue;
     const Contact& con = p.contact[p.id[i]];
@@ -287,14 +302,14 @@ void AddConeHessians(Primal& s) {
     CholFactor(local, dim, kMinVal);
 
     // Column c of C^T J: sum over rows r >= c of C(r, c) J_r.
-    std::fill(ltj.begin(), ltj.end(), 0.0);
+    std::fill(ltj, ltj + 6 * static_cast<size_t>(nv), 0.0);
     for (int r = 0; r < dim; r++) {
       const double* row = &p.J[static_cast<size_t>(i + r) * nv];
       for (int c = 0; c <= r; c++) {
         for (int v = 0; v < nv; v++) ltj[c * nv + v] += local[r * dim + c] * row[v];
       }
     }
-    for (int r = 0; r < dim; r++) CholUpdate(s.hessian_cone.data(), &ltj[r * nv], nv, true);
+    for (int r = 0; r < dim; r++) CholUpdate(s.hessian_cone, &ltj[r * nv], nv, true);
     i += dim - 1;
   }
 }
@@ -304,8 +319,8 @@ void AddConeHessians(Primal& s) {
 void FactorHessian(Primal& s) {
   ConstraintProblem& p = s.p;
   int nv = p.nv;
-  std::vector<double>& h = s.hessian;
-  std::fill(h.begin(), h.end(), 0.0);
+  double* h = s.hessian;
+  std::fill(h, h + static_cast<size_t>(nv) * nv, 0.0);
   for (int r = 0; r < p.nefc; r++) {
     if (p.state[r] != kStateQuadratic) continue;
     const double* row = &p.J[static_cast<size_t>(r) * nv];
@@ -320,22 +335,22 @@ void FactorHessian(Primal& s) {
       h[i * nv + p.M_colind[k]] += p.M[k];
     }
   }
-  CholFactor(h.data(), nv, kMinVal);
+  CholFactor(h, nv, kMinVal);
   if (s.ncone) AddConeHessians(s);
 }
 
 // Rank-one updates of the factor for rows that entered or left the quadratic state (a
 // full refactorization if an update loses rank); then the cone factor anew.
-void UpdateHessian(Primal& s, const std::vector<int>& oldstate) {
+void UpdateHessian(Primal& s) {
   ConstraintProblem& p = s.p;
-  std::vector<double> vec(p.nv);
+  double* vec = s.updates;
   for (int r = 0; r < p.nefc; r++) {
-    bool was = oldstate[r] == kStateQuadratic, is = p.state[r] == kStateQuadratic;
+    bool was = s.oldstate[r] == kStateQuadratic, is = p.state[r] == kStateQuadratic;
     if (was == is) continue;
     const double* row = &p.J[static_cast<size_t>(r) * p.nv];
     double sqrt_d = std::sqrt(p.D[r]);
     for (int v = 0; v < p.nv; v++) vec[v] = row[v] * sqrt_d;
-    if (CholUpdate(s.hessian.data(), vec.data(), p.nv, is) < p.nv) {
+    if (CholUpdate(s.hessian, vec, p.nv, is) < p.nv) {
       FactorHessian(s);
       return;
     }
@@ -378,16 +393,15 @@ void PrepareCone(const Primal& s, int i, double* q) {
   q[5] = uu;
   q[6] = uv;
   q[7] = vv;
-  q[8] = p.D[i] / ((mu * mu) * (1 + (mu * mu)));
+  q[8] = ConeMass(p.D[i], mu);
 }
 
 // Per-row quadratics along the search line: cost_r(alpha) = q0 + q1 alpha + q2 alpha^2.
 void PrepareLine(Primal& s) {
   ConstraintProblem& p = s.p;
   int nv = p.nv;
-  s.quad_gauss[1] = Dot(s.search.data(), s.ma.data(), nv) -
-                    Dot(p.qfrc_smooth.data(), s.search.data(), nv);
-  s.quad_gauss[2] = 0.5 * Dot(s.search.data(), s.mv.data(), nv);
+  s.quad_gauss[1] = Dot(s.search, s.ma, nv) - Dot(p.qfrc_smooth, s.search, nv);
+  s.quad_gauss[2] = 0.5 * Dot(s.search, s.mv, nv);
   for (int r = 0; r < p.nefc; r++) {
     double* q = &s.quad[3 * r];
     double dj = p.D[r] * s.jaref[r];
@@ -403,6 +417,13 @@ void PrepareLine(Primal& s) {
   }
 }
 
+// total += q (the coefficients of a quadratic along the line).
+void AddQuadratic(double total[3], const double* q) {
+  total[0] += q[0];
+  total[1] += q[1];
+  total[2] += q[2];
+}
+
 // The cost of an elliptic contact along the line (rows i.., prepared in q[0..8]): in its
 // zone at alpha, added to the totals (quadratic zones) or to cost/deriv (the cone).
 void EvalCone(const Primal& s, int i, double alpha, double total[3], double* cost,
@@ -411,21 +432,16 @@ void EvalCone(const Primal& s, int i, double alpha, double total[3], double* cos
   double mu = s.p.contact[s.p.id[i]].mu;
   double N = q[3] + alpha * q[4];
   double Tsqr = q[5] + alpha * (2 * q[6] + alpha * q[7]);
-  auto add_quadratic = [total, q]() {
-    total[0] += q[0];
-    total[1] += q[1];
-    total[2] += q[2];
-  };
 
   // No tangential part: bottom zone when pulling, else free.
   if (Tsqr <= 0) {
-    if (N < 0) add_quadratic();
+    if (N < 0) AddQuadratic(total, q);
     return;
   }
   double T = std::sqrt(Tsqr);
   if (N >= mu * T) return;  // top zone
   if (mu * N + T <= 0) {    // bottom zone
-    add_quadratic();
+    AddQuadratic(total, q);
     return;
   }
 
@@ -446,32 +462,27 @@ void EvalLine(Primal& s, LinePoint* point) {
   double alpha = point->alpha;
   double total[3] = {s.quad_gauss[0], s.quad_gauss[1], s.quad_gauss[2]};
   double cost = 0, deriv[2] = {0, 0};  // the cone-zone contacts' share
-  auto add = [&total](const double* q) {
-    total[0] += q[0];
-    total[1] += q[1];
-    total[2] += q[2];
-  };
   for (int r = 0; r < p.nefc; r++) {
     double x = s.jaref[r] + alpha * s.jv[r];
     if (r < p.ne) {
-      add(&s.quad[3 * r]);
+      AddQuadratic(total, &s.quad[3 * r]);
     } else if (r < p.ne + p.nf) {
       // Friction: quadratic inside the bound, linear outside.
       double f = p.frictionloss[r], bound = p.R[r] * f;
       if (-bound < x && x < bound) {
-        add(&s.quad[3 * r]);
+        AddQuadratic(total, &s.quad[3 * r]);
       } else if (x <= -bound) {
         double q[3] = {f * (-0.5 * bound - s.jaref[r]), -f * s.jv[r], 0};
-        add(q);
+        AddQuadratic(total, q);
       } else {
         double q[3] = {f * (-0.5 * bound + s.jaref[r]), f * s.jv[r], 0};
-        add(q);
+        AddQuadratic(total, q);
       }
     } else if (p.type[r] == kCnstrContactElliptic) {
       EvalCone(s, r, alpha, total, &cost, deriv);
       r += p.contact[p.id[r]].dim - 1;
     } else if (x < 0) {
-      add(&s.quad[3 * r]);
+      AddQuadratic(total, &s.quad[3 * r]);
     }
   }
   point->cost = cost + (alpha * alpha * total[2] + alpha * total[1] + total[0]);
@@ -507,12 +518,12 @@ double LineSearch(const Model& m, Primal& s) {
   ConstraintProblem& p = s.p;
   int ls_iterations = m.opt.ls_iterations;
   s.ls_iter = 0;
-  double snorm = std::sqrt(Dot(s.search.data(), s.search.data(), p.nv));
+  double snorm = std::sqrt(Dot(s.search, s.search, p.nv));
   if (snorm < kMinVal) return 0;
   double gtol = m.opt.tolerance * m.opt.ls_tolerance * snorm / p.scale;
 
-  MulSym(p, s.search.data(), s.mv.data());
-  MulJ(p, s.search.data(), s.jv.data());
+  MulSym(p, s.search, s.mv);
+  MulJ(p, s.search, s.jv);
   PrepareLine(s);
 
   // A first Newton step from alpha = 0.
@@ -568,15 +579,14 @@ double LineSearch(const Model& m, Primal& s) {
 
 // ---------------------------------------------------------------- the iteration
 
-void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton) {
+void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton, SolverScratch& scratch) {
   int nv = p.nv, nefc = p.nefc;
-  Primal s(p, newton, m.opt.cone == kConeElliptic);
-  std::vector<double> gradold, mgradold;
-  std::vector<int> oldstate(nefc);
+  SolverFrame frame(scratch);
+  Primal s(p, newton, m.opt.cone == kConeElliptic, frame);
 
   // Start: M a, J a - aref, states, gradient, direction = -preconditioned gradient.
-  MulSym(p, p.qacc.data(), s.ma.data());
-  MulJ(p, p.qacc.data(), s.jaref.data());
+  MulSym(p, p.qacc, s.ma);
+  MulJ(p, p.qacc, s.jaref);
   for (int r = 0; r < nefc; r++) s.jaref[r] -= p.aref[r];
   UpdateConstraint(s);
   if (newton) FactorHessian(s);
@@ -595,18 +605,18 @@ void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton) {
     }
     for (int r = 0; r < nefc; r++) s.jaref[r] += alpha * s.jv[r];
     if (!newton) {
-      gradold = s.grad;
-      mgradold = s.mgrad;
+      std::copy(s.grad, s.grad + nv, s.gradold);
+      std::copy(s.mgrad, s.mgrad + nv, s.mgradold);
     }
-    oldstate = p.state;
+    std::copy(p.state, p.state + nefc, s.oldstate);
     double oldcost = s.cost;
     UpdateConstraint(s);
-    if (newton) UpdateHessian(s, oldstate);
+    if (newton) UpdateHessian(s);
     UpdateGradient(s);
 
     // Stop when neither the cost nor the gradient (scaled) is worth another step.
     double improvement = p.scale * (oldcost - s.cost);
-    double gradient = p.scale * std::sqrt(Dot(s.grad.data(), s.grad.data(), nv));
+    double gradient = p.scale * std::sqrt(Dot(s.grad, s.grad, nv));
     iter++;
     if (improvement < m.opt.tolerance || gradient < m.opt.tolerance) break;
 
@@ -614,10 +624,9 @@ void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton) {
     if (newton) {
       for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v];
     } else {
-      std::vector<double> mgrad_change(nv);
-      for (int v = 0; v < nv; v++) mgrad_change[v] = s.mgrad[v] - mgradold[v];
-      double beta = Dot(s.grad.data(), mgrad_change.data(), nv) /
-                    std::max(kMinVal, Dot(gradold.data(), mgradold.data(), nv));
+      for (int v = 0; v < nv; v++) s.mgrad_change[v] = s.mgrad[v] - s.mgradold[v];
+      double beta = Dot(s.grad, s.mgrad_change, nv) /
+                    std::max(kMinVal, Dot(s.gradold, s.mgradold, nv));
       beta = std::max(0.0, beta);
       for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v] + beta * s.search[v];
     }
