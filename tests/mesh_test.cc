@@ -109,7 +109,7 @@ TEST(Mesh, BadInputNamesTheLine) {
   ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\" maxhullvert=\"3\"/>", "",
                   {"bad.xml:4:", "maxhullvert must be larger than 3"});
   ExpectMeshError("<mesh name=\"flat\" vertex=\"0 0 0 1 0 0 0 1 0 1 1 0\"/>", "<geom type=\"mesh\" mesh=\"flat\"/>",
-                  {"bad.xml:4:", "<mesh name=\"flat\">"});
+                  {"bad.xml:4:", "<mesh name=\"flat\">", "qhull error"});
   ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/>",
                   "<geom type=\"mesh\" mesh=\"other\"/>", {"bad.xml:7:", "unknown mesh 'other'"});
   ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/>", "<geom type=\"mesh\"/>",
@@ -119,6 +119,8 @@ TEST(Mesh, BadInputNamesTheLine) {
                   {"bad.xml:7:", "inertia should be specified in the mesh asset"});
   ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/><mesh name=\"t\" file=\"box.stl\"/>",
                   "", {"bad.xml:4:", "repeated mesh name 't'"});
+  ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/>",
+                  "<geom type=\"sdf\" mesh=\"t\"/>", {"bad.xml:7:", "sdf geoms are not supported yet"});
 }
 
 }  // namespace

@@ -435,9 +435,6 @@ void LayoutGeom(const GeomState& g, int gid, const BodyState& b, Model* m) {
   m->geom_type[gid] = s.type;
   m->geom_contype[gid] = s.contype;
   m->geom_conaffinity[gid] = s.conaffinity;
-  if (s.condim != 1 && s.condim != 3 && s.condim != 4 && s.condim != 6) {
-    ThrowAt(s.src, "condim must be 1, 3, 4 or 6");
-  }
   m->geom_condim[gid] = s.condim;
   m->geom_bodyid[gid] = g.body;
   m->geom_group[gid] = s.group;

@@ -154,7 +154,8 @@ double FaceCentroid(const MeshState& mesh, double facecen[3]) {
   return total;
 }
 
-// The triangles the mass properties integrate: the hull's for convex inertia.
+// The triangles the mass properties integrate: the hull's for convex inertia, else the
+// mesh's own.
 void MassFaces(const MeshState& mesh, const int** faces, int* nface) {
   bool convex = mesh.spec->inertia == kMeshConvex;
   *faces = convex ? HullFaces(mesh) : mesh.face.data();
@@ -165,10 +166,10 @@ void MassFaces(const MeshState& mesh, const int** faces, int* nface) {
 // pyramid's volume counted positive for legacy inertia); or the surface area and its
 // centre for shell inertia.
 double VolumeAndCom(const MeshState& mesh, const double facecen[3], double com[3]) {
-  int shell = mesh.spec->inertia == kMeshShell;
-  const int* faces = mesh.face.data();
-  int nface = static_cast<int>(mesh.face.size() / 3);
-  if (!shell) MassFaces(mesh, &faces, &nface);
+  bool shell = mesh.spec->inertia == kMeshShell;
+  const int* faces;
+  int nface;
+  MassFaces(mesh, &faces, &nface);
   double total = 0;
   math::Zero3(com);
   for (int i = 0; i < nface; i++) {
@@ -234,8 +235,8 @@ void MassProperties(MeshState* mesh, double com[3], double quat[4]) {
   double facecen[3];
   if (FaceCentroid(*mesh, facecen) < kMinVal) ThrowAt(s.src, "mesh surface area is too small: " + name);
   double amount = VolumeAndCom(*mesh, facecen, com);
-  if (s.inertia == kMeshShell && amount < kMinVal) ThrowAt(s.src, "mesh surface area is too small: " + name);
-  if (s.inertia != kMeshShell && amount < kMinVal) {
+  if (amount < kMinVal) {
+    if (s.inertia == kMeshShell) ThrowAt(s.src, "mesh surface area is too small: " + name);
     ThrowAt(s.src, amount < 0 ? "mesh volume is negative (misoriented triangles): " + name
                               : "mesh volume is too small: " + name + "; try inertia=\"shell\"");
   }
@@ -321,7 +322,6 @@ std::vector<int> GeomMeshIds(const std::vector<std::string>& names, const Compil
     } else if (s.type == kGeomMesh) {
       ThrowAt(s.src, "a mesh geom needs a mesh");
     }
-    if (s.type == kGeomSdf) ThrowAt(s.src, "sdf geoms are not supported yet");
     ids.push_back(id);
   }
   return ids;

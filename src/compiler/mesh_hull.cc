@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #if __has_include(<libqhull_r/qhull_ra.h>)
 #define SIMLAB_HAVE_QHULL 1
@@ -77,23 +78,17 @@ void FaceList(qhT* qh, int numvert, int numface, int* graph) {
   }
 }
 
-// Neighbour lists hold mesh ids until here; make them hull-local.
-void LocalEdgeIds(int* graph) {
+// Neighbour lists hold mesh ids (below nvert) until here; make them hull-local.
+void LocalEdgeIds(int nvert, int* graph) {
   int numvert = graph[0], numface = graph[1];
   const int* globalid = graph + 2 + numvert;
   int* edges = graph + 2 + 2 * numvert;
+  std::vector<int> local(nvert, -1);
+  for (int i = 0; i < numvert; i++) local[globalid[i]] = i;
   for (int i = 0; i < numvert + 3 * numface; i++) {
-    if (edges[i] < 0) continue;
-    for (int local = 0; local < numvert; local++) {
-      if (globalid[local] == edges[i]) {
-        edges[i] = local;
-        break;
-      }
-    }
+    if (edges[i] >= 0) edges[i] = local[edges[i]];
   }
 }
-
-}  // namespace
 
 // The first line qhull wrote to `log` (its error code and message).
 std::string FirstLine(FILE* log) {
@@ -105,6 +100,8 @@ std::string FirstLine(FILE* log) {
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
   return text;
 }
+
+}  // namespace
 
 HullResult ConvexHullGraph(const std::vector<double>& vert, int maxhullvert,
                            std::vector<int>* graph, std::string* message) {
@@ -142,7 +139,7 @@ HullResult ConvexHullGraph(const std::vector<double>& vert, int maxhullvert,
     (*graph)[1] = numface;
     if (VertexLists(qh, nvert, numvert, numface, graph->data())) {
       FaceList(qh, numvert, numface, graph->data());
-      LocalEdgeIds(graph->data());
+      LocalEdgeIds(nvert, graph->data());
     } else {
       graph->clear();
       result = HullResult::kBadGraph;

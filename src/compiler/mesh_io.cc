@@ -1,6 +1,8 @@
 // Reading mesh files: STL (binary as MuJoCo, ASCII in addition) and OBJ.
 #include "compiler/mesh_io.h"
 
+#include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -8,8 +10,8 @@
 #include <fstream>
 #include <limits>
 #include <map>
-#include <utility>
 #include <sstream>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -58,26 +60,15 @@ bool RightHanded(const mjcf::MeshSpec& mesh) {
   return mesh.scale[0] * mesh.scale[1] * mesh.scale[2] > 0;
 }
 
-// Strict total order on vertices that treats 0 and -0 alike (exact equality otherwise).
-struct VertexLess {
-  bool operator()(const std::array<float, 3>& a, const std::array<float, 3>& b) const {
-    for (int k = 0; k < 3; k++) {
-      if (a[k] < b[k]) return true;
-      if (b[k] < a[k]) return false;
-    }
-    return false;
-  }
-};
-
 // ---------------------------------------------------------------- STL
 
 // Appends one triangle given as 9 floats; a left-handed scale swaps its 2nd and 3rd corner.
 void AddStlTriangle(const mjcf::MeshSpec& mesh, const float* corners, bool righthand,
                     MeshData* out) {
   int base = static_cast<int>(out->vert.size() / 3);
+  const double limit = 1 << 30;
   for (int j = 0; j < 3; j++) {
     const float* v = corners + 3 * j;
-    const double limit = std::pow(2.0, 30);
     if (std::fabs(v[0]) > limit || std::fabs(v[1]) > limit || std::fabs(v[2]) > limit) {
       ThrowAt(mesh.src, "vertex in STL file '" + mesh.path + "' exceeds maximum bounds");
     }
@@ -132,6 +123,22 @@ bool ReadAsciiStl(const mjcf::MeshSpec& mesh, const std::string& bytes, MeshData
   bool righthand = RightHanded(mesh);
   for (size_t i = 0; i < corners.size(); i += 9) AddStlTriangle(mesh, &corners[i], righthand, out);
   return true;
+}
+
+// Merges exactly equal vertices (first occurrence kept, in order; 0 and -0 are equal, as
+// the array's operator< compares them) and renumbers the faces.
+void MergeRepeatedVertices(MeshData* data) {
+  std::map<std::array<float, 3>, int> index;
+  std::vector<float> unique;
+  std::vector<int> renumber;
+  for (size_t i = 0; i < data->vert.size(); i += 3) {
+    std::array<float, 3> key = {data->vert[i], data->vert[i + 1], data->vert[i + 2]};
+    auto [it, added] = index.emplace(key, static_cast<int>(unique.size() / 3));
+    if (added) unique.insert(unique.end(), key.begin(), key.end());
+    renumber.push_back(it->second);
+  }
+  for (int& f : data->face) f = renumber[f];
+  data->vert = std::move(unique);
 }
 
 MeshData ReadStl(const mjcf::MeshSpec& mesh, const std::string& bytes) {
@@ -335,30 +342,12 @@ MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
 
 // ---------------------------------------------------------------- entry points
 
-void MergeRepeatedVertices(MeshData* data) {
-  std::map<std::array<float, 3>, int, VertexLess> index;
-  std::vector<float> unique;
-  std::vector<int> renumber;
-  for (size_t i = 0; i < data->vert.size(); i += 3) {
-    std::array<float, 3> key = {data->vert[i], data->vert[i + 1], data->vert[i + 2]};
-    auto [it, added] = index.emplace(key, static_cast<int>(unique.size() / 3));
-    if (added) unique.insert(unique.end(), key.begin(), key.end());
-    renumber.push_back(it->second);
-  }
-  for (int& f : data->face) f = renumber[f];
-  data->vert = std::move(unique);
-}
-
 MeshData ReadMeshFile(const mjcf::MeshSpec& mesh) {
   std::string kind = FileKind(mesh);
   std::string bytes = ReadBytes(mesh);
-  MeshData data = kind == "stl" ? ReadStl(mesh, bytes)
-                  : kind == "obj" ? ReadObj(mesh, bytes)
-                                  : ReadMsh(mesh, bytes);
-  for (float c : data.vert) {
-    if (!std::isfinite(c)) ThrowAt(mesh.src, "mesh file '" + mesh.path + "' has a vertex that is not finite");
-  }
-  return data;
+  return kind == "stl"   ? ReadStl(mesh, bytes)
+         : kind == "obj" ? ReadObj(mesh, bytes)
+                         : ReadMsh(mesh, bytes);
 }
 
 }  // namespace simlab::compiler

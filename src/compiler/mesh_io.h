@@ -21,9 +21,6 @@ struct MeshData {
 // scale product reverses the triangles' winding, as in MuJoCo. Throws at mesh.src.
 MeshData ReadMeshFile(const mjcf::MeshSpec& mesh);
 
-// Merges exactly equal vertices (first occurrence kept, in order) and renumbers faces.
-void MergeRepeatedVertices(MeshData* data);
-
 }  // namespace simlab::compiler
 
 #endif  // SIMLAB_COMPILER_MESH_IO_H_
