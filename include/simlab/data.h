@@ -139,6 +139,7 @@ struct WarningStat {
   X(double, qfrc_smooth, nv, 1)                 \
   X(double, qacc_smooth, nv, 1)                 \
   X(double, qfrc_constraint, nv, 1)             \
+  X(int, dof_island, nv, 1)     /* island of each dof, -1 outside every island */ \
   X(double, qfrc_inverse, nv, 1)                \
   X(double, cacc, nbody, 6)                     \
   X(double, cfrc_int, nbody, 6)                 \
@@ -166,7 +167,8 @@ struct WarningStat {
   X(double, efc_aref, 1)        /* reference acceleration */                          \
   X(double, efc_b, 1)           /* J qacc_smooth - aref */                            \
   X(double, efc_force, 1)       /* constraint force in constraint space */            \
-  X(int, efc_state, 1)          /* mjtConstraintState of the solution */
+  X(int, efc_state, 1)          /* mjtConstraintState of the solution */             \
+  X(int, efc_island, 1)         /* island of the row */
 
 struct Data {
   double time = 0;

@@ -31,7 +31,7 @@ double UpdateAll(Data& d, const double* jar) {
 
 // Initial qacc (and efc_force for PGS): the warm start when it is better than qacc_smooth.
 // (qfrc_constraint is left to the solvers, which compute it from their solution.)
-void WarmStart(const Model& m, Data& d, const Islands& islands) {
+void WarmStart(const Model& m, Data& d) {
   int nv = m.nv, nefc = d.nefc;
   if (m.opt.disableflags & kDisableWarmstart) {
     d.qacc = d.qacc_smooth;
@@ -65,9 +65,9 @@ void WarmStart(const Model& m, Data& d, const Islands& islands) {
   }
 
   // Dofs outside every island move freely.
-  if (islands.nisland > 0) {
+  if (d.nisland > 0) {
     for (int v = 0; v < nv; v++) {
-      if (islands.dof_island[v] < 0) d.qacc[v] = d.qacc_smooth[v];
+      if (d.dof_island[v] < 0) d.qacc[v] = d.qacc_smooth[v];
     }
   }
 }
@@ -164,14 +164,14 @@ int Select(const int* label, int n, int wanted, int* out) {
 }
 
 // Newton or CG on each island; the scale is the island's total dof inertia.
-void SolveIslands(const Model& m, Data& d, const Islands& islands) {
+void SolveIslands(const Model& m, Data& d) {
   bool newton = m.opt.solver == kSolverNewton;
-  for (int island = 0; island < islands.nisland; island++) {
+  for (int island = 0; island < d.nisland; island++) {
     SolverFrame frame(d.solver_scratch);
     int* dofs = frame.Ints(m.nv);
     int* rows = frame.Ints(d.nefc);
-    int nv = Select(islands.dof_island.data(), m.nv, island, dofs);
-    int nefc = Select(islands.efc_island.data(), d.nefc, island, rows);
+    int nv = Select(d.dof_island.data(), m.nv, island, dofs);
+    int nefc = Select(d.efc_island.data(), d.nefc, island, rows);
     ConstraintProblem p = MakeProblem(m, d, dofs, nv, rows, nefc, frame);
     double inertia = 0;
     for (int i = 0; i < p.nv; i++) inertia += p.M[p.M_rowadr[i] + p.M_rownnz[i] - 1];
@@ -242,14 +242,12 @@ void Constraint(const Model& m, Data& d) {
   math::MulMatVec(d.efc_b.data(), d.efc_J.data(), d.qacc_smooth.data(), d.nefc, m.nv);
   for (int r = 0; r < d.nefc; r++) d.efc_b[r] -= d.efc_aref[r];
 
-  Islands islands;
-  if (!(m.opt.disableflags & kDisableIsland)) FindIslands(m, d, &islands);
-  d.nisland = islands.nisland;
-  WarmStart(m, d, islands);
+  if (!(m.opt.disableflags & kDisableIsland)) FindIslands(m, d);
+  WarmStart(m, d);
 
   bool primal = m.opt.solver == kSolverNewton || m.opt.solver == kSolverCG;
-  if (primal && islands.nisland > 0 && m.opt.noslip_iterations == 0) {
-    SolveIslands(m, d, islands);
+  if (primal && d.nisland > 0 && m.opt.noslip_iterations == 0) {
+    SolveIslands(m, d);
   } else if (primal) {
     SolveWhole(m, d);
   } else {
