@@ -4,7 +4,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 
 #include "mjcf/error.h"
@@ -14,15 +13,8 @@ namespace simlab::mjcf {
 
 namespace {
 
-// The whitespace-separated tokens of an attribute.
-std::vector<std::string> AttributeTokens(const XmlElement& e, const char* name) {
-  std::istringstream in(e.node().attribute(name).value());
-  std::vector<std::string> tokens;
-  for (std::string t; in >> t;) tokens.push_back(t);
-  return tokens;
-}
-
-// Parses a whole token; false if it is not a number of that kind.
+// Parses a whole token as a float (rounded once, as MuJoCo reads mesh data); false if
+// it is not one.
 bool ParseFloat(const std::string& t, float* out) {
   errno = 0;
   char* end = nullptr;
@@ -30,20 +22,12 @@ bool ParseFloat(const std::string& t, float* out) {
   return end != t.c_str() && *end == '\0' && !(errno == ERANGE && std::isinf(*out));
 }
 
-bool ParseInt(const std::string& t, int* out) {
-  errno = 0;
-  char* end = nullptr;
-  long v = std::strtol(t.c_str(), &end, 10);
-  *out = static_cast<int>(v);
-  return end != t.c_str() && *end == '\0' && errno != ERANGE && v == *out;
-}
-
 // A list of any length. Vertex coordinates are rounded to single precision once per
 // token, as MuJoCo's float reader does.
 template <typename T>
 std::vector<T> ReadList(const XmlElement& e, const char* name, bool (*parse)(const std::string&, T*)) {
   std::vector<T> out;
-  for (const std::string& t : AttributeTokens(e, name)) {
+  for (const std::string& t : e.Tokens(name)) {
     T value;
     if (!parse(t, &value)) e.Fail("bad number '" + t + "' in '" + name + "'");
     out.push_back(value);

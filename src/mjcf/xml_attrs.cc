@@ -83,6 +83,8 @@ bool ParseDouble(const std::string& token, double* out) {
   return true;
 }
 
+}  // namespace
+
 bool ParseInt(const std::string& token, int* out) {
   errno = 0;
   char* end = nullptr;
@@ -92,8 +94,6 @@ bool ParseInt(const std::string& token, int* out) {
   *out = static_cast<int>(v);
   return true;
 }
-
-}  // namespace
 
 // Reads up to n (exactly n if `exact`) values of one kind; checks the count and every
 // token before writing anything. `kind` names the value in messages.

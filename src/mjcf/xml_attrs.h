@@ -72,9 +72,10 @@ class XmlElement {
   // The alternative orientations (axisangle, xyaxes, zaxis, euler); at most one, and
   // not together with quat.
   void Orient(Orientation* alt) const;
+  // The whitespace-separated tokens of an attribute (none when it is absent).
+  std::vector<std::string> Tokens(const char* name) const;
 
  private:
-  std::vector<std::string> Tokens(const char* name) const;
   // The shared reader behind Numbers and Ints.
   template <typename T>
   int List(const char* name, T* out, int n, bool exact, const char* kind,
@@ -83,6 +84,9 @@ class XmlElement {
   pugi::xml_node node_;
   Source src_;
 };
+
+// Parses a whole token as an int; false if it is not one or out of range.
+bool ParseInt(const std::string& token, int* out);
 
 }  // namespace simlab::mjcf
 
