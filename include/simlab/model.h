@@ -377,7 +377,8 @@ struct Statistic {
   X(nmocap)      /* mocap bodies */                                        \
   X(nmocap3)     /* 3 * nmocap (row width of key_mpos) */                  \
   X(nmocap4)     /* 4 * nmocap (row width of key_mquat) */                 \
-  X(nM)          /* nonzeros of the inertia matrix in tree layout */
+  X(nM)          /* nonzeros of the inertia matrix in tree layout */       \
+  X(ngravcomp)   /* bodies with positive gravcomp */
 
 // A view of one array of a Model or Data by its MuJoCo name (for bindings and the lab).
 struct FieldView {

@@ -367,6 +367,7 @@ void LayoutBody(const CompileState& state, const BodyState& b, Model* m) {
   m->body_mass[i] = b.mass;
   math::Copy3(&m->body_inertia[3 * i], b.inertia);
   m->body_gravcomp[i] = b.spec->gravcomp;
+  if (b.spec->gravcomp > 0) m->ngravcomp++;
   bool body_frame = SameVec(b.ipos, kZero3) && SameQuat(b.iquat, kUnitQuat);
   m->body_sameframe[i] = body_frame ? 1 : SameQuat(b.iquat, kUnitQuat) ? 3 : 0;
   m->body_names[i] = i == 0 ? "world" : b.spec->src.name;

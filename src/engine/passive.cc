@@ -87,11 +87,8 @@ bool GravcompActive(const Model& m) {
   if ((m.opt.disableflags & kDisableGravity) || math::Norm3(m.opt.gravity.data()) == 0) {
     return false;
   }
-  // As MuJoCo's ngravcomp, only positive gravcomp values switch the feature on.
-  for (int b = 0; b < m.nbody; b++) {
-    if (m.body_gravcomp[b] > 0) return true;
-  }
-  return false;
+  // Only positive gravcomp values switch the feature on (MuJoCo's ngravcomp).
+  return m.ngravcomp > 0;
 }
 
 void AddActuatorGravcomp(const Model& m, Data& d) {
