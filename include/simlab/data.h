@@ -6,6 +6,7 @@
 #ifndef SIMLAB_DATA_H_
 #define SIMLAB_DATA_H_
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -145,6 +146,7 @@ struct WarningStat {
   X(double, cfrc_int, nbody, 6)                 \
   X(double, cfrc_ext, nbody, 6)                 \
   X(double, sensordata, nsensordata, 1)         \
+  X(double, history, nhistory, 1)  /* delayed actuators' and sensors' samples */ \
   /* implicit integration */                    \
   X(double, qDeriv, nv, nv)                     \
   X(double, qLU, nv, nv)                        \
@@ -182,6 +184,16 @@ struct Data {
   int nisland = 0;            // constraint islands of the last solve
   WarningStat warning[kNumWarnings];
   int nreset = 0;             // resets after a divergence (bad qpos, qvel or qacc)
+  // Quantities computed on demand, once per step (MuJoCo's lazy-evaluation flags):
+  // energy[0], energy[1], subtree_linvel/angmom, cacc/cfrc_int/cfrc_ext.
+  bool flg_energypos = false;
+  bool flg_energyvel = false;
+  bool flg_subtreevel = false;
+  bool flg_rnepost = false;
+  // User sensors' callback (MuJoCo's mjcb_sensor, here per Data): called with the stage
+  // (kStagePos/Vel/Acc) once per stage that has user sensors, after their outputs were
+  // zeroed; it writes d.sensordata at their sensor_adr.
+  std::function<void(const Model& m, Data& d, int stage)> sensor_callback;
 
 #define SIMLAB_X(type, name, rows, cols) std::vector<type> name;
   SIMLAB_DATA_FIELDS(SIMLAB_X)

@@ -90,6 +90,37 @@ inline constexpr int kNEqData = 11;
 inline constexpr int kNPoly = 2;  // higher-order damping terms (MuJoCo 3.7+ mjNPOLY)
 inline constexpr int kNFluid = 12;  // geom_fluid row (mjNFLUID): flag, 5 coefs, added mass, inertia
 
+// Sensor types (mjtSensor), computation stages (mjtStage) and sensor data types
+// (mjtDataType), with MuJoCo's values.
+enum SensorType : int {
+  kSensTouch = 0, kSensAccelerometer, kSensVelocimeter, kSensGyro, kSensForce, kSensTorque,
+  kSensMagnetometer, kSensRangefinder, kSensCamProjection, kSensJointPos, kSensJointVel,
+  kSensTendonPos, kSensTendonVel, kSensActuatorPos, kSensActuatorVel, kSensActuatorFrc,
+  kSensJointActFrc, kSensTendonActFrc, kSensBallQuat, kSensBallAngVel, kSensJointLimitPos,
+  kSensJointLimitVel, kSensJointLimitFrc, kSensTendonLimitPos, kSensTendonLimitVel,
+  kSensTendonLimitFrc, kSensFramePos, kSensFrameQuat, kSensFrameXAxis, kSensFrameYAxis,
+  kSensFrameZAxis, kSensFrameLinVel, kSensFrameAngVel, kSensFrameLinAcc, kSensFrameAngAcc,
+  kSensSubtreeCom, kSensSubtreeLinVel, kSensSubtreeAngMom, kSensInsideSite, kSensGeomDist,
+  kSensGeomNormal, kSensGeomFromTo, kSensContact, kSensEPotential, kSensEKinetic, kSensClock,
+  kSensTactile, kSensPlugin, kSensUser
+};
+enum Stage : int { kStageNone = 0, kStagePos = 1, kStageVel = 2, kStageAcc = 3 };
+enum DataType : int {
+  kDataReal = 0, kDataPositive = 1, kDataAxis = 2, kDataQuaternion = 3
+};
+// Integer parameters per sensor (mjNSENS): the data mask, reduction and count of
+// contact and rangefinder sensors.
+inline constexpr int kNSens = 3;
+// Fields a contact sensor can report (mjtConDataField), and a rangefinder (mjtRayDataField).
+enum ConDataField : int {
+  kConDataFound = 0, kConDataForce, kConDataTorque, kConDataDist, kConDataPos,
+  kConDataNormal, kConDataTangent, kNConData
+};
+enum RayDataField : int {
+  kRayDataDist = 0, kRayDataDir, kRayDataOrigin, kRayDataPoint, kRayDataNormal,
+  kRayDataDepth, kNRayData
+};
+
 // Tendon path element types (mjtWrap).
 enum WrapType : int {
   kWrapNone = 0, kWrapJoint = 1, kWrapPulley = 2, kWrapSite = 3, kWrapSphere = 4,
@@ -328,6 +359,27 @@ struct Statistic {
   X(double, actuator_damping, nu, 1)               \
   X(double, actuator_dampingpoly, nu, kNPoly)      \
   X(double, actuator_armature, nu, 1)              \
+  X(int, actuator_history, nu, 2)     /* nsample, interp */ \
+  X(int, actuator_historyadr, nu, 1)  /* -1: none */        \
+  X(double, actuator_delay, nu, 1)                 \
+  /* sensors */                                    \
+  X(int, sensor_type, nsensor, 1)                  \
+  X(int, sensor_datatype, nsensor, 1)              \
+  X(int, sensor_needstage, nsensor, 1)             \
+  X(int, sensor_objtype, nsensor, 1)               \
+  X(int, sensor_objid, nsensor, 1)                 \
+  X(int, sensor_reftype, nsensor, 1)               \
+  X(int, sensor_refid, nsensor, 1)                 \
+  X(int, sensor_intprm, nsensor, kNSens)           \
+  X(int, sensor_dim, nsensor, 1)                   \
+  X(int, sensor_adr, nsensor, 1)                   \
+  X(double, sensor_cutoff, nsensor, 1)             \
+  X(double, sensor_noise, nsensor, 1)              \
+  X(int, sensor_history, nsensor, 2)   /* nsample, interp */ \
+  X(int, sensor_historyadr, nsensor, 1) /* -1: none */       \
+  X(double, sensor_delay, nsensor, 1)              \
+  X(double, sensor_interval, nsensor, 2) /* period, phase */ \
+  X(double, sensor_user, nsensor, nuser_sensor)    \
   /* keyframes */                                  \
   X(double, key_time, nkey, 1)                     \
   X(double, key_qpos, nkey, nq)                    \
@@ -373,6 +425,8 @@ struct Statistic {
   X(neq)         /* equality constraints */                                \
   X(nsensor)     /* sensors */                                             \
   X(nsensordata) /* numbers of sensor output */                            \
+  X(nuser_sensor) /* user numbers per sensor */                            \
+  X(nhistory)    /* numbers in the actuator and sensor history buffer */   \
   X(nkey)        /* keyframes */                                           \
   X(nmocap)      /* mocap bodies */                                        \
   X(nmocap3)     /* 3 * nmocap (row width of key_mpos) */                  \

@@ -25,7 +25,8 @@ void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
   m->neq = static_cast<int>(spec.equalities.size());
   m->npair = static_cast<int>(spec.pairs.size());
   m->nexclude = static_cast<int>(spec.excludes.size());
-  m->nsensor = m->nsensordata = 0;
+  m->nsensor = static_cast<int>(spec.sensors.size());
+  m->nuser_sensor = NUserSensor(spec);
 }
 
 }  // namespace
@@ -52,6 +53,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CompileContacts(spec, &m);
   CompileActuators(spec, state, &m);
   CompileKeyframes(spec, state, &m);
+  CompileSensors(spec, &m);
 
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);

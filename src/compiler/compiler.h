@@ -8,6 +8,7 @@
 //   actuator.cc  actuators: transmission targets, limits, activation layout
 //   equality.cc  equality constraints: objects, parameters, eq_data at qpos0
 //   keyframe.cc  keyframes, padded as MuJoCo does
+//   sensor.cc    sensors: objects, output sizes, sensordata and history layout
 //   option.cc    physics options
 //   constants.cc quantities computed at qpos0 (subtree mass, lengths, acc0)
 #ifndef SIMLAB_COMPILER_COMPILER_H_
@@ -131,6 +132,10 @@ void EqualityConstants(Model* m);
 int ActuatorActDim(const mjcf::ActuatorSpec& a);
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
+// Sensors (sensor.cc): user numbers per sensor (before allocation), then every sensor,
+// sensordata addresses and the actuator/sensor history buffer layout.
+int NUserSensor(const mjcf::ModelSpec& spec);
+void CompileSensors(const mjcf::ModelSpec& spec, Model* m);
 void SetTotalMass(double total, Model* m);
 void ComputeConstants(Model* m);
 // body_simple, body/dof/tendon_invweight0 and stat.meaninertia from a Data at qpos0

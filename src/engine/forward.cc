@@ -13,6 +13,7 @@
 #include "engine/collision.h"
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/sensor.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -123,11 +124,20 @@ void SmoothAcceleration(const Model& m, Data& d) {
 }
 
 void ForwardSkip(const Model& m, Data& d, bool skip_position, bool skip_sensor) {
-  if (!skip_position) FwdPosition(m, d);
+  // Each stage, then the sensors that need it.
+  if (!skip_position) {
+    FwdPosition(m, d);
+    if (!skip_sensor) SensorPos(m, d);
+  }
   FwdVelocity(m, d);
+  if (!skip_sensor) SensorVel(m, d);
   Actuation(m, d);
   SmoothAcceleration(m, d);
   Constraint(m, d);
+  if (!skip_sensor) {
+    d.flg_rnepost = false;
+    SensorAcc(m, d);
+  }
 }
 
 void Forward(const Model& m, Data& d) { ForwardSkip(m, d, false, false); }
@@ -151,13 +161,16 @@ void Step1(const Model& m, Data& d) {
   CheckState(m, d, d.qpos, kWarnBadQpos);
   CheckState(m, d, d.qvel, kWarnBadQvel);
   FwdPosition(m, d);
+  SensorPos(m, d);
   FwdVelocity(m, d);
+  SensorVel(m, d);
 }
 
 void Step2(const Model& m, Data& d) {
   Actuation(m, d);
   SmoothAcceleration(m, d);
   Constraint(m, d);
+  SensorAcc(m, d);
   if (CheckState(m, d, d.qacc, kWarnBadQacc) && !(m.opt.disableflags & kDisableAutoreset)) {
     Forward(m, d);
   }

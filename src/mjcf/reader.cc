@@ -90,7 +90,6 @@ void Reader::Root(pugi::xml_node root) {
     XmlElement e = Element(child);
     bool known = false;
     for (const char* name : kSections) known = known || e.tag() == name;
-    if (e.tag() == "sensor") NotSupported(e, "sensors");
     if (IsUnsupportedSection(e.tag())) NotSupported(e);
     if (!known) Unknown(e);
   }
@@ -111,6 +110,7 @@ void Reader::Root(pugi::xml_node root) {
   each("equality", [&](const XmlElement& e) { Equality(e); });
   each("tendon", [&](const XmlElement& e) { Tendon(e); });
   each("actuator", [&](const XmlElement& e) { Actuator(e); });
+  each("sensor", [&](const XmlElement& e) { Sensor(e); });
   each("keyframe", [&](const XmlElement& e) { Keyframe(e); });
   each("worldbody", [&](const XmlElement& e) {
     if (e.node().first_attribute()) e.Fail("the world body cannot have attributes");

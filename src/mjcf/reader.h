@@ -53,6 +53,8 @@ class Reader {
   void Tendon(const XmlElement& e);
   void Actuator(const XmlElement& e);
   void Keyframe(const XmlElement& e);
+  // sensors (reader_sensor.cc)
+  void Sensor(const XmlElement& e);
   // equality constraints (reader_equality.cc)
   void Equality(const XmlElement& e);
   void ReadEquality(const XmlElement& e, EqualitySpec* eq, bool in_default) const;

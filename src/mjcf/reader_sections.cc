@@ -174,8 +174,11 @@ void Reader::Size(const XmlElement& e) {
   int value = 0;
   for (const char* name : {"njmax", "nconmax", "nstack", "nuserdata", "nuser_body",
                            "nuser_jnt", "nuser_geom", "nuser_site", "nuser_cam",
-                           "nuser_tendon", "nuser_actuator", "nuser_sensor"}) {
+                           "nuser_tendon", "nuser_actuator"}) {
     e.Int(name, &value);
+  }
+  if (e.Int("nuser_sensor", &spec_->nuser_sensor) && spec_->nuser_sensor < -1) {
+    e.Fail("nuser_sensor must be -1 (automatic) or more");
   }
   if (e.Int("nkey", &spec_->nkey) && spec_->nkey < 0) e.Fail("nkey cannot be negative");
 }

@@ -240,6 +240,28 @@ struct ActuatorSpec {
   double armature = 0;
 };
 
+// A sensor (MuJoCo's mjsSensor): what it measures (type, object, reference object),
+// and how its output is filtered, delayed and sampled.
+struct SensorSpec {
+  Source src;  // src.name is the sensor's name
+  int type = kSensUser;
+  int objtype = kObjUnknown;
+  std::string objname;
+  int reftype = kObjUnknown;
+  std::string refname;
+  std::array<int, kNSens> intprm = {0, 0, 0};
+  int dim = 0;                   // user sensors only; the compiler sets the others'
+  int datatype = kDataReal;      // user sensors only
+  int needstage = kStageAcc;     // user sensors only
+  double cutoff = 0;
+  double noise = 0;
+  int nsample = 0;
+  int interp = 0;
+  double delay = 0;
+  std::array<double, 2> interval = {0, 0};
+  std::vector<double> user;
+};
+
 // An equality constraint (MuJoCo's mjsEquality). `data` starts at MuJoCo's shared
 // default, which is why a weld's anchor slot reads 0 1 0 and torquescale is 1.
 struct EqualitySpec {
@@ -359,12 +381,14 @@ struct ModelSpec {
   BodySpec world;
   std::vector<TendonSpec> tendons;
   std::vector<ActuatorSpec> actuators;
+  std::vector<SensorSpec> sensors;
   std::vector<EqualitySpec> equalities;
   std::vector<PairSpec> pairs;
   std::vector<ExcludeSpec> excludes;
   std::vector<MeshSpec> meshes;
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
+  int nuser_sensor = -1;  // <size nuser_sensor>; -1: the longest sensor user data
   // <statistic>: values given by the model (undefined: computed by the compiler).
   double meaninertia = kUndefined;
 };

@@ -1,0 +1,322 @@
+// Sensors (MuJoCo's mjCSensor::Compile): resolve the sensorized and reference objects,
+// check that each type is attached to what it can measure, give every sensor MuJoCo's
+// data type, stage and output size, and lay out sensordata and the history buffer.
+#include <algorithm>
+#include <string>
+
+#include "compiler/compiler.h"
+#include "mjcf/error.h"
+
+namespace simlab::compiler {
+
+using mjcf::SensorSpec;
+using mjcf::ThrowAt;
+
+namespace {
+
+// The stage after which a sensor can be computed (MuJoCo's sensorNeedstage).
+int NeedStage(int type) {
+  switch (type) {
+    case kSensTouch: case kSensAccelerometer: case kSensForce: case kSensTorque:
+    case kSensActuatorFrc: case kSensJointActFrc: case kSensTendonActFrc:
+    case kSensJointLimitFrc: case kSensTendonLimitFrc: case kSensFrameLinAcc:
+    case kSensFrameAngAcc: case kSensContact: case kSensTactile:
+      return kStageAcc;
+    case kSensVelocimeter: case kSensGyro: case kSensJointVel: case kSensTendonVel:
+    case kSensActuatorVel: case kSensBallAngVel: case kSensJointLimitVel:
+    case kSensTendonLimitVel: case kSensFrameLinVel: case kSensFrameAngVel:
+    case kSensSubtreeLinVel: case kSensSubtreeAngMom:
+      return kStageVel;
+    default:
+      return kStagePos;
+  }
+}
+
+// The kind of numbers a sensor reports (MuJoCo's sensorDatatype).
+int SensorDataType(int type) {
+  switch (type) {
+    case kSensTouch: case kSensInsideSite: return kDataPositive;
+    case kSensFrameXAxis: case kSensFrameYAxis: case kSensFrameZAxis: case kSensGeomNormal:
+      return kDataAxis;
+    case kSensBallQuat: case kSensFrameQuat: return kDataQuaternion;
+    default: return kDataReal;
+  }
+}
+
+// Number of set bits of a data mask, each field's width given.
+int MaskedSize(int mask, const int* widths, int nfield) {
+  int size = 0;
+  for (int k = 0; k < nfield; k++) {
+    if (mask & (1 << k)) size += widths[k];
+  }
+  return size;
+}
+
+// Numbers one contact adds to a contact sensor: found, force, torque, dist, pos,
+// normal, tangent (MuJoCo's mju_condataSize).
+int ContactDataSize(int mask) {
+  static const int kWidths[kNConData] = {1, 3, 3, 1, 3, 3, 3};
+  return MaskedSize(mask, kWidths, kNConData);
+}
+
+// Numbers one ray adds to a rangefinder: dist, dir, origin, point, normal, depth.
+int RayDataSize(int mask) {
+  static const int kWidths[kNRayData] = {1, 3, 3, 3, 3, 1};
+  return MaskedSize(mask, kWidths, kNRayData);
+}
+
+// Rays a rangefinder casts: one from a site (one per pixel from a camera, once cameras
+// are compiled).
+int RayCount(const SensorSpec& s) {
+  if (s.objtype == kObjCamera) ThrowAt(s.src, "camera rangefinders are not supported yet");
+  return 1;
+}
+
+// Output size (MuJoCo's mjs_sensorDim).
+int SensorDim(const Model& m, const SensorSpec& s, int objid) {
+  switch (s.type) {
+    case kSensCamProjection: return 2;
+    case kSensAccelerometer: case kSensVelocimeter: case kSensGyro: case kSensForce:
+    case kSensTorque: case kSensMagnetometer: case kSensBallAngVel: case kSensFramePos:
+    case kSensFrameXAxis: case kSensFrameYAxis: case kSensFrameZAxis: case kSensFrameLinVel:
+    case kSensFrameAngVel: case kSensFrameLinAcc: case kSensFrameAngAcc: case kSensSubtreeCom:
+    case kSensSubtreeLinVel: case kSensSubtreeAngMom: case kSensGeomNormal:
+      return 3;
+    case kSensBallQuat: case kSensFrameQuat: return 4;
+    case kSensGeomFromTo: return 6;
+    case kSensContact: return s.intprm[2] * ContactDataSize(s.intprm[0]);
+    case kSensTactile: return 3 * m.mesh_vertnum[objid];
+    case kSensRangefinder: return RayDataSize(s.intprm[0]) * RayCount(s);
+    case kSensUser: return s.dim;
+    default: return 1;
+  }
+}
+
+// Sensor families whose engine code is still to come are refused with a clear message.
+void SupportedYet(const SensorSpec& s) {
+  const char* family = nullptr;
+  switch (s.type) {
+    case kSensRangefinder: family = "rangefinder"; break;
+    case kSensCamProjection: family = "camprojection"; break;
+    case kSensInsideSite: family = "insidesite"; break;
+    case kSensGeomDist: case kSensGeomNormal: case kSensGeomFromTo:
+      family = "distance/normal/fromto"; break;
+    case kSensTouch: family = "touch"; break;
+    case kSensContact: family = "contact"; break;
+    case kSensTactile: family = "tactile"; break;
+    case kSensAccelerometer: case kSensForce: case kSensTorque: case kSensFrameLinAcc:
+    case kSensFrameAngAcc:
+      family = "acceleration and force"; break;
+    case kSensSubtreeLinVel: case kSensSubtreeAngMom: family = "subtree velocity"; break;
+    case kSensEPotential: case kSensEKinetic: family = "energy"; break;
+    default: break;
+  }
+  if (s.objtype == kObjCamera || s.reftype == kObjCamera) family = "camera";
+  if (s.nsample > 0) family = "delayed and sampled (nsample)";
+  if (family) ThrowAt(s.src, std::string(family) + " sensors are not supported yet");
+}
+
+// The id of the object a sensor names, or an error naming the sensor.
+int Resolve(const Model& m, const SensorSpec& s, int type, const std::string& name,
+            const char* role) {
+  if (type == kObjUnknown) return -1;
+  if (name.empty()) ThrowAt(s.src, std::string("missing name of ") + role + " in sensor");
+  int id = m.NameToId(static_cast<ObjType>(type), name);
+  if (id < 0) ThrowAt(s.src, std::string("unrecognized name '") + name + "' of " + role);
+  return id;
+}
+
+bool HasFrame(int type) {
+  return type == kObjBody || type == kObjXBody || type == kObjGeom || type == kObjSite ||
+         type == kObjCamera;
+}
+
+// Joint sensors: scalar joints for most, ball joints for the ball sensors, limited
+// joints for the limit sensors.
+void CheckJoint(const Model& m, const SensorSpec& s, int id) {
+  if (s.objtype != kObjJoint) ThrowAt(s.src, "sensor must be attached to joint");
+  int type = m.jnt_type[id];
+  bool ball = s.type == kSensBallQuat || s.type == kSensBallAngVel;
+  bool limit = s.type == kSensJointLimitPos || s.type == kSensJointLimitVel ||
+               s.type == kSensJointLimitFrc;
+  if (ball && type != kJointBall) ThrowAt(s.src, "joint must be ball in sensor");
+  if (!ball && !limit && type != kJointSlide && type != kJointHinge) {
+    ThrowAt(s.src, "joint must be slide or hinge in sensor");
+  }
+  if (limit && !m.jnt_limited[id]) ThrowAt(s.src, "joint must be limited in sensor");
+}
+
+// What each type must be attached to (MuJoCo's checks in mjCSensor::Compile).
+void CheckAttachment(const Model& m, const SensorSpec& s, int objid, int refid) {
+  switch (s.type) {
+    case kSensTouch: case kSensAccelerometer: case kSensVelocimeter: case kSensGyro:
+    case kSensForce: case kSensTorque: case kSensMagnetometer: case kSensCamProjection:
+      if (s.objtype != kObjSite) ThrowAt(s.src, "sensor must be attached to site");
+      break;
+    case kSensJointPos: case kSensJointVel: case kSensJointActFrc: case kSensBallQuat:
+    case kSensBallAngVel: case kSensJointLimitPos: case kSensJointLimitVel:
+    case kSensJointLimitFrc:
+      CheckJoint(m, s, objid);
+      break;
+    case kSensTendonLimitPos: case kSensTendonLimitVel: case kSensTendonLimitFrc:
+      if (s.objtype == kObjTendon && !m.tendon_limited[objid]) {
+        ThrowAt(s.src, "tendon must be limited in sensor");
+      }
+      [[fallthrough]];
+    case kSensTendonPos: case kSensTendonVel: case kSensTendonActFrc:
+      if (s.objtype != kObjTendon) ThrowAt(s.src, "sensor must be attached to tendon");
+      break;
+    case kSensActuatorPos: case kSensActuatorVel: case kSensActuatorFrc:
+      if (s.objtype != kObjActuator) ThrowAt(s.src, "sensor must be attached to actuator");
+      break;
+    case kSensFramePos: case kSensFrameQuat: case kSensFrameXAxis: case kSensFrameYAxis:
+    case kSensFrameZAxis: case kSensFrameLinVel: case kSensFrameAngVel:
+    case kSensFrameLinAcc: case kSensFrameAngAcc: case kSensInsideSite:
+      if (!HasFrame(s.objtype)) {
+        ThrowAt(s.src, "sensor must be attached to (x)body, geom, site or camera");
+      }
+      if (s.type == kSensInsideSite && s.reftype != kObjSite) {
+        ThrowAt(s.src, "sensor must be associated with a site");
+      }
+      break;
+    case kSensSubtreeCom: case kSensSubtreeLinVel: case kSensSubtreeAngMom:
+      if (s.objtype != kObjBody) ThrowAt(s.src, "sensor must be attached to body");
+      break;
+    case kSensGeomDist: case kSensGeomNormal: case kSensGeomFromTo:
+      if (s.objtype == s.reftype && objid == refid) {
+        ThrowAt(s.src, "1st body/geom must be different from 2nd body/geom");
+      }
+      for (auto [type, id] : {std::pair{s.objtype, objid}, {s.reftype, refid}}) {
+        if (type == kObjGeom && m.geom_type[id] == kGeomHfield) {
+          ThrowAt(s.src, "height fields are not supported in geom distance sensors");
+        }
+      }
+      break;
+    case kSensContact:
+      if (s.intprm[1] < 0 || s.intprm[1] > 3) ThrowAt(s.src, "unknown reduction criterion");
+      break;
+    case kSensUser:
+      if (s.dim < 0) ThrowAt(s.src, "sensor dim must be non-negative in sensor");
+      if (s.datatype == kDataAxis && s.dim != 3) {
+        ThrowAt(s.src, "datatype AXIS requires dim=3 in sensor");
+      }
+      if (s.datatype == kDataQuaternion && s.dim != 4) {
+        ThrowAt(s.src, "datatype QUATERNION requires dim=4 in sensor");
+      }
+      break;
+    default: break;
+  }
+}
+
+// Checks of the filtering, delay and sampling attributes.
+void CheckCommon(const SensorSpec& s, int nuser) {
+  if (static_cast<int>(s.user.size()) > nuser) {
+    ThrowAt(s.src, "user has more values than nuser_sensor in sensor");
+  }
+  if (s.noise < 0) ThrowAt(s.src, "negative noise in sensor");
+  if (s.cutoff < 0) ThrowAt(s.src, "negative cutoff in sensor");
+  if (s.interval[0] < 0) ThrowAt(s.src, "negative interval in sensor");
+  if (s.interval[1] > 0) ThrowAt(s.src, "positive phase in sensor");
+  if (s.interval[0] > 0 && s.interval[1] <= -s.interval[0]) {
+    ThrowAt(s.src, "phase must be greater than -period in sensor");
+  }
+  if (s.delay > 0 && s.nsample <= 0) {
+    ThrowAt(s.src, "setting delay > 0 without a history buffer");
+  }
+  if (s.nsample > (1 << 24)) ThrowAt(s.src, "at most 2^24 samples in sensor history buffer");
+}
+
+// One sensor's row of the model.
+void CompileSensor(const SensorSpec& s, int i, Model* m) {
+  CheckCommon(s, m->nuser_sensor);
+  int objid = Resolve(*m, s, s.objtype, s.objname, "sensorized object");
+  int refid = Resolve(*m, s, s.reftype, s.refname, "reference object");
+  if (s.objtype == kObjUnknown && s.type != kSensEPotential && s.type != kSensEKinetic &&
+      s.type != kSensClock && s.type != kSensContact && s.type != kSensUser) {
+    ThrowAt(s.src, "invalid type in sensor");
+  }
+  if (s.reftype != kObjUnknown && s.type != kSensContact && s.type != kSensTactile &&
+      !HasFrame(s.reftype)) {
+    ThrowAt(s.src, "reference frame object must be (x)body, geom, site or camera in sensor");
+  }
+  CheckAttachment(*m, s, objid, refid);
+  SupportedYet(s);
+
+  // Type, objects and the data type, stage and size MuJoCo gives the type.
+  m->sensor_type[i] = s.type;
+  m->sensor_objtype[i] = s.objtype;
+  m->sensor_objid[i] = objid;
+  m->sensor_reftype[i] = s.reftype;
+  m->sensor_refid[i] = refid;
+  for (int k = 0; k < kNSens; k++) m->sensor_intprm[kNSens * i + k] = s.intprm[k];
+  bool user = s.type == kSensUser;
+  m->sensor_datatype[i] = user ? s.datatype : SensorDataType(s.type);
+  m->sensor_needstage[i] = user ? s.needstage : NeedStage(s.type);
+  m->sensor_dim[i] = SensorDim(*m, s, objid);
+  int datatype = m->sensor_datatype[i];
+  if (s.cutoff > 0 && (datatype == kDataQuaternion ||
+                       (datatype == kDataAxis && s.type != kSensGeomNormal))) {
+    ThrowAt(s.src, "cutoff applied to axis or quaternion datatype in sensor");
+  }
+
+  // Filtering, delay, sampling and user numbers.
+  m->sensor_cutoff[i] = s.cutoff;
+  m->sensor_noise[i] = s.noise;
+  m->sensor_history[2 * i] = s.nsample;
+  m->sensor_history[2 * i + 1] = s.interp;
+  m->sensor_delay[i] = s.delay;
+  m->sensor_interval[2 * i] = s.interval[0];
+  m->sensor_interval[2 * i + 1] = s.interval[1];
+  for (size_t k = 0; k < s.user.size(); k++) m->sensor_user[i * m->nuser_sensor + k] = s.user[k];
+  m->sensor_names[i] = s.src.name;
+}
+
+// Actuators with a history buffer come first in it, then sensors; each takes
+// [user, cursor, times(n), values(n x dim)] numbers (MuJoCo's layout).
+void LayoutHistory(const mjcf::ModelSpec& spec, Model* m) {
+  int adr = 0;
+  for (int i = 0; i < m->nu; i++) {
+    const mjcf::ActuatorSpec& a = spec.actuators[i];
+    m->actuator_history[2 * i] = a.nsample;
+    m->actuator_delay[i] = a.delay;
+    m->actuator_historyadr[i] = a.nsample > 0 ? adr : -1;
+    if (a.nsample > 0) adr += 2 + 2 * a.nsample;
+  }
+  for (int i = 0; i < m->nsensor; i++) {
+    int n = m->sensor_history[2 * i];
+    m->sensor_historyadr[i] = n > 0 ? adr : -1;
+    if (n > 0) adr += 2 + n + n * m->sensor_dim[i];
+  }
+  m->nhistory = adr;
+}
+
+}  // namespace
+
+int NUserSensor(const mjcf::ModelSpec& spec) {
+  if (spec.nuser_sensor >= 0) return spec.nuser_sensor;
+  int n = 0;
+  for (const SensorSpec& s : spec.sensors) n = std::max(n, static_cast<int>(s.user.size()));
+  return n;
+}
+
+void CompileSensors(const mjcf::ModelSpec& spec, Model* m) {
+  // Unique names, then each sensor, then the addresses of their outputs.
+  for (size_t i = 0; i < spec.sensors.size(); i++) {
+    const SensorSpec& s = spec.sensors[i];
+    for (size_t j = 0; j < i && !s.src.name.empty(); j++) {
+      if (spec.sensors[j].src.name == s.src.name) {
+        ThrowAt(s.src, "repeated sensor name '" + s.src.name + "'");
+      }
+    }
+    CompileSensor(s, static_cast<int>(i), m);
+  }
+  int adr = 0;
+  for (int i = 0; i < m->nsensor; i++) {
+    m->sensor_adr[i] = adr;
+    adr += m->sensor_dim[i];
+  }
+  m->nsensordata = adr;
+  LayoutHistory(spec, m);
+}
+
+}  // namespace simlab::compiler

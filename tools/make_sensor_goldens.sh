@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# make_sensor_goldens.sh — the sensor conformance cases (issue 6): MuJoCo's sensor test
+# models from the corpus and our own sensor models, rolled out by MuJoCo 3.5.1 (the
+# oracle); `sensordata` is compared with every other field.
+#
+# Usage:  tools/make_sensor_goldens.sh          (from any working directory)
+#
+# What it does (idempotent: tests/conformance/sensor is emptied and rebuilt):
+#   1. Copies the corpus sensor models (testdata/sensor/*.xml) that simlab runs, with the
+#      humanoid.xml the contact_subtree*.xml models attach.
+#   2. Copies our own sensor models, tests/sensors/*.xml.
+#   3. Each model: ctrlgen.mjs controls, rollout.mjs --steps 200 --every 10; models with
+#      keyframes also from keyframe 0.
+#   Writes tests/conformance/sensor_cases.txt (model, golden, steps, state, ctrl, tol);
+#   tolerance 1e-8 relative.
+# Requirements: bash, node, and `npm ci` done in ../shared/oracle.
+set -euo pipefail
+
+source "$(dirname "$0")/oracle_case.sh"
+SHARED_CORPUS="$(cd "$ROOT/../shared/corpus/mujoco" && pwd)"
+STEPS=200
+TOL=1e-8
+CONTACTS=yes
+
+cd "$ROOT"
+OUT=tests/conformance/sensor
+CASES=tests/conformance/sensor_cases.txt
+case_folder "$CASES"
+
+# --- 1. corpus sensor models ---------------------------------------------------------------
+SENSOR="$SHARED_CORPUS/test/engine/testdata/sensor"
+CORPUS_MODELS=()
+for name in "${CORPUS_MODELS[@]}"; do
+  cp "$SENSOR/$name.xml" "$OUT/models/"
+done
+
+# --- 2. our own sensor models --------------------------------------------------------------
+cp tests/sensors/*.xml "$OUT/models/"
+
+# --- 3. rollouts ---------------------------------------------------------------------------
+for model in "$OUT"/models/*.xml; do
+  oracle_case "$model" "$STEPS" - "$TOL" "$CASES"
+  if grep -q "<key" "$model"; then
+    oracle_case "$model" "$STEPS" key:0 "$TOL" "$CASES"
+  fi
+done
+echo "wrote $CASES ($(wc -l < "$CASES") cases)"
