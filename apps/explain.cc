@@ -286,9 +286,62 @@ std::string ClampLines(const Model& m, int i) {
   return text + TargetClampLine(m, i);
 }
 
+// The name of object `id` of an MJCF object type, quoted, or its index if unnamed.
+std::string ObjectName(const Model& m, int type, int id) {
+  const std::vector<std::string>* names = nullptr;
+  switch (type) {
+    case kObjBody: case kObjXBody: names = &m.body_names; break;
+    case kObjJoint: names = &m.jnt_names; break;
+    case kObjGeom: names = &m.geom_names; break;
+    case kObjSite: names = &m.site_names; break;
+    case kObjTendon: names = &m.tendon_names; break;
+    case kObjActuator: names = &m.actuator_names; break;
+    case kObjMesh: names = &m.mesh_names; break;
+    default: break;
+  }
+  bool named = names && id < static_cast<int>(names->size()) && !(*names)[id].empty();
+  return std::string(ObjTypeName(type)) + " " + (named ? Quoted((*names)[id]) : "#" + std::to_string(id));
+}
+
+const char* StageName(int stage) {
+  switch (stage) {
+    case kStagePos: return "position";
+    case kStageVel: return "velocity";
+    case kStageAcc: return "acceleration";
+    default: return "no";
+  }
+}
+
+// Delay, sampling and the filters a sensor's output goes through.
+std::string SensorTiming(const Model& m, int i) {
+  std::string text;
+  if (m.sensor_cutoff[i] > 0) text += ", cutoff " + Num(m.sensor_cutoff[i]);
+  if (m.sensor_noise[i] > 0) text += ", noise " + Num(m.sensor_noise[i]) + " (stored, not applied)";
+  if (m.sensor_history[2 * i] > 0) {
+    text += ", history of " + std::to_string(m.sensor_history[2 * i]) + " samples";
+  }
+  if (m.sensor_delay[i] > 0) text += ", delay " + Num(m.sensor_delay[i]) + " s";
+  if (m.sensor_interval[2 * i] > 0) text += ", every " + Num(m.sensor_interval[2 * i]) + " s";
+  return text;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- public
+
+std::string ExplainSensor(const Model& m, int i) {
+  std::string text = "sensor " + std::to_string(i) + " " + Quoted(m.sensor_names[i]) + ": " +
+                     SensorTypeName(m.sensor_type[i]);
+  if (m.sensor_objid[i] >= 0) text += " of " + ObjectName(m, m.sensor_objtype[i], m.sensor_objid[i]);
+  if (m.sensor_refid[i] >= 0) {
+    text += " relative to " + ObjectName(m, m.sensor_reftype[i], m.sensor_refid[i]);
+  }
+  int adr = m.sensor_adr[i], dim = m.sensor_dim[i];
+  text += " -> sensordata[" + std::to_string(adr) +
+          (dim > 1 ? ".." + std::to_string(adr + dim - 1) : "") + "], after the " +
+          StageName(m.sensor_needstage[i]) + " stage" + SensorTiming(m, i) + "\n";
+  return text;
+}
 
 std::string ExplainActuator(const Model& m, int i) {
   std::string head = "actuator " + std::to_string(i) + " " + Quoted(m.actuator_names[i]) +
@@ -308,6 +361,11 @@ std::string ExplainModel(const Model& m) {
     text += "note: <flag actuation=\"disable\"/>: every actuator force is zero\n";
   }
   for (int i = 0; i < m.nu; i++) text += "\n" + ExplainActuator(m, i);
+  if (m.nsensor > 0) {
+    text += "\n" + std::to_string(m.nsensor) + " sensor(s), " + std::to_string(m.nsensordata) +
+            " number(s) in sensordata\n";
+    for (int i = 0; i < m.nsensor; i++) text += ExplainSensor(m, i);
+  }
   return text;
 }
 

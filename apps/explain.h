@@ -23,6 +23,8 @@ std::string ExplainActuator(const Model& m, int i);
 
 // A header line and one block per actuator.
 std::string ExplainModel(const Model& m);
+// One line per sensor: type, object, where its numbers are, its stage and timing.
+std::string ExplainSensor(const Model& m, int i);
 
 // Loads `path` and writes ExplainModel to `out`. Returns the process exit code;
 // throws simlab::Error on a bad model.

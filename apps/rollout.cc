@@ -101,6 +101,15 @@ Json Header(const Model& m) {
   h["ntendon"] = m.ntendon;
   h["nsensordata"] = m.nsensordata;
   h["timestep"] = m.opt.timestep;
+  // Sensors by name: where each one's numbers are in sensordata.
+  Json sensors = Json::array();
+  for (int i = 0; i < m.nsensor; i++) {
+    sensors.push_back({{"name", m.sensor_names[i]},
+                       {"type", SensorTypeName(m.sensor_type[i])},
+                       {"adr", m.sensor_adr[i]},
+                       {"dim", m.sensor_dim[i]}});
+  }
+  h["sensors"] = std::move(sensors);
   return h;
 }
 

@@ -99,3 +99,26 @@ TEST(Explain, ShortcutsTendonAndJointClamp) {
 
 }  // namespace
 }  // namespace simlab::apps
+
+namespace simlab::apps {
+namespace {
+
+// Each sensor reads as its type, object, reference and place in sensordata.
+TEST(Explain, SensorsListTheirPlaceInSensordata) {
+  Model m = LoadXmlString(
+      "<mujoco><worldbody><site name=\"o\"/><body name=\"b\"><joint name=\"j\"/>"
+      "<geom size=\".1\"/><site name=\"s\"/></body></worldbody><sensor>"
+      "<jointpos name=\"angle\" joint=\"j\" cutoff=\"2\"/>"
+      "<framepos objtype=\"site\" objname=\"s\" reftype=\"site\" refname=\"o\" noise=\"0.1\"/>"
+      "</sensor></mujoco>");
+  EXPECT_EQ(ExplainSensor(m, 0),
+            "sensor 0 \"angle\": jointpos of joint \"j\" -> sensordata[0], after the position "
+            "stage, cutoff 2\n");
+  EXPECT_EQ(ExplainSensor(m, 1),
+            "sensor 1 (unnamed): framepos of site \"s\" relative to site \"o\" -> "
+            "sensordata[1..3], after the position stage, noise 0.1 (stored, not applied)\n");
+  EXPECT_NE(ExplainModel(m).find("2 sensor(s), 4 number(s) in sensordata"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace simlab::apps

@@ -2,6 +2,7 @@
 // around the values that conformance goldens cannot show: the user sensor callback,
 // cutoffs, noise kept but never applied, the disable flag, and sensor names.
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,19 @@ TEST(Sensors, LayoutAndNames) {
   EXPECT_EQ(m.sensor_needstage[2], kStagePos);
   EXPECT_EQ(NameToId(m, kObjSensor, "q"), 1);
   EXPECT_EQ(m.sensor_names[0], "angle");
+  EXPECT_STREQ(SensorTypeName(m.sensor_type[1]), "framequat");
+  EXPECT_STREQ(ObjTypeName(m.sensor_objtype[1]), "site");
+
+  // Named access to the output, as data.sensor("angle").data in MuJoCo's bindings.
+  Data d = MakeData(m);
+  d.qpos[0] = 0.25;
+  Forward(m, d);
+  EXPECT_EQ(SensorId(m, "q"), 1);
+  std::span<double> q = SensorData(m, d, "q");
+  ASSERT_EQ(q.size(), 4u);
+  EXPECT_EQ(q.data(), &d.sensordata[1]);
+  EXPECT_EQ(SensorData(m, d, "angle")[0], 0.25);
+  EXPECT_THROW(SensorData(m, d, "nope"), Error);
 }
 
 // Cutoff clamps; noise is stored and never applied.

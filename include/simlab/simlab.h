@@ -10,6 +10,7 @@
 #ifndef SIMLAB_SIMLAB_H_
 #define SIMLAB_SIMLAB_H_
 
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -52,6 +53,18 @@ void Step2(const Model& m, Data& d);
 
 // Id of a named object, or -1 (as mj_name2id).
 int NameToId(const Model& m, ObjType type, const std::string& name);
+
+// A sensor's id by name; throws Error if there is none (model.sensor("name").id).
+int SensorId(const Model& m, const std::string& name);
+
+// A sensor's output, sensor_dim numbers at sensor_adr in d.sensordata, by name
+// (data.sensor("name").data); throws Error if there is none.
+std::span<double> SensorData(const Model& m, Data& d, const std::string& name);
+
+// MJCF names of enum values: a sensor type's element tag ("framepos"), an object type's
+// keyword ("site"); "unknown" outside the enum.
+const char* SensorTypeName(int type);
+const char* ObjTypeName(int type);
 
 // The MuJoCo version whose semantics this engine follows.
 const char* ReferenceVersion();

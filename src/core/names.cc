@@ -1,0 +1,57 @@
+// Names of enum values as MJCF writes them (sensor element tags, object types), and
+// access to a sensor's output by its name (MuJoCo's data.sensor("name").data).
+#include <string>
+
+#include "simlab/simlab.h"
+
+namespace simlab {
+
+namespace {
+
+// MJCF element tag per mjtSensor value, in enum order.
+constexpr const char* kSensorTags[] = {
+    "touch",          "accelerometer",  "velocimeter",    "gyro",
+    "force",          "torque",         "magnetometer",   "rangefinder",
+    "camprojection",  "jointpos",       "jointvel",       "tendonpos",
+    "tendonvel",      "actuatorpos",    "actuatorvel",    "actuatorfrc",
+    "jointactuatorfrc", "tendonactuatorfrc", "ballquat",  "ballangvel",
+    "jointlimitpos",  "jointlimitvel",  "jointlimitfrc",  "tendonlimitpos",
+    "tendonlimitvel", "tendonlimitfrc", "framepos",       "framequat",
+    "framexaxis",     "frameyaxis",     "framezaxis",     "framelinvel",
+    "frameangvel",    "framelinacc",    "frameangacc",    "subtreecom",
+    "subtreelinvel",  "subtreeangmom",  "insidesite",     "distance",
+    "normal",         "fromto",         "contact",        "e_potential",
+    "e_kinetic",      "clock",          "tactile",        "plugin",
+    "user"};
+
+// MJCF keyword per mjtObj value, in enum order.
+constexpr const char* kObjNames[] = {
+    "unknown", "body",     "xbody",    "joint",   "dof",      "geom",  "site",
+    "camera",  "light",    "flex",     "mesh",    "skin",     "hfield", "texture",
+    "material", "pair",    "exclude",  "equality", "tendon",  "actuator", "sensor",
+    "numeric", "text",     "tuple",    "key",     "plugin"};
+
+}  // namespace
+
+const char* SensorTypeName(int type) {
+  constexpr int n = sizeof(kSensorTags) / sizeof(kSensorTags[0]);
+  return type >= 0 && type < n ? kSensorTags[type] : "unknown";
+}
+
+const char* ObjTypeName(int type) {
+  constexpr int n = sizeof(kObjNames) / sizeof(kObjNames[0]);
+  return type >= 0 && type < n ? kObjNames[type] : "unknown";
+}
+
+int SensorId(const Model& m, const std::string& name) {
+  int id = NameToId(m, kObjSensor, name);
+  if (id < 0) throw Error("no sensor named '" + name + "'");
+  return id;
+}
+
+std::span<double> SensorData(const Model& m, Data& d, const std::string& name) {
+  int id = SensorId(m, name);
+  return {d.sensordata.data() + m.sensor_adr[id], static_cast<size_t>(m.sensor_dim[id])};
+}
+
+}  // namespace simlab
