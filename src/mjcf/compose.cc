@@ -4,7 +4,7 @@
 // file replace the <include> element, and remember their own file and line for error
 // messages. <attach> is a copy: the named body subtree of a model declared with
 // <asset><model> (read on its own, with its own defaults) is copied into this body
-// with every name prefixed; the child's tendons, equalities and actuators follow when
+// with every name prefixed; the child's tendons, equalities, actuators and sensors follow when
 // everything they reference came along, and its keyframes become keyframes of this
 // model, completed by the compiler (see AttachedKey).
 #include "mjcf/compose.h"
@@ -339,6 +339,19 @@ bool AttachActuator(ActuatorSpec* a, Attachment* att) {
   }
 }
 
+// A sensor follows when every object it names (sensorized and reference) was copied;
+// sensors that name none (clock, energy) always follow.
+bool AttachSensor(SensorSpec* s, Attachment* att) {
+  auto copied = [&](int type, std::string* name) {
+    if (type == kObjUnknown) return true;
+    att->Rename(name);
+    return att->Has(type == kObjXBody ? kObjBody : type, *name);
+  };
+  bool object = copied(s->objtype, &s->objname);
+  bool reference = copied(s->reftype, &s->refname);
+  return object && reference;
+}
+
 // The child's joints and mocap bodies in its own compiled order (depth first).
 void ChildOrder(const BodySpec& body, std::vector<const JointSpec*>* joints,
                 std::vector<const BodySpec*>* mocap) {
@@ -439,6 +452,11 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
     if (!keep) continue;
     att.Rename(&a.src.name, kObjActuator);
     spec_->actuators.push_back(std::move(a));
+  }
+  for (SensorSpec s : cs.sensors) {
+    if (!AttachSensor(&s, &att)) continue;
+    att.Rename(&s.src.name, kObjSensor);
+    spec_->sensors.push_back(std::move(s));
   }
   AttachClasses(*child, att.prefix);
   CarryKeys(att);
