@@ -125,6 +125,7 @@ void CheckModel(const std::string& name, const std::string& path) {
   EXPECT_EQ(m.nM, sizes["nM"].get<int>());
   EXPECT_EQ(m.nmocap, sizes["nmocap"].get<int>());
   if (sizes.contains("neq")) EXPECT_EQ(m.neq, sizes["neq"].get<int>());
+  if (sizes.contains("ncam")) EXPECT_EQ(m.ncam, sizes["ncam"].get<int>());
   if (::testing::Test::HasFailure()) return;
 
   // Every array we have and MuJoCo dumped.
@@ -208,6 +209,9 @@ TEST(CompilerConformance, GantryGripper) {
 TEST(CompilerConformance, Equality) { CheckModel("equality", Local("equality.xml")); }
 // geom_fluid: the ellipsoid fluid model's coefficients, added mass and inertia.
 TEST(CompilerConformance, Fluid) { CheckModel("fluid", Local("fluid.xml")); }
+
+// Cameras: modes, orientations, frames, defaults and intrinsics (cam_* fields).
+TEST(CompilerConformance, Cameras) { CheckModel("cameras", Local("cameras.xml")); }
 // Muscle lengthranges MuJoCo finds by simulation: a limited hinge, and arm26's tendons.
 TEST(CompilerConformance, LengthRangeBySimulation) {
   CheckModel("lengthrange_sim", Local("lengthrange_sim.xml"));
@@ -216,6 +220,10 @@ TEST(CompilerConformance, Arm26) { CheckModel("arm26", Corpus("tendon_arm/arm26.
 // Meshes (tests/meshes): files and inline data, inertia modes, hulls, fitted primitives.
 TEST(CompilerConformance, MeshAssets) {
   CheckModel("mesh_assets", std::string(SIMLAB_SOURCE_DIR) + "/tests/meshes/mesh_assets.xml");
+}
+// Builtin meshes (every shape MuJoCo 3.5 makes) and height fields (hfield_*, geom sizes).
+TEST(CompilerConformance, BuiltinMeshesHFields) {
+  CheckModel("builtin_hfield", Local("builtin_hfield.xml"));
 }
 // Fitted primitives; and a point cloud (faces from its hull, maxhullvert) and a torus.
 TEST(CompilerConformance, MeshFit) {

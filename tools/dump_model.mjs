@@ -17,7 +17,8 @@ import { loadOracleModel } from './oracle_model.mjs';
 
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
-  'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph'];
+  'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'ncam',
+  'nhfield', 'nhfielddata'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -36,8 +37,12 @@ const ARRAYS = [
   'geom_rgba', 'geom_fluid', 'geom_dataid',
   'mesh_vertadr', 'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_graphadr', 'mesh_scale',
   'mesh_pos', 'mesh_quat', 'mesh_vert', 'mesh_face', 'mesh_graph',
+  'hfield_size', 'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data',
   'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
   'site_quat', 'site_rgba',
+  'cam_mode', 'cam_bodyid', 'cam_targetbodyid', 'cam_pos', 'cam_quat', 'cam_poscom0',
+  'cam_pos0', 'cam_mat0', 'cam_projection', 'cam_fovy', 'cam_ipd', 'cam_resolution',
+  'cam_output', 'cam_sensorsize', 'cam_intrinsic',
   'tendon_adr', 'tendon_num', 'tendon_limited', 'tendon_actfrclimited', 'tendon_solref_lim',
   'tendon_solimp_lim', 'tendon_solref_fri', 'tendon_solimp_fri', 'tendon_range',
   'tendon_actfrcrange', 'tendon_margin', 'tendon_stiffness', 'tendon_damping',

@@ -10,7 +10,7 @@
 #      humanoid.xml the contact_subtree*.xml models attach.
 #   2. Copies our own sensor models, tests/sensors/*.xml.
 #   3. Each model: ctrlgen.mjs controls, rollout.mjs --steps 200 --every 10; models with
-#      keyframes also from keyframe 0.
+#      keyframes also from keyframe 0 (as a copy named NAME__key0.xml).
 #   Writes tests/conformance/sensor_cases.txt (model, golden, steps, state, ctrl, tol);
 #   tolerance 1e-8 relative.
 # Requirements: bash, node, and `npm ci` done in ../shared/oracle.
@@ -30,18 +30,31 @@ case_folder "$CASES"
 # --- 1. corpus sensor models ---------------------------------------------------------------
 SENSOR="$SHARED_CORPUS/test/engine/testdata/sensor"
 CORPUS_MODELS=()
+# geometric sensors (camprojection, insidesite, distance/normal/fromto)
+CORPUS_MODELS+=(camprojection insidesite fromto_capsule_ellipsoid fromto_primitive)
+# contact sensors (site/geom/body/subtree criteria, reductions); the subtree scenes attach
+# humanoid.xml, copied beside them (not a case of its own)
+CORPUS_MODELS+=(contact contact_net contact_sorted contact_subtree contact_subtree_partial)
+cp "$SENSOR/humanoid.xml" "$OUT/models/"
 for name in "${CORPUS_MODELS[@]}"; do
   cp "$SENSOR/$name.xml" "$OUT/models/"
 done
+# fromto_convex.xml with its hfield made non-colliding: hfield collisions are not supported
+# yet, and MuJoCo finds no contacts with it in this scene (ncon is 0 at every step).
+derive "$SENSOR" fromto_convex nohfield "the hfield geom made non-colliding (contype/conaffinity 0)" \
+  -e 's|hfield="hfield" rgba="0.5 0.5 0.5 1"/>|hfield="hfield" rgba="0.5 0.5 0.5 1" contype="0" conaffinity="0"/>|'
 
 # --- 2. our own sensor models --------------------------------------------------------------
 cp tests/sensors/*.xml "$OUT/models/"
 
 # --- 3. rollouts ---------------------------------------------------------------------------
 for model in "$OUT"/models/*.xml; do
+  [ "$(basename "$model")" != humanoid.xml ] || continue
   oracle_case "$model" "$STEPS" - "$TOL" "$CASES"
   if grep -q "<key" "$model"; then
-    oracle_case "$model" "$STEPS" key:0 "$TOL" "$CASES"
+    # (a copy under its own name: the test names each case by its model file)
+    cp "$model" "${model%.xml}__key0.xml"
+    oracle_case "${model%.xml}__key0.xml" "$STEPS" key:0 "$TOL" "$CASES"
   fi
 done
 echo "wrote $CASES ($(wc -l < "$CASES") cases)"

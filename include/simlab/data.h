@@ -107,6 +107,8 @@ struct WarningStat {
   X(double, geom_xmat, ngeom, 9)                \
   X(double, site_xpos, nsite, 3)                \
   X(double, site_xmat, nsite, 9)                \
+  X(double, cam_xpos, ncam, 3)                  \
+  X(double, cam_xmat, ncam, 9)                  \
   X(double, subtree_com, nbody, 3)              \
   X(double, cdof, nv, 6)                        \
   X(double, cinert, nbody, 10)                  \
@@ -134,6 +136,8 @@ struct WarningStat {
   X(double, qfrc_fluid, nv, 1)                  \
   X(double, qfrc_gravcomp, nv, 1)               \
   X(double, qfrc_passive, nv, 1)                \
+  X(double, subtree_linvel, nbody, 3)  /* on demand: SubtreeVel */ \
+  X(double, subtree_angmom, nbody, 3)  /* about each subtree's com */ \
   /* acceleration-dependent */                  \
   X(double, actuator_force, nu, 1)              \
   X(double, qfrc_actuator, nv, 1)               \

@@ -279,6 +279,12 @@ struct Statistic {
   X(double, mesh_vert, nmeshvert, 3)               \
   X(int, mesh_face, nmeshface, 3)                  \
   X(int, mesh_graph, nmeshgraph, 1)                \
+  /* height fields (elevation normalized to [0, 1], float-rounded as MuJoCo's) */ \
+  X(double, hfield_size, nhfield, 4)  /* x, y, top z, base depth */ \
+  X(int, hfield_nrow, nhfield, 1)                  \
+  X(int, hfield_ncol, nhfield, 1)                  \
+  X(int, hfield_adr, nhfield, 1)                   \
+  X(double, hfield_data, nhfielddata, 1)           \
   /* explicit contact pairs and excluded body pairs */ \
   X(int, pair_dim, npair, 1)                       \
   X(int, pair_geom1, npair, 1)                     \
@@ -300,6 +306,22 @@ struct Statistic {
   X(double, site_pos, nsite, 3)                    \
   X(double, site_quat, nsite, 4)                   \
   X(double, site_rgba, nsite, 4)                   \
+  /* cameras (sensorsize and intrinsic hold float-rounded values, as MuJoCo) */ \
+  X(int, cam_mode, ncam, 1)                        \
+  X(int, cam_bodyid, ncam, 1)                      \
+  X(int, cam_targetbodyid, ncam, 1)                \
+  X(double, cam_pos, ncam, 3)                      \
+  X(double, cam_quat, ncam, 4)                     \
+  X(double, cam_poscom0, ncam, 3)                  \
+  X(double, cam_pos0, ncam, 3)                     \
+  X(double, cam_mat0, ncam, 9)                     \
+  X(int, cam_projection, ncam, 1)                  \
+  X(double, cam_fovy, ncam, 1)                     \
+  X(double, cam_ipd, ncam, 1)                      \
+  X(int, cam_resolution, ncam, 2)                  \
+  X(int, cam_output, ncam, 1)                      \
+  X(double, cam_sensorsize, ncam, 2)               \
+  X(double, cam_intrinsic, ncam, 4)                \
   /* equality constraints */                       \
   X(int, eq_type, neq, 1)                          \
   X(int, eq_obj1id, neq, 1)                        \
@@ -395,7 +417,9 @@ struct Statistic {
   X(jnt, njnt)                \
   X(geom, ngeom)              \
   X(site, nsite)              \
+  X(cam, ncam)                \
   X(mesh, nmesh)              \
+  X(hfield, nhfield)          \
   X(pair, npair)              \
   X(exclude, nexclude)        \
   X(eq, neq)                  \
@@ -414,10 +438,13 @@ struct Statistic {
   X(njnt)        /* joints */                                              \
   X(ngeom)       /* geoms */                                               \
   X(nsite)       /* sites */                                               \
+  X(ncam)        /* cameras */                                             \
   X(nmesh)       /* meshes */                                              \
   X(nmeshvert)   /* vertices of all meshes */                              \
   X(nmeshface)   /* triangles of all meshes */                             \
   X(nmeshgraph)  /* ints of all convex-hull graphs (mesh_graph) */         \
+  X(nhfield)     /* height fields */                                       \
+  X(nhfielddata) /* elevation numbers of all height fields */              \
   X(npair)       /* explicit geom pairs (<contact><pair>) */               \
   X(nexclude)    /* excluded body pairs (<contact><exclude>) */            \
   X(ntendon)     /* tendons */                                             \

@@ -36,18 +36,24 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CompileState state;
   FlattenTree(spec, &state);
   CompileMeshes(spec, &state);
+  CompileHFields(spec, &state);
   CompileBodies(&state);
   CheckMovingBodies(state);
+  CheckHFieldCollisions(spec, state);
 
   // Sizes, then every array.
   Model m;
   CompileOption(spec, &m);
   TreeSizes(state, &m);
+  m.ncam = CameraCount(state);
   MeshSizes(state, &m);
+  HFieldSizes(state, &m);
   SectionSizes(spec, &m);
   m.Allocate();
   LayoutTree(state, &m);
+  CompileCameras(spec, state, &m);
   LayoutMeshes(state, &m);
+  LayoutHFields(state, &m);
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);
@@ -58,6 +64,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
   ComputeConstants(&m);
+  CameraConstants(&m);
   EqualityConstants(&m);
   AutoSpringDamper(state, &m);
   ComputeLengthRanges(spec, &m);

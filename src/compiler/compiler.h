@@ -4,6 +4,7 @@
 //   body.cc      the tree: bodies, joints, dofs, geoms, sites, in depth-first order
 //   inertia.cc   geom volumes and inertias, body inertia from geoms, mass bounds
 //   fluid.cc     geom_fluid: the ellipsoid fluid model's added mass and inertia
+//   camera.cc    cameras: poses, target bodies, intrinsics, tracking offsets
 //   tendon.cc    fixed tendons
 //   actuator.cc  actuators: transmission targets, limits, activation layout
 //   equality.cc  equality constraints: objects, parameters, eq_data at qpos0
@@ -53,12 +54,19 @@ struct MeshState {
   double volume = 0;                     // volume, or surface area for shell inertia
 };
 
+// A compiled height field (hfield.cc): elevations normalized to [0, 1].
+struct HFieldState {
+  const mjcf::HFieldSpec* spec = nullptr;
+  std::vector<float> data;
+};
+
 // A geom while compiling (pose in the body frame, mass properties).
 struct GeomState {
   const mjcf::GeomSpec* spec = nullptr;
   int body = 0;
   const MeshState* mesh = nullptr;  // its mesh (mesh geoms, and primitives fitted to one)
   int meshid = -1;                  // geom_dataid: the mesh it names, or -1
+  const HFieldState* hfield = nullptr;  // its height field (hfield geoms; meshid is its id)
   double size[3] = {0, 0, 0};
   double pos[3] = {0, 0, 0};
   double quat[4] = {1, 0, 0, 0};
@@ -94,6 +102,7 @@ struct CompileState {
   std::vector<GeomState> geoms;
   std::vector<SiteState> sites;
   std::vector<MeshState> meshes;
+  std::vector<HFieldState> hfields;
 };
 
 // The whole compilation.
@@ -111,6 +120,14 @@ void MeshSizes(const CompileState& state, Model* m);
 void MeshGeomFrame(const mjcf::CompilerSpec& c, GeomState* g);
 void MeshGeomSize(GeomState* g);
 void LayoutMeshes(const CompileState& state, Model* m);
+// Height fields and the geoms that use them (hfield.cc): before the bodies.
+void CompileHFields(const mjcf::ModelSpec& spec, CompileState* state);
+// An hfield geom's size from its height field (MuJoCo's geom_size for hfields).
+void HFieldGeomSize(GeomState* g);
+// Refuses hfield geoms that could collide with a moving geom (no hfield colliders yet).
+void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& state);
+void HFieldSizes(const CompileState& state, Model* m);
+void LayoutHFields(const CompileState& state, Model* m);
 void CompileBodies(CompileState* state);
 void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g);
 void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>& geoms,
@@ -121,6 +138,11 @@ double GeomRBound(const GeomState& g);
 void GeomFluid(const GeomState& g, double* fluid);
 void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
+// Cameras in body order (camera.cc); their tracking offsets at qpos0 once the
+// constants are known.
+int CameraCount(const CompileState& state);
+void CompileCameras(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
+void CameraConstants(Model* m);
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileEqualities(const mjcf::ModelSpec& spec, Model* m);
 // Stiffness and damping of joints given as springdamper (constants.cc).

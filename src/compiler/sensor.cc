@@ -65,11 +65,10 @@ int RayDataSize(int mask) {
   return MaskedSize(mask, kWidths, kNRayData);
 }
 
-// Rays a rangefinder casts: one from a site (one per pixel from a camera, once cameras
-// are compiled).
-int RayCount(const SensorSpec& s) {
-  if (s.objtype == kObjCamera) ThrowAt(s.src, "camera rangefinders are not supported yet");
-  return 1;
+// Rays a rangefinder casts: one from a site, one per pixel from a camera.
+int RayCount(const Model& m, const SensorSpec& s, int objid) {
+  if (s.objtype != kObjCamera) return 1;
+  return m.cam_resolution[2 * objid] * m.cam_resolution[2 * objid + 1];
 }
 
 // Output size (MuJoCo's mjs_sensorDim).
@@ -86,7 +85,7 @@ int SensorDim(const Model& m, const SensorSpec& s, int objid) {
     case kSensGeomFromTo: return 6;
     case kSensContact: return s.intprm[2] * ContactDataSize(s.intprm[0]);
     case kSensTactile: return 3 * m.mesh_vertnum[objid];
-    case kSensRangefinder: return RayDataSize(s.intprm[0]) * RayCount(s);
+    case kSensRangefinder: return RayDataSize(s.intprm[0]) * RayCount(m, s, objid);
     case kSensUser: return s.dim;
     default: return 1;
   }
@@ -96,23 +95,10 @@ int SensorDim(const Model& m, const SensorSpec& s, int objid) {
 void SupportedYet(const SensorSpec& s) {
   const char* family = nullptr;
   switch (s.type) {
-    case kSensRangefinder: family = "rangefinder"; break;
-    case kSensCamProjection: family = "camprojection"; break;
-    case kSensInsideSite: family = "insidesite"; break;
-    case kSensGeomDist: case kSensGeomNormal: case kSensGeomFromTo:
-      family = "distance/normal/fromto"; break;
-    case kSensTouch: family = "touch"; break;
-    case kSensContact: family = "contact"; break;
+    // (tactile needs mesh normals and signed distance fields of the touched geoms)
     case kSensTactile: family = "tactile"; break;
-    case kSensAccelerometer: case kSensForce: case kSensTorque: case kSensFrameLinAcc:
-    case kSensFrameAngAcc:
-      family = "acceleration and force"; break;
-    case kSensSubtreeLinVel: case kSensSubtreeAngMom: family = "subtree velocity"; break;
-    case kSensEPotential: case kSensEKinetic: family = "energy"; break;
     default: break;
   }
-  if (s.objtype == kObjCamera || s.reftype == kObjCamera) family = "camera";
-  if (s.nsample > 0) family = "delayed and sampled (nsample)";
   if (family) ThrowAt(s.src, std::string(family) + " sensors are not supported yet");
 }
 
@@ -152,6 +138,10 @@ void CheckAttachment(const Model& m, const SensorSpec& s, int objid, int refid) 
     case kSensTouch: case kSensAccelerometer: case kSensVelocimeter: case kSensGyro:
     case kSensForce: case kSensTorque: case kSensMagnetometer: case kSensCamProjection:
       if (s.objtype != kObjSite) ThrowAt(s.src, "sensor must be attached to site");
+      if (s.type == kSensCamProjection &&
+          (m.cam_resolution[2 * refid] == 0 || m.cam_resolution[2 * refid + 1] == 0)) {
+        ThrowAt(s.src, "camera projection sensor requires camera resolution");
+      }
       break;
     case kSensJointPos: case kSensJointVel: case kSensJointActFrc: case kSensBallQuat:
     case kSensBallAngVel: case kSensJointLimitPos: case kSensJointLimitVel:
@@ -277,7 +267,10 @@ void LayoutHistory(const mjcf::ModelSpec& spec, Model* m) {
   int adr = 0;
   for (int i = 0; i < m->nu; i++) {
     const mjcf::ActuatorSpec& a = spec.actuators[i];
+    if (a.delay > 0 && a.nsample <= 0) ThrowAt(a.src, "setting delay > 0 without a history buffer");
+    if (a.nsample > (1 << 24)) ThrowAt(a.src, "at most 2^24 samples in history buffer");
     m->actuator_history[2 * i] = a.nsample;
+    m->actuator_history[2 * i + 1] = a.interp;
     m->actuator_delay[i] = a.delay;
     m->actuator_historyadr[i] = a.nsample > 0 ? adr : -1;
     if (a.nsample > 0) adr += 2 + 2 * a.nsample;

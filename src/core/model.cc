@@ -28,6 +28,7 @@ int Model::NameToId(ObjType type, const std::string& name) const {
     case kObjJoint: names = &jnt_names; break;
     case kObjGeom: names = &geom_names; break;
     case kObjSite: names = &site_names; break;
+    case kObjCamera: names = &cam_names; break;
     case kObjMesh: names = &mesh_names; break;
     case kObjPair: names = &pair_names; break;
     case kObjExclude: names = &exclude_names; break;

@@ -407,6 +407,10 @@ void ccd::SegmentSupport(double res[3], ConvexShape* s, const double dir[3]) {
   res[2] = s->mat[8] * half + s->pos[2];
 }
 
+ConvexShape ccd::GeomShape(const Model& m, const Data& d, int g, double margin) {
+  return MakeShape(m, d, g, margin);
+}
+
 int CollideConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
                   double margin) {
   ConvexShape s1 = MakeShape(m, d, g1, margin), s2 = MakeShape(m, d, g2, margin);

@@ -93,6 +93,10 @@ enum EpaStatus : int {
 // negative when penetrating, with witness points in status (MuJoCo's mjc_ccd).
 double Collide(const CcdConfig& config, CcdStatus* status, ConvexShape* s1, ConvexShape* s2);
 
+// Geom g as a convex shape inflated by margin/2 (MuJoCo's mjc_initCCDObj;
+// collision_convex.cc).
+ConvexShape GeomShape(const Model& m, const Data& d, int g, double margin);
+
 // Support functions of a sphere's centre and a capsule's axis segment: GJK runs on these
 // first and inflates the answer by the radius (collision_convex.cc).
 void CentreSupport(double res[3], ConvexShape* shape, const double dir[3]);

@@ -21,6 +21,10 @@ void FwdPositionSmooth(const Model& m, Data& d);
 void Kinematics(const Model& m, Data& d);
 // subtree_com, cinert, cdof (kinematics.cc).
 void ComPos(const Model& m, Data& d);
+// cam_xpos, cam_xmat: every camera's pose after its tracking mode (camera.cc).
+void CamLight(const Model& m, Data& d);
+// Camera i's pose carried by its body alone (the fixed mode).
+void CameraFixedPose(const Model& m, Data& d, int i);
 // ten_length, ten_J, ten_wrapadr, ten_wrapnum, wrap_obj, wrap_xpos (tendon.cc).
 void Tendon(const Model& m, Data& d);
 // jdot (nv) = d ten_J(i) / dt; zero for fixed tendons (tendon.cc).
@@ -79,6 +83,17 @@ void FluidForces(const Model& m, Data& d);
 void GeomSemiAxes(int type, const double* size, double* semiaxes);
 // result = inverse dynamics without (flg_acc false) or with qacc (rne.cc).
 void Rne(const Model& m, Data& d, bool flg_acc, double* result);
+// One body of the RNE forward pass: cacc (nbody x 6, the parent's row already set) gets
+// the body's row cacc(parent) + cdof_dot qvel [+ cdof qacc]; cfrc_body (6) the force
+// that acceleration needs, cinert cacc + cvel x* (cinert cvel) (rne.cc).
+void RneBodyStep(const Model& m, const Data& d, int body, bool flg_acc, double* cacc,
+                 double* cfrc_body);
+// subtree_linvel, subtree_angmom; sets flg_subtreevel (rne_post.cc, MuJoCo mj_subtreeVel).
+void SubtreeVel(const Model& m, Data& d);
+// energy[0]: gravity and joint/tendon spring potential; sets flg_energypos (energy.cc).
+void EnergyPos(const Model& m, Data& d);
+// energy[1] = qvel' M qvel / 2; sets flg_energyvel (energy.cc).
+void EnergyVel(const Model& m, Data& d);
 
 // ------------------------------------------------------------ acceleration stage
 
@@ -100,6 +115,14 @@ double MuscleDynamics(double ctrl, double act, const double* prm);
 void SmoothAcceleration(const Model& m, Data& d);
 // qfrc_constraint, qacc (constraint.cc).
 void Constraint(const Model& m, Data& d);
+// A contact's force and torque in its own frame (normal, tangents, spin, rolls), decoded
+// from the pyramid's edge forces under pyramidal cones; zero without rows (rne_post.cc,
+// MuJoCo mj_contactForce).
+void ContactForce(const Model& m, const Data& d, int contact, double result[6]);
+// After the constraint solve: cacc (with qacc), cfrc_ext (applied, contact and
+// connect/weld forces) and cfrc_int (what each body's parent exerts on its subtree), all
+// com-based; sets flg_rnepost (rne_post.cc, MuJoCo mj_rnePostConstraint).
+void RnePostConstraint(const Model& m, Data& d);
 
 // ------------------------------------------------------------ sparse inertia algebra
 
@@ -114,6 +137,15 @@ void MulSymLayout(int nv, const int* rownnz, const int* rowadr, const int* colin
 // The same solve for any matrix in that layout with nv rows (an island's block of M).
 void SolveSparseLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
                        const double* ld, const double* diag_inv, double* x);
+
+// ------------------------------------------------------------ history buffers (history.cc)
+
+// The delayed actuators' and sampled sensors' buffers at their reset state (in ResetData).
+void ResetHistory(const Model& m, Data& d);
+// ctrl and the sampled sensors' values written at d.time, when integration starts.
+void RecordHistory(const Model& m, Data& d);
+// Actuator i's input before clamping: ctrl, or ctrl `delay` seconds ago if delayed.
+double ActuatorInput(const Model& m, const Data& d, int i);
 
 // ------------------------------------------------------------ integration (integrator.cc)
 

@@ -1,7 +1,7 @@
 // The pipeline (MuJoCo engine_forward.c). Forward computes everything that follows
 // from the current state; Step checks the state, runs Forward, then integrates.
 //
-//   position:     Kinematics, ComPos, Tendon, MakeInertia, FactorInertia, Collision,
+//   position:     Kinematics, ComPos, CamLight, Tendon, MakeInertia, FactorInertia, Collision,
 //                 MakeConstraint, Transmission (adhesion's body transmission uses the
 //                 contact rows), ProjectConstraint
 //   velocity:     tendon/actuator velocities, ComVel, Passive, constraint reference
@@ -35,6 +35,9 @@ bool IsBad(double x) { return std::isnan(x) || x > kMaxVal || x < -kMaxVal; }
 
 
 void FwdVelocity(const Model& m, Data& d) {
+  // What the sensors compute on demand is stale from here on.
+  d.flg_subtreevel = false;
+  d.flg_energyvel = false;
   // Tendon and actuator velocities: their Jacobians times qvel.
   for (int i = 0; i < m.ntendon; i++) {
     double s = 0;
@@ -82,10 +85,25 @@ void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
   }
 }
 
+// Energies after the position and velocity stages, unless a sensor has computed them:
+// with the energy flag, else both zero (MuJoCo's forward).
+void EnergyAfterPosition(const Model& m, Data& d) {
+  if (d.flg_energypos) return;
+  if (m.opt.enableflags & kEnableEnergy) {
+    EnergyPos(m, d);
+  } else {
+    d.energy[0] = d.energy[1] = 0;
+  }
+}
+void EnergyAfterVelocity(const Model& m, Data& d) {
+  if ((m.opt.enableflags & kEnableEnergy) && !d.flg_energyvel) EnergyVel(m, d);
+}
+
 // Poses, tendons and the factored inertia: the position stage before collisions.
 void KinematicsAndInertia(const Model& m, Data& d) {
   Kinematics(m, d);
   ComPos(m, d);
+  CamLight(m, d);
   Tendon(m, d);
   MakeInertia(m, d);
   FactorInertia(m, d);
@@ -99,6 +117,7 @@ void FwdPositionSmooth(const Model& m, Data& d) {
 }
 
 void FwdPosition(const Model& m, Data& d) {
+  d.flg_energypos = false;
   KinematicsAndInertia(m, d);
   Collision(m, d);
   MakeConstraint(m, d);
@@ -128,9 +147,11 @@ void ForwardSkip(const Model& m, Data& d, bool skip_position, bool skip_sensor) 
   if (!skip_position) {
     FwdPosition(m, d);
     if (!skip_sensor) SensorPos(m, d);
+    EnergyAfterPosition(m, d);
   }
   FwdVelocity(m, d);
   if (!skip_sensor) SensorVel(m, d);
+  EnergyAfterVelocity(m, d);
   Actuation(m, d);
   SmoothAcceleration(m, d);
   Constraint(m, d);
@@ -162,14 +183,17 @@ void Step1(const Model& m, Data& d) {
   CheckState(m, d, d.qvel, kWarnBadQvel);
   FwdPosition(m, d);
   SensorPos(m, d);
+  EnergyAfterPosition(m, d);
   FwdVelocity(m, d);
   SensorVel(m, d);
+  EnergyAfterVelocity(m, d);
 }
 
 void Step2(const Model& m, Data& d) {
   Actuation(m, d);
   SmoothAcceleration(m, d);
   Constraint(m, d);
+  d.flg_rnepost = false;
   SensorAcc(m, d);
   if (CheckState(m, d, d.qacc, kWarnBadQacc) && !(m.opt.disableflags & kDisableAutoreset)) {
     Forward(m, d);

@@ -120,6 +120,14 @@ void ComputePos(const Model& m, Data& d, int i, double* out) {
     case kSensFrameQuat: FrameQuat(m, d, i, out); break;
     case kSensSubtreeCom: math::Copy3(out, &d.subtree_com[3 * id]); break;
     case kSensClock: out[0] = d.time; break;
+    case kSensCamProjection: CamProjectionSensor(m, d, i, out); break;
+    case kSensInsideSite: InsideSiteSensor(m, d, i, out); break;
+    case kSensRangefinder: RangefinderSensor(m, d, i, out); break;
+    case kSensGeomDist:
+    case kSensGeomNormal:
+    case kSensGeomFromTo: GeomDistanceSensor(m, d, i, out); break;
+    case kSensEPotential:
+    case kSensEKinetic: EnergySensor(m, d, i, out); break;
     default: break;
   }
 }
@@ -142,6 +150,8 @@ void ComputeVel(const Model& m, Data& d, int i, double* out) {
     case kSensTendonLimitVel: out[0] = LimitValue(d, kCnstrLimitTendon, id, d.efc_vel); break;
     case kSensFrameLinVel:
     case kSensFrameAngVel: FrameVelocity(m, d, i, out); break;
+    case kSensSubtreeLinVel:
+    case kSensSubtreeAngMom: SubtreeMomentumSensor(m, d, i, out); break;
     default: break;
   }
 }
@@ -165,6 +175,13 @@ void ComputeAcc(const Model& m, Data& d, int i, double* out) {
     }
     case kSensJointLimitFrc: out[0] = LimitValue(d, kCnstrLimitJoint, id, d.efc_force); break;
     case kSensTendonLimitFrc: out[0] = LimitValue(d, kCnstrLimitTendon, id, d.efc_force); break;
+    case kSensTouch: TouchSensor(m, d, i, out); break;
+    case kSensContact: ContactSensor(m, d, i, out); break;
+    case kSensAccelerometer: AccelerometerSensor(m, d, i, out); break;
+    case kSensForce:
+    case kSensTorque: ForceTorqueSensor(m, d, i, out); break;
+    case kSensFrameLinAcc:
+    case kSensFrameAngAcc: FrameAccSensor(m, d, i, out); break;
     default: break;
   }
 }
@@ -181,7 +198,7 @@ void SensorStage(const Model& m, Data& d, int stage) {
       std::fill(out, out + m.sensor_dim[i], 0.0);
       any_user = true;
     } else {
-      ComputeSensor(m, d, i, out);
+      ComputeOrReadSensor(m, d, i, out);
     }
   }
   if (!any_user) return;
@@ -227,6 +244,9 @@ ObjectFrame GetObjectFrame(const Model& m, const Data& d, int objtype, int objid
     case kObjSite:
       f = {&d.site_xpos[3 * objid], &d.site_xmat[9 * objid], m.site_bodyid[objid]};
       break;
+    case kObjCamera:
+      f = {&d.cam_xpos[3 * objid], &d.cam_xmat[9 * objid], m.cam_bodyid[objid]};
+      break;
     default: break;
   }
   return f;
@@ -241,6 +261,10 @@ void ObjectQuat(const Model& m, const Data& d, int objtype, int objid, double qu
       break;
     case kObjSite:
       math::MulQuat(quat, &d.xquat[4 * m.site_bodyid[objid]], &m.site_quat[4 * objid]);
+      break;
+    case kObjCamera:
+      // The camera's rest orientation on its body (tracking modes are not applied).
+      math::MulQuat(quat, &d.xquat[4 * m.cam_bodyid[objid]], &m.cam_quat[4 * objid]);
       break;
     default: break;
   }

@@ -21,6 +21,9 @@ void SensorAcc(const Model& m, Data& d);
 
 // One sensor's value at its stage, with its cutoff applied (mj_computeSensor).
 void ComputeSensor(const Model& m, Data& d, int i, double* out);
+// The same, or for a delayed sensor or an interval sensor between ticks its history
+// buffer's value (history.cc, MuJoCo compute_or_read_sensor).
+void ComputeOrReadSensor(const Model& m, Data& d, int i, double* out);
 
 // The position and orientation of an object with a spatial frame (body inertial frame,
 // body frame, geom, site, camera), and its body.
@@ -38,6 +41,40 @@ void ObjectVelocity(const Model& m, const Data& d, int objtype, int objid, doubl
                     bool local);
 void ObjectAcceleration(const Model& m, const Data& d, int objtype, int objid, double res[6],
                         bool local);
+
+// Geometric sensors (sensor_geometry.cc): camprojection; insidesite; distance, normal
+// and fromto between two geoms or the geoms of two bodies.
+void CamProjectionSensor(const Model& m, Data& d, int i, double* out);
+void InsideSiteSensor(const Model& m, Data& d, int i, double* out);
+void GeomDistanceSensor(const Model& m, Data& d, int i, double* out);
+// Whether a world point lies strictly inside a shape (site or geom type and size) at
+// pos/mat (MuJoCo's mju_insideGeom); used by insidesite and the contact sensor's site.
+bool InsideShape(const double* pos, const double* mat, const double* size, int type,
+                 const double* point);
+// The smallest signed distance between two geoms, up to distmax, and the segment from
+// geom1's nearest point to geom2's (zeros beyond distmax), by the narrow phase with
+// distmax as margin (MuJoCo's mj_geomDistance). `con` holds kMaxContactPair contacts
+// of scratch.
+double GeomDistance(const Model& m, const Data& d, int geom1, int geom2, double distmax,
+                    double fromto[6], Contact* con);
+
+// Rangefinders (sensor_ray.cc): rays from a site along its z axis, or one per pixel of
+// a camera, with the fields of the sensor's data mask.
+void RangefinderSensor(const Model& m, Data& d, int i, double* out);
+
+// Contact sensors (sensor_contact.cc): touch (normal forces whose ray meets a site's
+// volume) and contact (matching contacts' fields per slot, sorted or netted).
+void TouchSensor(const Model& m, Data& d, int i, double* out);
+void ContactSensor(const Model& m, Data& d, int i, double* out);
+
+// Sensors of quantities computed on demand (sensor_acc.cc): accelerometer, force and
+// torque, framelinacc/frameangacc (RnePostConstraint), subtreelinvel/subtreeangmom
+// (SubtreeVel), e_potential/e_kinetic (EnergyPos/EnergyVel).
+void AccelerometerSensor(const Model& m, Data& d, int i, double* out);
+void ForceTorqueSensor(const Model& m, Data& d, int i, double* out);
+void FrameAccSensor(const Model& m, Data& d, int i, double* out);
+void SubtreeMomentumSensor(const Model& m, Data& d, int i, double* out);
+void EnergySensor(const Model& m, Data& d, int i, double* out);
 
 }  // namespace simlab
 

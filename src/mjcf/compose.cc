@@ -256,6 +256,10 @@ void RenameTree(const BodySpec& original, BodySpec* copy, Attachment* att) {
   }
   for (GeomSpec& g : copy->geoms) att->Rename(&g.src.name, kObjGeom);
   for (SiteSpec& s : copy->sites) att->Rename(&s.src.name, kObjSite);
+  for (CameraSpec& c : copy->cameras) {
+    att->Rename(&c.src.name, kObjCamera);
+    att->Rename(&c.target);
+  }
   for (size_t i = 0; i < copy->bodies.size(); i++) {
     RenameTree(*original.bodies[i], copy->bodies[i].get(), att);
   }
@@ -425,6 +429,12 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
       s.frame = Rebase(s.frame, base);
       att.Rename(&s.src.name, kObjSite);
       body->sites.push_back(std::move(s));
+    }
+    for (CameraSpec c : cs.world.cameras) {
+      c.frame = Rebase(c.frame, base);
+      att.Rename(&c.src.name, kObjCamera);
+      att.Rename(&c.target);
+      body->cameras.push_back(std::move(c));
     }
   }
   for (const BodySpec* original : originals) {

@@ -157,7 +157,7 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
     } else if (tag == "tendon") {
       ReadTendon(c, &def->tendon, true);
     } else if (tag == "camera") {
-      Camera(c, true);
+      ReadCamera(c, &def->camera, true);
     } else if (tag == "light") {
       Light(c, true);
     } else if (tag == "equality") {
@@ -231,7 +231,10 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     site.frame = frame;
     body->sites.push_back(std::move(site));
   } else if (tag == "camera") {
-    Camera(c, false);
+    CameraSpec cam = cls->camera;
+    ReadCamera(c, &cam, false);
+    cam.frame = frame;
+    body->cameras.push_back(std::move(cam));
   } else if (tag == "light") {
     Light(c, false);
   } else if (tag == "frame") {

@@ -61,7 +61,9 @@ class Reader {
   void ReadPair(const XmlElement& e, PairSpec* pair, bool in_default) const;
   // mesh assets (reader_mesh.cc)
   void ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) const;
-  void Camera(const XmlElement& e, bool in_default) const;
+  void ReadBuiltin(const XmlElement& e, MeshSpec* mesh) const;
+  void ReadHField(const XmlElement& e, HFieldSpec* hfield) const;
+  void ReadCamera(const XmlElement& e, CameraSpec* cam, bool in_default) const;
   void Light(const XmlElement& e, bool in_default) const;
 
   // defaults and the body tree (reader.cc)

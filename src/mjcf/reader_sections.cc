@@ -1,6 +1,6 @@
 // MJCF reader: the sections outside the body tree (compiler, option, visual, asset,
-// contact, tendon, actuator, keyframe), and cameras and lights, which are accepted
-// and ignored because they do not change the simulation.
+// contact, tendon, actuator, keyframe), cameras, and lights, which are accepted and
+// ignored because they do not change the simulation.
 #include <string>
 
 #include "mjcf/error.h"
@@ -215,6 +215,8 @@ void Reader::Visual(const XmlElement& e) {
     }
     if (!match) Unknown(c);
     c.CheckAttributes(match->attrs);
+    // The near clipping plane is the default focal length of cameras.
+    if (c.tag() == "map") c.Number("znear", &spec_->znear);
   }
 }
 
@@ -278,7 +280,10 @@ void Reader::Asset(const XmlElement& e) {
       MeshSpec mesh = cls ? cls->mesh : classes_.at("main")->mesh;
       ReadMesh(c, &mesh, false);
       spec_->meshes.push_back(std::move(mesh));
-    } else if (c.tag() == "hfield" || c.tag() == "skin") {
+    } else if (c.tag() == "hfield") {
+      spec_->hfields.emplace_back();
+      ReadHField(c, &spec_->hfields.back());
+    } else if (c.tag() == "skin") {
       NotSupported(c, "<" + c.tag() + "> assets");
     } else {
       Unknown(c);
@@ -431,7 +436,32 @@ void Reader::Keyframe(const XmlElement& e) {
 
 // ---------------------------------------------------------------- cameras and lights
 
-void Reader::Camera(const XmlElement& e, bool in_default) const {
+namespace {
+
+const std::initializer_list<Keyword> kCamLightModes = {
+    {"fixed", 0}, {"track", 1}, {"trackcom", 2}, {"targetbody", 3}, {"targetbodycom", 4}};
+const std::initializer_list<Keyword> kProjections = {{"perspective", 0}, {"orthographic", 1}};
+const std::initializer_list<Keyword> kCameraOutputs = {
+    {"rgb", 1}, {"depth", 2}, {"distance", 4}, {"normal", 8}, {"segmentation", 16}};
+
+// The output attribute: a list of flags, or-ed together.
+void ReadCameraOutput(const XmlElement& e, int* output) {
+  std::vector<std::string> tokens = e.Tokens("output");
+  if (tokens.empty()) return;
+  *output = 0;
+  for (const std::string& t : tokens) {
+    int bit = -1;
+    for (const Keyword& k : kCameraOutputs) {
+      if (t == k.first) bit = k.second;
+    }
+    if (bit < 0) e.Fail("unknown camera output '" + t + "'");
+    *output |= bit;
+  }
+}
+
+}  // namespace
+
+void Reader::ReadCamera(const XmlElement& e, CameraSpec* cam, bool in_default) const {
   if (in_default) {
     e.CheckAttributes({"projection", "fovy", "ipd", "resolution", "output", "pos", "quat",
                        "axisangle", "xyaxes", "zaxis", "euler", "mode", "focal", "focalpixel",
@@ -441,13 +471,26 @@ void Reader::Camera(const XmlElement& e, bool in_default) const {
                        "pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "mode",
                        "target", "focal", "focalpixel", "principal", "principalpixel",
                        "sensorsize", "user"});
+    cam->src = e.src();
+    e.Text("target", &cam->target);
   }
-  std::array<double, 3> pos;
-  std::array<double, 4> quat;
-  Orientation alt;
-  e.Numbers("pos", pos);
-  e.Quat("quat", quat);
-  e.Orient(&alt);
+  e.Enum("mode", &cam->mode, kCamLightModes);
+  e.Numbers("pos", cam->pos);
+  e.Quat("quat", cam->quat);
+  e.Orient(&cam->alt);
+  e.Number("ipd", &cam->ipd);
+  e.Enum("projection", &cam->projection, kProjections);
+  e.Numbers("principalpixel", cam->principalpixel);
+  e.Numbers("principal", cam->principal);
+  e.Numbers("focalpixel", cam->focalpixel);
+  e.Numbers("focal", cam->focal);
+  e.Ints("resolution", cam->resolution.data(), 2);
+  ReadCameraOutput(e, &cam->output);
+  // The field of view comes from fovy or from the sensor size, not both.
+  bool sensorsize = e.Numbers("sensorsize", cam->sensorsize) > 0;
+  bool fovy = e.Number("fovy", &cam->fovy);
+  if (fovy && sensorsize) e.Fail("either 'fovy' or 'sensorsize' can be given, not both");
+  e.Vector("user");
 }
 
 void Reader::Light(const XmlElement& e, bool in_default) const {

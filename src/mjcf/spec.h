@@ -127,6 +127,28 @@ struct SiteSpec {
   FramePtr frame;
 };
 
+// A camera (MuJoCo's mjsCamera). Lengths of the sensor model (sensorsize, focal,
+// principal) are single precision, as MuJoCo keeps them.
+struct CameraSpec {
+  Source src;
+  int mode = 0;                // mjtCamLight: fixed, track, trackcom, targetbody(com)
+  std::string target;          // target body of the tracking modes
+  std::array<double, 3> pos = {0, 0, 0};
+  std::array<double, 4> quat = {1, 0, 0, 0};
+  Orientation alt;
+  int projection = 0;          // mjtProjection: perspective, orthographic
+  std::array<int, 2> resolution = {1, 1};
+  int output = 1;              // mjtCamOut bit flags (rgb)
+  double fovy = 45;
+  double ipd = 0.068;
+  std::array<double, 2> sensorsize = {0, 0};
+  std::array<double, 2> focal = {0, 0};
+  std::array<double, 2> focalpixel = {0, 0};
+  std::array<double, 2> principal = {0, 0};
+  std::array<double, 2> principalpixel = {0, 0};
+  FramePtr frame;
+};
+
 struct BodySpec;
 
 // A body's child bodies. They are owned, and copying the list copies the subtrees
@@ -162,6 +184,7 @@ struct BodySpec {
   std::vector<JointSpec> joints;
   std::vector<GeomSpec> geoms;
   std::vector<SiteSpec> sites;
+  std::vector<CameraSpec> cameras;
   BodyList bodies;
 };
 
@@ -234,6 +257,7 @@ struct ActuatorSpec {
   int actdim = -1;
   double inheritrange = 0;
   int nsample = 0;
+  int interp = 0;  // of the delayed ctrl: 0 hold, 1 linear, 2 cubic
   double delay = 0;
   // damping at the transmission target: linear, then |v| v and v^3 terms (MuJoCo 3.7+)
   std::array<double, 1 + kNPoly> damping = {0, 0, 0};
@@ -302,6 +326,12 @@ enum MeshInertia : int { kMeshConvex = 0, kMeshExact = 1, kMeshLegacy = 2, kMesh
 // A mesh asset (MuJoCo's mjsMesh): a file, or inline vertices and faces, with the
 // reference frame and scale applied when compiling. Vertices are single precision as
 // MuJoCo reads them.
+// Builtin mesh shapes (mjtMeshBuiltin values).
+enum MeshBuiltin : int {
+  kMeshBuiltinNone = 0, kMeshBuiltinSphere, kMeshBuiltinHemisphere, kMeshBuiltinCone,
+  kMeshBuiltinSupersphere, kMeshBuiltinSupertorus, kMeshBuiltinWedge, kMeshBuiltinPlate
+};
+
 struct MeshSpec {
   Source src;
   std::string file;          // as written (it names the mesh when `name` is absent)
@@ -314,6 +344,16 @@ struct MeshSpec {
   std::array<double, 3> scale = {1, 1, 1};
   int inertia = kMeshLegacy;
   int maxhullvert = -1;      // -1: no limit
+  int builtin = 0;           // mjtMeshBuiltin (0: none); the compiler makes its vertices
+  std::vector<double> params;  // the builtin's parameters
+};
+
+// A height field asset: a grid of elevations (rows from -y to +y, as MuJoCo stores them).
+struct HFieldSpec {
+  Source src;
+  int nrow = 0, ncol = 0;
+  std::array<double, 4> size = {0, 0, 0, 0};  // x, y half-sizes, top height, base depth
+  std::vector<float> elevation;               // nrow * ncol, or empty (all zero)
 };
 
 // A keyframe that came with an attached model (defined in mjcf/compose.h).
@@ -335,6 +375,7 @@ struct DefaultClass {
   JointSpec joint;
   GeomSpec geom;
   SiteSpec site;
+  CameraSpec camera;
   TendonSpec tendon;
   ActuatorSpec actuator;
   EqualitySpec equality;
@@ -386,11 +427,13 @@ struct ModelSpec {
   std::vector<PairSpec> pairs;
   std::vector<ExcludeSpec> excludes;
   std::vector<MeshSpec> meshes;
+  std::vector<HFieldSpec> hfields;
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
   int nuser_sensor = -1;  // <size nuser_sensor>; -1: the longest sensor user data
   // <statistic>: values given by the model (undefined: computed by the compiler).
   double meaninertia = kUndefined;
+  double znear = 0.01;  // <visual><map znear>: default focal length of cameras
 };
 
 }  // namespace simlab::mjcf

@@ -1,0 +1,90 @@
+// Camera poses, part of the position stage (MuJoCo's mj_camlight, without lights):
+// a camera starts at its fixed pose in its body's frame, then its mode adjusts it.
+//
+//   fixed          the body frame carries it
+//   track          world orientation kept from qpos0, position at a fixed offset from the body
+//   trackcom       the same, offset from the body's subtree centre of mass
+//   targetbody     stays in place on its body but looks at the target body's origin
+//   targetbodycom  ... or at the target's subtree centre of mass, with the camera's
+//                  x axis horizontal (perpendicular to the world z axis)
+#include "engine/engine.h"
+#include "math/math.h"
+
+namespace simlab {
+
+using namespace math;
+
+namespace {
+
+enum CamLightMode : int {
+  kCamFixed = 0, kCamTrack = 1, kCamTrackCom = 2, kCamTargetBody = 3, kCamTargetBodyCom = 4
+};
+
+// Camera frame that looks from `eye` at `point`: z axis away from the point, x axis
+// perpendicular to z and the world's vertical, y = z x x. Rows of the transpose are
+// the axes, so they are filled as columns of xmat.
+void LookAt(const double* eye, const double* point, double* xmat) {
+  double axes[9];
+  double* x = axes;
+  double* y = axes + 3;
+  double* z = axes + 6;
+  Sub3(z, eye, point);
+  Normalize3(z);
+  const double up[3] = {0, 0, 1};
+  Cross3(x, up, z);
+  Normalize3(x);
+  Cross3(y, z, x);
+  Normalize3(y);
+  for (int r = 0; r < 3; r++) {
+    for (int c = 0; c < 3; c++) xmat[3 * r + c] = axes[3 * c + r];
+  }
+}
+
+// The tracking modes: orientation of qpos0, position offset from the body or its com.
+void TrackPose(const Model& m, Data& d, int i) {
+  int body = m.cam_bodyid[i];
+  for (int k = 0; k < 9; k++) d.cam_xmat[9 * i + k] = m.cam_mat0[9 * i + k];
+  if (m.cam_mode[i] == kCamTrack) {
+    Add3(&d.cam_xpos[3 * i], &d.xpos[3 * body], &m.cam_pos0[3 * i]);
+  } else {
+    Add3(&d.cam_xpos[3 * i], &d.subtree_com[3 * body], &m.cam_poscom0[3 * i]);
+  }
+}
+
+}  // namespace
+
+void CameraFixedPose(const Model& m, Data& d, int i) {
+  int body = m.cam_bodyid[i];
+  double* xpos = &d.cam_xpos[3 * i];
+  MulMatVec3(xpos, &d.xmat[9 * body], &m.cam_pos[3 * i]);
+  AddScaled3(xpos, &d.xpos[3 * body], 1);
+  double q[4];
+  MulQuat(q, &d.xquat[4 * body], &m.cam_quat[4 * i]);
+  QuatToMat(&d.cam_xmat[9 * i], q);
+}
+
+void CamLight(const Model& m, Data& d) {
+  for (int i = 0; i < m.ncam; i++) {
+    CameraFixedPose(m, d, i);
+    int target = m.cam_targetbodyid[i];
+    switch (m.cam_mode[i]) {
+      case kCamTrack:
+      case kCamTrackCom:
+        TrackPose(m, d, i);
+        break;
+      case kCamTargetBody:
+      case kCamTargetBodyCom:
+        // Without a target body the camera stays fixed.
+        if (target >= 0) {
+          const double* point = m.cam_mode[i] == kCamTargetBody ? &d.xpos[3 * target]
+                                                                : &d.subtree_com[3 * target];
+          LookAt(&d.cam_xpos[3 * i], point, &d.cam_xmat[9 * i]);
+        }
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+}  // namespace simlab
