@@ -51,6 +51,22 @@ void Step(const Model& m, Data& d);
 void Step1(const Model& m, Data& d);
 void Step2(const Model& m, Data& d);
 
+// Delays and sampling (nsample, delay, interp, interval of actuators and sensors).
+// interp -1 uses the model's interpolation (0 hold, 1 linear, 2 cubic).
+// Actuator `id`'s control as of `time` - its delay (as mj_readCtrl); ctrl itself if it
+// has no history buffer. Throws Error for a bad id.
+double ReadCtrl(const Model& m, const Data& d, int id, double time, int interp = -1);
+// Sensor `id`'s value as of `time` - its delay into out (sensor_dim numbers, as
+// mj_readSensor); its current sensordata if it has no history buffer.
+void ReadSensor(const Model& m, const Data& d, int id, double time, double* out,
+                int interp = -1);
+// Overwrite an actuator's / sensor's history buffer with nsample strictly increasing
+// times and nsample x dim values (either null keeps the buffer's own); a sensor's
+// `phase` becomes its last interval tick (as mj_initCtrlHistory, mj_initSensorHistory).
+void InitCtrlHistory(const Model& m, Data& d, int id, const double* times, const double* values);
+void InitSensorHistory(const Model& m, Data& d, int id, const double* times,
+                       const double* values, double phase);
+
 // Id of a named object, or -1 (as mj_name2id).
 int NameToId(const Model& m, ObjType type, const std::string& name);
 

@@ -22,10 +22,11 @@ bool ActuatorDisabled(const Model& m, int i) {
   return group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group));
 }
 
-// The controls as the force law sees them: clamped, or all zero if any is bad.
+// The controls as the force law sees them (delayed ones from their history): clamped,
+// or all zero if any is bad.
 void EffectiveControls(const Model& m, Data& d, double* ctrl) {
   for (int i = 0; i < m.nu; i++) {
-    ctrl[i] = d.ctrl[i];
+    ctrl[i] = ActuatorInput(m, d, i);
     if (!(m.opt.disableflags & kDisableClampctrl) && m.actuator_ctrllimited[i]) {
       ctrl[i] = std::clamp(ctrl[i], m.actuator_ctrlrange[2 * i], m.actuator_ctrlrange[2 * i + 1]);
     }

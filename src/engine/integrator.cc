@@ -46,6 +46,8 @@ namespace {
 void Advance(const Model& m, Data& d, const double* act_dot, const double* qacc,
              const double* qvel_for_pos) {
   double h = m.opt.timestep;
+  // Delayed and sampled ctrl and sensors record their sample at the current time.
+  RecordHistory(m, d);
   if (m.na && !(m.opt.disableflags & kDisableActuation)) {
     for (int i = 0; i < m.nu; i++) {
       int group = m.actuator_group[i];

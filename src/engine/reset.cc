@@ -29,6 +29,7 @@ void ResetData(const Model& m, Data& d) {
 #undef SIMLAB_X
   d.time = 0;
   d.energy[0] = d.energy[1] = 0;
+  d.flg_energypos = d.flg_energyvel = d.flg_subtreevel = d.flg_rnepost = false;
   d.ncon = d.nefc = d.solver_niter = 0;
   d.ne = d.nf = d.nl = d.nisland = 0;
   for (auto& w : d.warning) w = WarningStat{};
@@ -37,6 +38,8 @@ void ResetData(const Model& m, Data& d) {
   ResetMocap(m, d);
   // Equality constraints start as the model declares them (active or not).
   d.eq_active = m.eq_active0;
+  // Delay and sampling buffers: zero samples before time 0.
+  ResetHistory(m, d);
   // Scratch memory for the stages: enough for the largest (the RNE derivative).
   size_t block = static_cast<size_t>(6) * m.nv;
   size_t need = 3 * m.nbody * block + m.nv * block + block + 16 * (m.nq + m.nv + m.na + m.nbody + m.nu) + 64;
