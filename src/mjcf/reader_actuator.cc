@@ -139,8 +139,7 @@ void Reader::ReadActuator(const XmlElement& e, ActuatorSpec* a, bool in_default)
   if (!in_default) a->src = e.src();
   e.Int("group", &a->group);
   e.Int("nsample", &a->nsample);
-  int interp = 0;
-  e.Enum("interp", &interp, {{"zoh", 0}, {"linear", 1}, {"cubic", 2}});
+  e.Enum("interp", &a->interp, {{"zoh", 0}, {"linear", 1}, {"cubic", 2}});
   e.Number("delay", &a->delay);
   e.Tri("ctrllimited", &a->ctrllimited);
   e.Tri("forcelimited", &a->forcelimited);
@@ -153,7 +152,6 @@ void Reader::ReadActuator(const XmlElement& e, ActuatorSpec* a, bool in_default)
   ReadTransmission(e, a);
   ReadShortcut(e, a);
   e.Vector("user");
-  if (a->nsample > 0 || a->delay > 0) NotSupported(e, "actuator delay (nsample, delay)");
 }
 
 void Reader::ReadTransmission(const XmlElement& e, ActuatorSpec* a) const {
