@@ -51,7 +51,8 @@ std::vector<Case> ReadCases() {
                            "tests/conformance/adhesion_cases.txt",
                            "tests/conformance/contact_cases.txt",
                            "tests/conformance/solver_cases.txt",
-                           "tests/conformance/sensor_cases.txt"}) {
+                           "tests/conformance/sensor_cases.txt",
+                           "tests/conformance/ray_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {

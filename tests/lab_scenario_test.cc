@@ -17,29 +17,13 @@
 #include <nlohmann/json.hpp>
 
 #include "simlab/simlab.h"
+#include "test_files.h"
 
 namespace simlab {
 namespace {
 
-std::string Path(const std::string& relative) {
-  return std::string(SIMLAB_SOURCE_DIR) + "/" + relative;
-}
-
-// The rows of a control file (one row per step; '#' lines are comments).
-std::vector<std::vector<double>> ReadControls(const std::string& file) {
-  std::vector<std::vector<double>> rows;
-  std::ifstream in(Path(file));
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<double> row;
-    std::stringstream fields(line);
-    std::string field;
-    while (std::getline(fields, field, ',')) row.push_back(std::stod(field));
-    rows.push_back(row);
-  }
-  return rows;
-}
+using test_util::ReadControlRows;
+constexpr auto Path = test_util::SourcePath;
 
 // MuJoCo's cube height (qpos of the cube's free joint, z) by recorded step.
 std::map<int, double> ReferenceCubeHeight(const std::string& golden, int cube_z) {
@@ -74,7 +58,7 @@ LabRun RunLab(const std::string& run) {
   int right = m.jnt_qposadr[m.NameToId(kObjJoint, "gripper/finger_right")];
   int grip = m.NameToId(kObjActuator, "gripper/grip");
   std::vector<std::vector<double>> controls =
-      ReadControls("tests/models/compose/gantry_lab_" + run + ".csv");
+      ReadControlRows("tests/models/compose/gantry_lab_" + run + ".csv");
   std::map<int, double> reference =
       ReferenceCubeHeight("tests/conformance/contact/goldens/gantry_lab_" + run + ".jsonl",
                           cube_z);

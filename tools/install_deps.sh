@@ -7,6 +7,8 @@ packages=(
   g++ cmake make
   libeigen3-dev libpugixml-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev libqhull-dev
+  # the browser lab: the engine in WebAssembly, and a headless browser for its tests
+  emscripten chromium
 
 )
 

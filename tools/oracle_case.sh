@@ -23,7 +23,8 @@
 #       models/SRC__VARIANT.xml = sed SED-ARGS on CORPUS/SRC.xml, with a comment saying
 #       WHAT was changed; fails if sed changed nothing.
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ORACLE="$(cd "$ROOT/../shared/oracle" && pwd)"
+# (SIMLAB_ORACLE, as for tools/oracle_model.mjs, names another oracle folder.)
+ORACLE="${SIMLAB_ORACLE:-$(cd "$ROOT/../shared/oracle" && pwd)}"
 EVERY="${EVERY:-10}"
 [ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
 

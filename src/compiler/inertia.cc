@@ -191,9 +191,7 @@ void CheckSize(const mjcf::GeomSpec& s, const double* size) {
 
 void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) {
   const mjcf::GeomSpec& s = *g->spec;
-  if (s.type == kGeomHfield || s.type == kGeomSdf || !s.hfield.empty()) {
-    ThrowAt(s.src, "hfield and sdf geoms are not supported yet");
-  }
+  if (s.type == kGeomSdf) ThrowAt(s.src, "sdf geoms are not supported yet");
   if (s.condim != 1 && s.condim != 3 && s.condim != 4 && s.condim != 6) {
     ThrowAt(s.src, "condim must be 1, 3, 4 or 6");
   }
@@ -211,14 +209,16 @@ void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) 
   if (g->mesh) MeshGeomFrame(c, g);
   CheckSize(s, g->size);
   if (s.type == kGeomMesh) MeshGeomSize(g);
+  if (g->hfield) HFieldGeomSize(g);
 
   // Mass from mass or density, then the principal inertia in the geom frame. A mesh
-  // geom has its mesh's volume and the inertia of the mesh's equivalent box.
+  // geom has its mesh's volume and the inertia of the mesh's equivalent box; an hfield
+  // geom is the box of its size.
   bool mesh = s.type == kGeomMesh;
-  int inertia_type = mesh ? kGeomBox : s.type;
+  int inertia_type = mesh || s.type == kGeomHfield ? kGeomBox : s.type;
   const double* inertia_size = mesh ? g->mesh->boxsz : g->size;
   if (infer_inertia) {
-    double volume = mesh ? g->mesh->volume : Volume(s.type, s.shellinertia, g->size);
+    double volume = mesh ? g->mesh->volume : Volume(inertia_type, s.shellinertia, g->size);
     double density = s.density;
     if (!std::isnan(s.mass)) {
       if (s.mass == 0) {
@@ -255,6 +255,10 @@ double GeomRBound(const GeomState& g) {
     case kGeomEllipsoid: return std::max(std::max(s[0], s[1]), s[2]);
     case kGeomBox:
     case kGeomMesh: return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    case kGeomHfield: {
+      const std::array<double, 4>& h = g.hfield->spec->size;
+      return std::sqrt(h[0] * h[0] + h[1] * h[1] + std::max(h[2] * h[2], h[3] * h[3]));
+    }
     default: return 0;
   }
 }

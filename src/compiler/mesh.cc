@@ -8,6 +8,7 @@
 #include <string>
 
 #include "compiler/compiler.h"
+#include "compiler/mesh_builtin.h"
 #include "compiler/mesh_hull.h"
 #include "compiler/mesh_io.h"
 #include "compiler/orientation.h"
@@ -43,7 +44,9 @@ double Triangle(double normal[3], double center[3], const double* a, const doubl
 // Vertices and faces from the file or the inline attributes (not both).
 MeshData LoadGeometry(const mjcf::MeshSpec& s) {
   MeshData data;
-  if (!s.path.empty()) {
+  if (s.builtin != mjcf::kMeshBuiltinNone) {
+    data = BuiltinMesh(s);
+  } else if (!s.path.empty()) {
     data = ReadMeshFile(s);
     if (!s.vertex.empty()) ThrowAt(s.src, "repeated vertex specification (file and vertex)");
     if (!data.face.empty() && !s.face.empty()) {

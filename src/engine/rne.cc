@@ -67,6 +67,20 @@ void ComVel(const Model& m, Data& d) {
   }
 }
 
+void RneBodyStep(const Model& m, const Data& d, int body, bool flg_acc, double* cacc,
+                 double* cfrc_body) {
+  double* a = cacc + 6 * body;
+  for (int k = 0; k < 6; k++) a[k] = cacc[6 * m.body_parentid[body] + k];
+  int adr = m.body_dofadr[body], num = m.body_dofnum[body];
+  AddDofVelocity(a, &d.cdof_dot[6 * adr], &d.qvel[adr], num);
+  if (flg_acc) AddDofVelocity(a, &d.cdof[6 * adr], &d.qacc[adr], num);
+  double momentum[6], gyro[6];
+  MulInertVec(cfrc_body, &d.cinert[10 * body], a);
+  MulInertVec(momentum, &d.cinert[10 * body], &d.cvel[6 * body]);
+  CrossForce(gyro, &d.cvel[6 * body], momentum);
+  for (int k = 0; k < 6; k++) cfrc_body[k] += gyro[k];
+}
+
 void Rne(const Model& m, Data& d, bool flg_acc, double* result) {
   StackFrame frame(d);
   double* cacc = frame.Alloc(6 * m.nbody);
@@ -76,18 +90,7 @@ void Rne(const Model& m, Data& d, bool flg_acc, double* result) {
   if (!(m.opt.disableflags & kDisableGravity)) Scale3(cacc + 3, m.opt.gravity.data(), -1);
 
   // Forward pass: body accelerations and the forces they need.
-  for (int i = 1; i < m.nbody; i++) {
-    double* a = cacc + 6 * i;
-    for (int k = 0; k < 6; k++) a[k] = cacc[6 * m.body_parentid[i] + k];
-    int adr = m.body_dofadr[i], num = m.body_dofnum[i];
-    AddDofVelocity(a, &d.cdof_dot[6 * adr], &d.qvel[adr], num);
-    if (flg_acc) AddDofVelocity(a, &d.cdof[6 * adr], &d.qacc[adr], num);
-    double momentum[6], gyro[6];
-    MulInertVec(cfrc + 6 * i, &d.cinert[10 * i], a);
-    MulInertVec(momentum, &d.cinert[10 * i], &d.cvel[6 * i]);
-    CrossForce(gyro, &d.cvel[6 * i], momentum);
-    for (int k = 0; k < 6; k++) cfrc[6 * i + k] += gyro[k];
-  }
+  for (int i = 1; i < m.nbody; i++) RneBodyStep(m, d, i, flg_acc, cacc, cfrc + 6 * i);
 
   // Backward pass: children's forces act on their parents.
   for (int i = m.nbody - 1; i > 0; i--) {

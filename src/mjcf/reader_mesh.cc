@@ -3,7 +3,9 @@
 // compiler reads and processes them (src/compiler/mesh.cc).
 #include <cerrno>
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "mjcf/error.h"
@@ -81,7 +83,6 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   if (in_default) return;
 
   // Geometry: a file or inline data; normals and texture coordinates are checked only.
-  if (e.Has("builtin")) NotSupported(e, "builtin meshes");
   if (e.Has("file")) {
     e.RequiredText("file", &mesh->file);
     std::string dir = spec_->compiler.meshdir.empty() ? spec_->compiler.assetdir
@@ -99,7 +100,50 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   e.Bool("smoothnormal", &smooth);
   e.Numbers("refpos", mesh->refpos);
   e.Numbers("refquat", mesh->refquat);
+  ReadBuiltin(e, mesh);
   if (mesh->src.name.empty()) mesh->src.name = StemOf(mesh->file);
+}
+
+// A builtin shape (the compiler makes its vertices): not with a file or vertex data.
+void Reader::ReadBuiltin(const XmlElement& e, MeshSpec* mesh) const {
+  if (!e.Enum("builtin", &mesh->builtin,
+              {{"none", kMeshBuiltinNone}, {"sphere", kMeshBuiltinSphere},
+               {"hemisphere", kMeshBuiltinHemisphere}, {"cone", kMeshBuiltinCone},
+               {"supersphere", kMeshBuiltinSupersphere}, {"supertorus", kMeshBuiltinSupertorus},
+               {"wedge", kMeshBuiltinWedge}, {"plate", kMeshBuiltinPlate}}) ||
+      mesh->builtin == kMeshBuiltinNone) {
+    return;
+  }
+  std::optional<std::vector<double>> params = e.Vector("params");
+  if (!params) e.Fail("a builtin mesh needs 'params'");
+  mesh->params = *params;
+  if (e.Has("file")) e.Fail("builtin cannot be used with a mesh file");
+  if (!mesh->vertex.empty()) e.Fail("builtin mesh cannot be used with user vertex data");
+  // A plate is flat: MuJoCo gives it shell inertia whatever the element says.
+  if (mesh->builtin == kMeshBuiltinPlate) mesh->inertia = kMeshShell;
+}
+
+// ---------------------------------------------------------------- <hfield>
+
+void Reader::ReadHField(const XmlElement& e, HFieldSpec* hfield) const {
+  e.CheckAttributes({"name", "content_type", "file", "nrow", "ncol", "size", "elevation"});
+  hfield->src = e.src();
+  if (e.Has("file")) NotSupported(e, "loading hfield files");
+  e.Int("nrow", &hfield->nrow);
+  e.Int("ncol", &hfield->ncol);
+  if (e.Numbers("size", hfield->size) != 4) e.Fail("'size' needs 4 numbers");
+  if (hfield->nrow < 1 || hfield->ncol < 1) e.Fail("hfield needs positive nrow and ncol");
+
+  // Elevation rows are written from +y down to -y; they are stored from -y up.
+  std::vector<float> rows = ReadList(e, "elevation", ParseFloat);
+  size_t n = static_cast<size_t>(hfield->nrow) * hfield->ncol;
+  if (rows.empty()) rows.assign(n, 0.0f);
+  if (rows.size() != n) e.Fail("elevation data length must match nrow*ncol");
+  hfield->elevation.resize(n);
+  for (int r = 0; r < hfield->nrow; r++) {
+    std::copy_n(rows.begin() + static_cast<size_t>(r) * hfield->ncol, hfield->ncol,
+                hfield->elevation.begin() + static_cast<size_t>(hfield->nrow - 1 - r) * hfield->ncol);
+  }
 }
 
 }  // namespace simlab::mjcf

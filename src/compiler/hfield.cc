@@ -1,0 +1,133 @@
+// Height fields: <asset><hfield> elevation grids and the geoms that use them, laid out
+// as MuJoCo's compiler does (hfield_* arrays, elevations normalized to [0, 1]).
+#include <algorithm>
+#include <string>
+
+#include "compiler/compiler.h"
+#include "compiler/orientation.h"
+#include "mjcf/error.h"
+
+namespace simlab::compiler {
+
+namespace {
+
+// Elevations shifted and scaled to [0, 1] (a flat field becomes all zero), in single
+// precision as MuJoCo's compiler computes them.
+std::vector<float> NormalizedElevation(const mjcf::HFieldSpec& s) {
+  std::vector<float> data = s.elevation;
+  float lo = 1e10f, hi = -1e10f;
+  for (float v : data) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (lo > hi) ThrowAt(s.src, "invalid data range in hfield");
+  for (float& v : data) {
+    v -= lo;
+    if (hi - lo > kEps) v /= hi - lo;
+  }
+  return data;
+}
+
+void CheckHFieldSpec(const mjcf::HFieldSpec& s) {
+  if (s.src.name.empty()) ThrowAt(s.src, "empty name in height field");
+  for (double v : s.size) {
+    if (!(v > 0)) ThrowAt(s.src, "size parameter is not positive in hfield");
+  }
+}
+
+// The hfield each geom names (-1 for none); hfield geoms must name one, others none.
+std::vector<int> GeomHFieldIds(const std::vector<std::string>& names, const CompileState& state) {
+  std::vector<int> ids;
+  for (const GeomState& g : state.geoms) {
+    const mjcf::GeomSpec& s = *g.spec;
+    if ((s.type == kGeomHfield) != !s.hfield.empty()) {
+      ThrowAt(s.src, "hfield geom needs an hfield, and only hfield geoms can have one");
+    }
+    ids.push_back(s.hfield.empty() ? -1 : FindNamed(s.src, names, s.hfield, "hfield"));
+  }
+  return ids;
+}
+
+// True if geoms a and b pass MuJoCo's contype/conaffinity test.
+bool CanTouch(const mjcf::GeomSpec& a, const mjcf::GeomSpec& b) {
+  return (a.contype & b.conaffinity) || (b.contype & a.conaffinity);
+}
+
+bool NamedInPair(const mjcf::ModelSpec& spec, const std::string& geom) {
+  for (const mjcf::PairSpec& p : spec.pairs) {
+    if (!geom.empty() && (p.geom1 == geom || p.geom2 == geom)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void CompileHFields(const mjcf::ModelSpec& spec, CompileState* state) {
+  // Names are required and unique; data normalized once per field.
+  std::vector<std::string> names;
+  state->hfields.resize(spec.hfields.size());
+  for (size_t i = 0; i < spec.hfields.size(); i++) {
+    const mjcf::HFieldSpec& s = spec.hfields[i];
+    CheckHFieldSpec(s);
+    if (FindName(names, s.src.name) >= 0) ThrowAt(s.src, "repeated hfield name '" + s.src.name + "'");
+    names.push_back(s.src.name);
+    state->hfields[i].spec = &s;
+    state->hfields[i].data = NormalizedElevation(s);
+  }
+
+  // Geoms: geom_dataid is the hfield's id.
+  std::vector<int> ids = GeomHFieldIds(names, *state);
+  for (size_t i = 0; i < state->geoms.size(); i++) {
+    if (ids[i] < 0) continue;
+    state->geoms[i].hfield = &state->hfields[ids[i]];
+    state->geoms[i].meshid = ids[i];
+  }
+}
+
+void HFieldGeomSize(GeomState* g) {
+  const std::array<double, 4>& size = g->hfield->spec->size;
+  g->size[0] = size[0];
+  g->size[1] = size[1];
+  g->size[2] = 0.25 * size[2] + 0.5 * size[3];
+}
+
+void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& state) {
+  // A pair is skipped when both geoms are welded to the same body (static geoms
+  // included); any other pair that passes the type/affinity test could collide.
+  for (const GeomState& h : state.geoms) {
+    if (!h.hfield) continue;
+    if (NamedInPair(spec, h.spec->src.name)) {
+      ThrowAt(h.spec->src, "hfield collisions are not supported yet (the geom is in a <pair>)");
+    }
+    int hweld = state.bodies[h.body].weldid;
+    for (const GeomState& g : state.geoms) {
+      if (&g == &h || state.bodies[g.body].weldid == hweld || !CanTouch(*h.spec, *g.spec)) continue;
+      ThrowAt(h.spec->src, "hfield collisions are not supported yet (the hfield can touch geom " +
+                               (g.spec->src.name.empty() ? std::string("at line ") +
+                                    std::to_string(g.spec->src.line) : "'" + g.spec->src.name + "'") +
+                               "; set contype and conaffinity to 0)");
+    }
+  }
+}
+
+void HFieldSizes(const CompileState& state, Model* m) {
+  m->nhfield = static_cast<int>(state.hfields.size());
+  m->nhfielddata = 0;
+  for (const HFieldState& h : state.hfields) m->nhfielddata += static_cast<int>(h.data.size());
+}
+
+void LayoutHFields(const CompileState& state, Model* m) {
+  int adr = 0;
+  for (int i = 0; i < m->nhfield; i++) {
+    const HFieldState& h = state.hfields[i];
+    std::copy(h.spec->size.begin(), h.spec->size.end(), &m->hfield_size[4 * i]);
+    m->hfield_nrow[i] = h.spec->nrow;
+    m->hfield_ncol[i] = h.spec->ncol;
+    m->hfield_adr[i] = adr;
+    std::copy(h.data.begin(), h.data.end(), m->hfield_data.begin() + adr);
+    adr += static_cast<int>(h.data.size());
+    m->hfield_names[i] = h.spec->src.name;
+  }
+}
+
+}  // namespace simlab::compiler
