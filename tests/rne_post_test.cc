@@ -158,5 +158,20 @@ TEST(RnePost, ComputedOnlyForSensorsThatNeedIt) {
   EXPECT_EQ(from_sensors, s.cfrc_int);
 }
 
+// Split stepping recomputes the acceleration-stage sensors in Step2 (MuJoCo 3.5.1 clears
+// its rnepost flag there too), so Step1 + Step2 reads what Step reads, step after step.
+TEST(RnePost, SplitStepReadsFreshForces) {
+  Model m = LoadXml(Path("tests/sensors/acc_force_sensors.xml"));
+  Data whole = MakeData(m), split = MakeData(m);
+  for (int step = 0; step < 20; step++) {
+    for (Data* d : {&whole, &split}) d->ctrl[0] = 0.1 * step;
+    Step(m, whole);
+    Step1(m, split);
+    Step2(m, split);
+    ASSERT_EQ(whole.sensordata, split.sensordata) << "step " << step;
+  }
+  EXPECT_NE(whole.sensordata[2], 0.0);  // the wrist force carries the arm's weight
+}
+
 }  // namespace
 }  // namespace simlab
