@@ -7,6 +7,10 @@
 //   velocity:     tendon/actuator velocities, ComVel, Passive, constraint reference
 //                 accelerations, Rne (bias forces)
 //   acceleration: Actuation, SmoothAcceleration, Constraint
+//
+// Each stage ends with its sensors (SensorPos/Vel/Acc, sensor.cc) and, with the energy
+// flag, the energies; quantities only some sensors need (cacc/cfrc, subtree velocities)
+// are computed on demand by those sensors, once per step.
 #include <cmath>
 #include <cstdio>
 
