@@ -67,11 +67,9 @@ double TendonSpringEnergy(const Model& m, const Data& d, int i) {
 void EnergyPos(const Model& m, Data& d) {
   d.energy[0] = GravityPotential(m, d);
   if (!(m.opt.disableflags & kDisableSpring)) {
-    // Joints body by body, in MuJoCo's order.
-    for (int b = 1; b < m.nbody; b++) {
-      for (int j = m.body_jntadr[b]; j < m.body_jntadr[b] + m.body_jntnum[b]; j++) {
-        if (m.jnt_stiffness[j] != 0) AddJointSpringEnergy(m, d, j, &d.energy[0]);
-      }
+    // Joints are numbered body by body, so this is MuJoCo's order.
+    for (int j = 0; j < m.njnt; j++) {
+      if (m.jnt_stiffness[j] != 0) AddJointSpringEnergy(m, d, j, &d.energy[0]);
     }
     for (int i = 0; i < m.ntendon; i++) d.energy[0] += TendonSpringEnergy(m, d, i);
   }

@@ -87,7 +87,8 @@ double* InsertSample(Ring<double> ring, double t) {
     return ring.ValueAt(0);
   }
   if (age == n) {
-    int newest = (ring.Cursor() + 1) % n;
+    // The oldest slot becomes the newest.
+    int newest = ring.Slot(0);
     ring.buf[1] = newest;
     ring.Times()[newest] = t;
     return ring.Values() + static_cast<size_t>(newest) * dim;

@@ -132,41 +132,35 @@ void FillSlot(const Model& m, const Data& d, const SlotLayout& slot, int c, bool
   if (f[kConDataTangent]) Scale3(f[kConDataTangent], con.frame + 3, sign);
 }
 
-// A contact's force and torque in the world frame, negated when swapped.
-void WorldWrench(const Model& m, const Data& d, int c, bool flip, double force[3],
-                 double torque[3]) {
-  double wrench[6];
-  ContactForce(m, d, c, wrench);
-  if (flip) {
-    for (double& w : wrench) w = -w;
-  }
-  MulMatTVec3(force, d.contact[c].frame, wrench);
-  MulMatTVec3(torque, d.contact[c].frame, wrench + 3);
-}
-
 // The net reduction, written to the first slot: the matching contacts' total wrench
 // about their force-weighted centroid, in the world frame. `match` holds each contact's
 // match (0: none, else +-1).
-void NetForce(const Model& m, const Data& d, const SlotLayout& slot, const double* match,
-              int nmatch) {
-  // Centroid weighted by each contact's force magnitude.
+void NetForce(const Model& m, Data& d, const SlotLayout& slot, const double* match, int nmatch) {
+  // Each matching contact's wrench in its own frame, negated when swapped, and the
+  // centroid weighted by its force magnitude.
+  StackFrame frame(d);
+  double* wrench = frame.Alloc(6 * static_cast<size_t>(d.ncon));
   double point[3] = {0, 0, 0}, total = 0;
   for (int c = 0; c < d.ncon; c++) {
     if (match[c] == 0) continue;
-    double wrench[6];
-    ContactForce(m, d, c, wrench);
-    double weight = Norm3(wrench);
+    double* w = wrench + 6 * c;
+    ContactForce(m, d, c, w);
+    if (match[c] < 0) {
+      for (int k = 0; k < 6; k++) w[k] = -w[k];
+    }
+    double weight = Norm3(w);
     AddScaled3(point, d.contact[c].pos, weight);
     total += weight;
   }
   Scale3(point, point, 1 / std::max(total, kMinVal));
 
-  // Forces, torques and the moments of the forces about the centroid.
+  // Forces, torques (world frame) and the moments of the forces about the centroid.
   double net_force[3] = {0, 0, 0}, net_torque[3] = {0, 0, 0};
   for (int c = 0; c < d.ncon; c++) {
     if (match[c] == 0) continue;
     double force[3], torque[3], arm[3], moment[3];
-    WorldWrench(m, d, c, match[c] < 0, force, torque);
+    MulMatTVec3(force, d.contact[c].frame, wrench + 6 * c);
+    MulMatTVec3(torque, d.contact[c].frame, wrench + 6 * c + 3);
     Add3(net_force, net_force, force);
     Add3(net_torque, net_torque, torque);
     Sub3(arm, d.contact[c].pos, point);

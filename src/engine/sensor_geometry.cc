@@ -53,7 +53,7 @@ void ProjectPoint(const Model& m, const Data& d, int cam, const double* point, d
 
   // A point in the camera's plane would divide by zero: keep the depth's sign, away from 0.
   double w = local[2];
-  if (std::abs(w) < kMinVal) w = w < 0 ? std::min(w, -kMinVal) : std::max(w, kMinVal);
+  if (std::abs(w) < kMinVal) w = w < 0 ? -kMinVal : kMinVal;
   pixel[0] = u / w;
   pixel[1] = v / w;
 }
