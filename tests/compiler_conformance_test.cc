@@ -126,6 +126,7 @@ void CheckModel(const std::string& name, const std::string& path) {
   EXPECT_EQ(m.nmocap, sizes["nmocap"].get<int>());
   if (sizes.contains("neq")) EXPECT_EQ(m.neq, sizes["neq"].get<int>());
   if (sizes.contains("ncam")) EXPECT_EQ(m.ncam, sizes["ncam"].get<int>());
+  if (sizes.contains("nmeshnormal")) EXPECT_EQ(m.nmeshnormal, sizes["nmeshnormal"].get<int>());
   if (::testing::Test::HasFailure()) return;
 
   // Every array we have and MuJoCo dumped.

@@ -17,7 +17,7 @@ import { loadOracleModel } from './oracle_model.mjs';
 
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
-  'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'ncam',
+  'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
   'nhfield', 'nhfielddata'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
@@ -37,6 +37,7 @@ const ARRAYS = [
   'geom_rgba', 'geom_fluid', 'geom_dataid',
   'mesh_vertadr', 'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_graphadr', 'mesh_scale',
   'mesh_pos', 'mesh_quat', 'mesh_vert', 'mesh_face', 'mesh_graph',
+  'mesh_normaladr', 'mesh_normalnum', 'mesh_normal',
   'hfield_size', 'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data',
   'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
   'site_quat', 'site_rgba',

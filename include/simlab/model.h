@@ -279,6 +279,10 @@ struct Statistic {
   X(double, mesh_vert, nmeshvert, 3)               \
   X(int, mesh_face, nmeshface, 3)                  \
   X(int, mesh_graph, nmeshgraph, 1)                \
+  /* mesh normals, float-rounded (wedges and plates: normal and 2 tangents per vertex) */ \
+  X(int, mesh_normaladr, nmesh, 1)                 \
+  X(int, mesh_normalnum, nmesh, 1)                 \
+  X(double, mesh_normal, nmeshnormal, 3)           \
   /* height fields (elevation normalized to [0, 1], float-rounded as MuJoCo's) */ \
   X(double, hfield_size, nhfield, 4)  /* x, y, top z, base depth */ \
   X(int, hfield_nrow, nhfield, 1)                  \
@@ -443,6 +447,7 @@ struct Statistic {
   X(nmeshvert)   /* vertices of all meshes */                              \
   X(nmeshface)   /* triangles of all meshes */                             \
   X(nmeshgraph)  /* ints of all convex-hull graphs (mesh_graph) */         \
+  X(nmeshnormal) /* normals of all meshes (mesh_normal rows) */           \
   X(nhfield)     /* height fields */                                       \
   X(nhfielddata) /* elevation numbers of all height fields */              \
   X(npair)       /* explicit geom pairs (<contact><pair>) */               \

@@ -47,6 +47,7 @@ struct MeshState {
   std::vector<double> vert;
   std::vector<int> face;
   std::vector<int> graph;
+  std::vector<float> normal;  // x y z each, single precision as MuJoCo keeps them
   double pos[3] = {0, 0, 0};
   double quat[4] = {1, 0, 0, 0};
   double aamm[6] = {0, 0, 0, 0, 0, 0};  // bounding box (min, max) in the inertial frame

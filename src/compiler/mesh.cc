@@ -56,12 +56,18 @@ MeshData LoadGeometry(const mjcf::MeshSpec& s) {
     data.vert = s.vertex;
   }
   if (data.face.empty()) data.face = s.face;
+  if (data.normal.empty()) {
+    data.normal = s.normal;
+  } else if (!s.normal.empty()) {
+    ThrowAt(s.src, "repeated normal specification");
+  }
   return data;
 }
 
 void CheckGeometry(const mjcf::MeshSpec& s, const MeshData& data) {
   if (data.vert.size() % 3) ThrowAt(s.src, "vertex data must be a multiple of 3");
   if (data.face.size() % 3) ThrowAt(s.src, "face data must be a multiple of 3");
+  if (data.normal.size() % 3) ThrowAt(s.src, "normal data must be a multiple of 3");
   if (data.vert.size() < 12) ThrowAt(s.src, "at least 4 vertices required");
   for (float c : data.vert) {
     if (!std::isfinite(c)) ThrowAt(s.src, "vertex coordinates must be finite");
@@ -111,6 +117,97 @@ void MakeHull(MeshState* mesh) {
 // Triangles of the hull (the graph's face_globalid block).
 const int* HullFaces(const MeshState& mesh) {
   return mesh.graph.data() + 2 + 3 * (mesh.graph[0] + mesh.graph[1]);
+}
+
+// ---------------------------------------------------------------- normals
+
+// Unit normal of face f (its cross product, as MuJoCo's compiler normalizes it); returns
+// the cross product's length (0 for a degenerate face, whose normal stays unnormalized).
+double FaceNormal(const MeshState& mesh, const int* f, double normal[3]) {
+  double e1[3], e2[3];
+  for (int k = 0; k < 3; k++) {
+    e1[k] = mesh.vert[3 * f[1] + k] - mesh.vert[3 * f[0] + k];
+    e2[k] = mesh.vert[3 * f[2] + k] - mesh.vert[3 * f[0] + k];
+  }
+  math::Cross3(normal, e1, e2);
+  return NormalizeVec(normal, 3);
+}
+
+// Normalizes each float normal in place (float arithmetic); a vanishing one becomes +z.
+void NormalizeFloatNormals(std::vector<float>* normal) {
+  for (size_t i = 0; i < normal->size(); i += 3) {
+    float* n = &(*normal)[i];
+    float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len > kMinVal) {
+      for (int k = 0; k < 3; k++) n[k] /= len;
+    } else {
+      n[0] = n[1] = 0;
+      n[2] = 1;
+    }
+  }
+}
+
+// Vertex normals when none are given (MuJoCo's MakeNormal): the sum of the adjacent faces'
+// normals weighted by their doubled area; unless smoothnormal, faces more than ~37 degrees
+// off that sum are taken out again.
+void MakeVertexNormals(MeshState* mesh) {
+  std::vector<float>& normal = mesh->normal;
+  normal.assign(mesh->vert.size(), 0.0f);
+  for (size_t i = 0; i < mesh->face.size(); i += 3) {
+    const int* f = &mesh->face[i];
+    double n[3];
+    double weight = FaceNormal(*mesh, f, n);
+    for (int j = 0; j < 3; j++) {
+      for (int k = 0; k < 3; k++) normal[3 * f[j] + k] += n[k] * weight;
+    }
+  }
+  if (!mesh->spec->smoothnormal) {
+    std::vector<float> removed(normal.size(), 0.0f);
+    for (size_t i = 0; i < mesh->face.size(); i += 3) {
+      const int* f = &mesh->face[i];
+      double n[3];
+      double weight = FaceNormal(*mesh, f, n);
+      for (int j = 0; j < 3; j++) {
+        const float* sum = &normal[3 * f[j]];
+        double direction[3] = {sum[0], sum[1], sum[2]};
+        NormalizeVec(direction, 3);
+        if (math::Dot3(n, direction) >= 0.8) continue;
+        for (int k = 0; k < 3; k++) removed[3 * f[j] + k] += n[k] * weight;
+      }
+    }
+    for (size_t i = 0; i < normal.size(); i++) normal[i] -= removed[i];
+  }
+  NormalizeFloatNormals(&normal);
+}
+
+// refquat and scale applied to the normals (as to the vertices), then renormalized in
+// single precision.
+void ReferenceNormals(const mjcf::MeshSpec& s, std::vector<float>* normal) {
+  if (s.refquat[0] != 1 || s.refquat[1] != 0 || s.refquat[2] != 0 || s.refquat[3] != 0) {
+    double q[4] = {s.refquat[0], s.refquat[1], s.refquat[2], s.refquat[3]}, mat[9];
+    NormalizeVec(q, 4);
+    math::QuatToMat(mat, q);
+    for (size_t i = 0; i < normal->size(); i += 3) {
+      float* n = &(*normal)[i];
+      double before[3] = {n[0], n[1], n[2]}, after[3];
+      math::MulMatTVec3(after, mat, before);
+      for (int k = 0; k < 3; k++) n[k] = static_cast<float>(after[k]);
+    }
+  }
+  if (s.scale[0] != 1 || s.scale[1] != 1 || s.scale[2] != 1) {
+    for (size_t i = 0; i < normal->size(); i++) (*normal)[i] *= s.scale[i % 3];
+  }
+  for (size_t i = 0; i < normal->size(); i += 3) {
+    float* n = &(*normal)[i];
+    float sq = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (sq > kMinVal) {
+      float inverse = 1 / std::sqrt(sq);
+      for (int k = 0; k < 3; k++) n[k] *= inverse;
+    } else {
+      n[0] = n[1] = 0;
+      n[2] = 1;
+    }
+  }
 }
 
 // refpos, then refquat (vertices rotated by its inverse), then scale.
@@ -262,7 +359,8 @@ void MassProperties(MeshState* mesh, double com[3], double quat[4]) {
   mesh->boxsz[2] = 0.5 * std::sqrt(6 * (eig[0] + eig[1] - eig[2]) / mesh->volume);
 }
 
-// Vertices into the inertial frame (com, quat), and their bounding box there.
+// Vertices into the inertial frame (com, quat), their bounding box there, and the
+// normals rotated alike.
 void MoveToInertialFrame(MeshState* mesh, const double com[3], const double quat[4]) {
   double inverse[4], mat[9];
   math::NegQuat(inverse, quat);
@@ -277,6 +375,12 @@ void MoveToInertialFrame(MeshState* mesh, const double com[3], const double quat
       mesh->aamm[k + 3] = std::max(mesh->aamm[k + 3], v[k]);
     }
   }
+  for (size_t i = 0; i < mesh->normal.size(); i += 3) {
+    float* n = &mesh->normal[i];
+    double before[3] = {n[0], n[1], n[2]}, after[3];
+    math::MulMatVec3(after, mat, before);
+    for (int k = 0; k < 3; k++) n[k] = static_cast<float>(after[k]);
+  }
   math::Copy3(mesh->pos, com);
   math::CopyQuat(mesh->quat, quat);
 }
@@ -287,6 +391,7 @@ void CompileMesh(bool needhull, MeshState* mesh) {
   CheckGeometry(s, data);
   mesh->vert.assign(data.vert.begin(), data.vert.end());
   mesh->face = std::move(data.face);
+  mesh->normal = std::move(data.normal);
   if (s.inertia == kMeshExact) CheckOrientation(*mesh);
 
   // The hull (on the vertices as read); a mesh without faces takes the hull's.
@@ -296,8 +401,10 @@ void CompileMesh(bool needhull, MeshState* mesh) {
     const int* hull = HullFaces(*mesh);
     mesh->face.assign(hull, hull + 3 * mesh->graph[1]);
   }
+  if (mesh->normal.empty()) MakeVertexNormals(mesh);
 
   ApplyReference(s, &mesh->vert);
+  ReferenceNormals(s, &mesh->normal);
   double com[3], quat[4];
   MassProperties(mesh, com, quat);
   MoveToInertialFrame(mesh, com, quat);
@@ -447,16 +554,17 @@ void MeshGeomSize(GeomState* g) {
 
 void MeshSizes(const CompileState& state, Model* m) {
   m->nmesh = static_cast<int>(state.meshes.size());
-  m->nmeshvert = m->nmeshface = m->nmeshgraph = 0;
+  m->nmeshvert = m->nmeshface = m->nmeshgraph = m->nmeshnormal = 0;
   for (const MeshState& mesh : state.meshes) {
     m->nmeshvert += static_cast<int>(mesh.vert.size() / 3);
+    m->nmeshnormal += static_cast<int>(mesh.normal.size() / 3);
     m->nmeshface += static_cast<int>(mesh.face.size() / 3);
     m->nmeshgraph += static_cast<int>(mesh.graph.size());
   }
 }
 
 void LayoutMeshes(const CompileState& state, Model* m) {
-  int vert = 0, face = 0, graph = 0;
+  int vert = 0, face = 0, graph = 0, normal = 0;
   for (int i = 0; i < m->nmesh; i++) {
     const MeshState& mesh = state.meshes[i];
     m->mesh_vertadr[i] = vert;
@@ -474,6 +582,10 @@ void LayoutMeshes(const CompileState& state, Model* m) {
     }
     std::copy(mesh.face.begin(), mesh.face.end(), m->mesh_face.begin() + 3 * face);
     std::copy(mesh.graph.begin(), mesh.graph.end(), m->mesh_graph.begin() + graph);
+    m->mesh_normaladr[i] = normal;
+    m->mesh_normalnum[i] = static_cast<int>(mesh.normal.size() / 3);
+    std::copy(mesh.normal.begin(), mesh.normal.end(), m->mesh_normal.begin() + 3 * normal);
+    normal += m->mesh_normalnum[i];
     vert += m->mesh_vertnum[i];
     face += m->mesh_facenum[i];
     graph += static_cast<int>(mesh.graph.size());

@@ -10,6 +10,8 @@
 #include <string>
 #include <utility>
 
+#include "compiler/orientation.h"
+#include "math/math.h"
 #include "mjcf/error.h"
 
 namespace simlab::compiler {
@@ -203,7 +205,23 @@ std::vector<double> FovealEdges(int bins, double fov_deg, double gamma) {
   return edges;
 }
 
-// One vertex per bin centre on the unit sphere (azimuth, elevation); no triangles.
+// The frame of a wedge point (azimuth a, elevation e on the unit sphere): the outward
+// normal (elevation tangent x azimuth tangent), then the unit azimuth and elevation
+// tangents, each rounded to float.
+void PushWedgeFrame(MeshData* out, double a, double e) {
+  double along_a[3] = {std::cos(e) * std::cos(a), 0, std::cos(e) * std::sin(a)};
+  double along_e[3] = {-std::sin(e) * std::sin(a), std::cos(e), std::sin(e) * std::cos(a)};
+  NormalizeVec(along_a, 3);
+  NormalizeVec(along_e, 3);
+  double normal[3];
+  math::Cross3(normal, along_e, along_a);
+  for (const double* v : {normal, along_a, along_e}) {
+    for (int k = 0; k < 3; k++) out->normal.push_back(static_cast<float>(v[k]));
+  }
+}
+
+// One vertex per bin centre on the unit sphere (azimuth, elevation) with its frame; no
+// triangles.
 MeshData Wedge(const int res[2], const double fov[2], double gamma) {
   std::vector<double> az = FovealEdges(res[0], fov[0], gamma);
   std::vector<double> el = FovealEdges(res[1], fov[1], gamma);
@@ -212,12 +230,14 @@ MeshData Wedge(const int res[2], const double fov[2], double gamma) {
     for (int j = 0; j < res[1]; j++) {
       double a = 0.5 * (az[i + 1] + az[i]), e = 0.5 * (el[j + 1] + el[j]);
       PushVertex(&out, std::cos(e) * std::sin(a), std::sin(e), -std::cos(e) * std::cos(a));
+      PushWedgeFrame(&out, a, e);
     }
   }
   return out;
 }
 
-// A grid of cell centres on z = -1, two triangles per cell between neighbours.
+// A grid of cell centres on z = -1, two triangles per cell between neighbours, with an
+// identity frame per point.
 MeshData Plate(const int res[2]) {
   MeshData out;
   out.face.assign(6 * static_cast<size_t>(res[0] - 1) * (res[1] - 1), 0);
@@ -225,6 +245,8 @@ MeshData Plate(const int res[2]) {
   for (int i = 0; i < res[0]; i++) {
     for (int j = 0; j < res[1]; j++) {
       PushVertex(&out, -1 + (i + 0.5) * dx, -1 + (j + 0.5) * dy, -1);
+      // Each point's frame is the identity (MuJoCo's "normal" is the x axis here).
+      out.normal.insert(out.normal.end(), {1, 0, 0, 0, 1, 0, 0, 0, 1});
       if (i == 0 || j == 0) continue;
       int* f = &out.face[6 * static_cast<size_t>((i - 1) * (res[1] - 1) + j - 1)];
       int lo = (i - 1) * res[1], hi = i * res[1];

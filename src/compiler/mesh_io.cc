@@ -271,12 +271,13 @@ MeshData ReadObj(const mjcf::MeshSpec& mesh, const std::string& bytes) {
     std::istringstream words(text);
     std::string key;
     if (!(words >> key)) continue;
-    if (key == "v") {
+    if (key == "v" || key == "vn") {
+      std::vector<float>* target = key == "v" ? &out.vert : &out.normal;
       for (int k = 0; k < 3; k++) {
         std::string t;
         double value = 0;
         if (words >> t) value = std::strtod(t.c_str(), nullptr);
-        out.vert.push_back(static_cast<float>(value));
+        target->push_back(static_cast<float>(value));
       }
     } else if (key == "f" && !first_shape_done) {
       std::vector<int> poly;
@@ -328,8 +329,11 @@ MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
   }
   MeshData out;
   out.vert.resize(3 * static_cast<size_t>(n[0]));
+  out.normal.resize(3 * static_cast<size_t>(n[1]));
   out.face.resize(3 * static_cast<size_t>(n[3]));
   std::memcpy(out.vert.data(), bytes.data() + sizeof(n), out.vert.size() * sizeof(float));
+  std::memcpy(out.normal.data(), bytes.data() + sizeof(n) + out.vert.size() * sizeof(float),
+              out.normal.size() * sizeof(float));
   std::memcpy(out.face.data(), bytes.data() + sizeof(n) + floats * sizeof(float),
               out.face.size() * sizeof(int));
   if (!RightHanded(mesh)) {

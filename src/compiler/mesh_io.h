@@ -11,10 +11,12 @@
 
 namespace simlab::compiler {
 
-// Vertices (single precision, x y z per vertex) and triangles (vertex indices) of a file.
+// Vertices (single precision, x y z per vertex), triangles (vertex indices) and the
+// normals a file or builtin shape gives (x y z each; empty when it gives none).
 struct MeshData {
   std::vector<float> vert;
   std::vector<int> face;
+  std::vector<float> normal;
 };
 
 // Reads mesh.path; the file type comes from content_type or the extension. A negative

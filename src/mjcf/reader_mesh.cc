@@ -82,7 +82,7 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   }
   if (in_default) return;
 
-  // Geometry: a file or inline data; normals and texture coordinates are checked only.
+  // Geometry: a file or inline data (and normals); texture coordinates are checked only.
   if (e.Has("file")) {
     e.RequiredText("file", &mesh->file);
     std::string dir = spec_->compiler.meshdir.empty() ? spec_->compiler.assetdir
@@ -94,10 +94,9 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   e.Text("content_type", &mesh->content_type);
   mesh->vertex = ReadList(e, "vertex", ParseFloat);
   mesh->face = ReadList(e, "face", ParseInt);
-  ReadList(e, "normal", ParseFloat);
+  mesh->normal = ReadList(e, "normal", ParseFloat);
   ReadList(e, "texcoord", ParseFloat);
-  bool smooth = false;
-  e.Bool("smoothnormal", &smooth);
+  e.Bool("smoothnormal", &mesh->smoothnormal);
   e.Numbers("refpos", mesh->refpos);
   e.Numbers("refquat", mesh->refquat);
   ReadBuiltin(e, mesh);
