@@ -32,6 +32,8 @@ SENSOR="$SHARED_CORPUS/test/engine/testdata/sensor"
 CORPUS_MODELS=()
 # geometric sensors (camprojection, insidesite, distance/normal/fromto)
 CORPUS_MODELS+=(camprojection insidesite fromto_capsule_ellipsoid fromto_primitive)
+# (fromto_body_body builds its bodies' geoms with <replicate>)
+CORPUS_MODELS+=(fromto_body_body)
 # contact sensors (site/geom/body/subtree criteria, reductions); the subtree scenes attach
 # humanoid.xml, copied beside them (not a case of its own)
 CORPUS_MODELS+=(contact contact_net contact_sorted contact_subtree contact_subtree_partial)

@@ -206,7 +206,7 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
   const DefaultClass* cls = nullptr;
   if (c.tag() != "body" && c.tag() != "frame") cls = FindClass(c, "class");
   if (!cls) cls = def;
-  bool world = (body == &spec_->world);
+  bool world = IsWorld(body);
   const std::string& tag = c.tag();
   if (tag == "inertial") {
     if (world) c.Fail("the world body cannot have an inertial");
@@ -243,8 +243,9 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     ChildBody(c, body, frame, def);
   } else if (tag == "attach") {
     Attach(c, body, frame);
-  } else if (tag == "plugin" || tag == "composite" || tag == "flexcomp" ||
-             tag == "replicate") {
+  } else if (tag == "replicate") {
+    Replicate(c, body, frame, def);
+  } else if (tag == "plugin" || tag == "composite" || tag == "flexcomp") {
     NotSupported(c);
   } else {
     Unknown(c);

@@ -79,6 +79,13 @@ class Reader {
              const DefaultClass* def);
   void Inertial(const XmlElement& e, BodySpec* body);
   void FreeJoint(const XmlElement& e, BodySpec* body, const FramePtr& frame);
+  // The world, or a replicate's scratch body standing in for it.
+  bool IsWorld(const BodySpec* body) const;
+
+  // <replicate> (reader_replicate.cc)
+  void Replicate(const XmlElement& e, BodySpec* body, const FramePtr& frame,
+                 const DefaultClass* def);
+  void ReplicateReferences(const std::string& suffix);
 
   // one element of each kind, in a body or a default class (reader_elements.cc)
   void ReadJoint(const XmlElement& e, JointSpec* joint, bool in_default) const;
@@ -109,6 +116,7 @@ class Reader {
   std::map<const void*, HeldValues> held_;        // by element of a child model
   std::map<std::string, AttachedKey> carried_;    // by keyframe name
   int own_keys_ = 0;
+  std::vector<const BodySpec*> world_standins_;  // scratch bodies of replicates in the world
 };
 
 }  // namespace simlab::mjcf

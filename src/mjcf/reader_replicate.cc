@@ -1,0 +1,373 @@
+// MJCF reader: the <replicate> meta-element (MuJoCo's self-attachment).
+//
+// The children of <replicate> are read once into a scratch body that sits in the
+// parent's place, inside a template frame. Each replica then gets its own frame
+// (the accumulated offset and rotation) and copies of every element with the suffix
+// `sep` + zero-padded index appended to its name. Elements outside the tree that
+// name replicated objects (pairs, excludes, tendons, equalities, actuators, sensors)
+// are copied with the suffix too whenever the suffixed names exist, as MuJoCo's
+// attach does. Finally the scratch body goes away, and with it every element that
+// still names one of its objects.
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+
+#include "compiler/orientation.h"
+#include "math/math.h"
+#include "mjcf/reader.h"
+
+namespace simlab::mjcf {
+
+namespace {
+
+// ---------------------------------------------------------------- names in the model
+
+// The names of the objects that references can point at, by object type.
+struct NameTable {
+  std::map<int, std::set<std::string>> by_type;
+
+  bool Has(int type, const std::string& name) const {
+    if (type == kObjXBody) type = kObjBody;
+    auto it = by_type.find(type);
+    return it != by_type.end() && it->second.count(name) > 0;
+  }
+  void Add(int type, const std::string& name) {
+    if (!name.empty()) by_type[type].insert(name);
+  }
+};
+
+// Every named object of a body subtree.
+void CollectTree(const BodySpec& body, NameTable* names) {
+  names->Add(kObjBody, body.src.name);
+  for (const JointSpec& j : body.joints) names->Add(kObjJoint, j.src.name);
+  for (const GeomSpec& g : body.geoms) names->Add(kObjGeom, g.src.name);
+  for (const SiteSpec& s : body.sites) names->Add(kObjSite, s.src.name);
+  for (const CameraSpec& c : body.cameras) names->Add(kObjCamera, c.src.name);
+  for (const auto& child : body.bodies) CollectTree(*child, names);
+}
+
+// The whole model's names as they stand now.
+NameTable CollectNames(const ModelSpec& spec) {
+  NameTable names;
+  names.Add(kObjBody, "world");
+  CollectTree(spec.world, &names);
+  for (const TendonSpec& t : spec.tendons) names.Add(kObjTendon, t.src.name);
+  for (const ActuatorSpec& a : spec.actuators) names.Add(kObjActuator, a.src.name);
+  for (const MeshSpec& m : spec.meshes) names.Add(kObjMesh, m.src.name);
+  return names;
+}
+
+// name + suffix, leaving empty names empty (MuJoCo namespaces named elements only).
+std::string Suffixed(const std::string& name, const std::string& suffix) {
+  return name.empty() ? name : name + suffix;
+}
+
+// ---------------------------------------------------------------- referencing elements
+//
+// Each Resolve* tries the element's references with the suffix (as MuJoCo's
+// ResolveReferences after a namespace change) and, on success, rewrites them to the
+// names found. An empty suffix checks the element as it is.
+
+// Two references where either may stay outside the replicated part: both suffixed,
+// else the one that failed without the suffix (pairs, excludes, two-object sensors).
+bool ResolveTwo(const NameTable& names, int type1, std::string* name1, int type2,
+                std::string* name2, const std::string& suffix) {
+  std::string a = *name1 + suffix, b = *name2 + suffix;
+  bool found1 = names.Has(type1, a), found2 = names.Has(type2, b);
+  if (!found1 && found2) found1 = names.Has(type1, a = *name1);
+  if (found1 && !found2) found2 = names.Has(type2, b = *name2);
+  if (!found1 || !found2) return false;
+  *name1 = a;
+  *name2 = b;
+  return true;
+}
+
+bool ResolveSensor(const NameTable& names, SensorSpec* s, const std::string& suffix) {
+  bool has_obj = s->objtype != kObjUnknown, has_ref = s->reftype != kObjUnknown;
+  if (has_obj && has_ref) {
+    return ResolveTwo(names, s->objtype, &s->objname, s->reftype, &s->refname, suffix);
+  }
+  // One object or none: a sensor without objects (clock, energy, ...) always resolves.
+  std::string* name = has_obj ? &s->objname : has_ref ? &s->refname : nullptr;
+  if (!name) return true;
+  std::string full = *name + suffix;
+  if (!names.Has(has_obj ? s->objtype : s->reftype, full)) return false;
+  *name = full;
+  return true;
+}
+
+bool ResolveActuator(const NameTable& names, ActuatorSpec* a, const std::string& suffix) {
+  std::string target = Suffixed(a->target, suffix);
+  std::string slider = Suffixed(a->slidersite, suffix);
+  std::string ref = Suffixed(a->refsite, suffix);
+  bool ok = false;
+  switch (a->trntype) {
+    case kTrnJoint:
+    case kTrnJointInParent: ok = names.Has(kObjJoint, target); break;
+    case kTrnSliderCrank:
+      ok = !slider.empty() && names.Has(kObjSite, slider) && names.Has(kObjSite, target);
+      break;
+    case kTrnTendon: ok = names.Has(kObjTendon, target); break;
+    case kTrnSite: ok = (ref.empty() || names.Has(kObjSite, ref)) && names.Has(kObjSite, target); break;
+    case kTrnBody: ok = names.Has(kObjBody, target); break;
+    default: break;
+  }
+  if (!ok) return false;
+  a->target = target;
+  a->slidersite = slider;
+  a->refsite = ref;
+  return true;
+}
+
+// One tendon path element, found with the given names.
+bool WrapFound(const NameTable& names, const WrapSpec& w, const std::string& target,
+               const std::string& sidesite) {
+  switch (w.type) {
+    case kWrapJoint: return names.Has(kObjJoint, target);
+    case kWrapSite: return names.Has(kObjSite, target);
+    case kWrapSphere:
+    case kWrapCylinder:
+      return names.Has(kObjGeom, target) && (sidesite.empty() || names.Has(kObjSite, sidesite));
+    default: return true;  // pulleys name nothing
+  }
+}
+
+// Each path element tries the suffix and falls back to its own names; the tendon
+// resolves only if at least one element (pulleys aside) took the suffix.
+bool ResolveTendon(const NameTable& names, TendonSpec* t, const std::string& suffix) {
+  int suffixed = 0;
+  for (WrapSpec& w : t->wraps) {
+    if (w.type == kWrapPulley) continue;
+    // MuJoCo suffixes the side site even when there is none.
+    std::string target = w.target + suffix, side = w.sidesite + suffix;
+    if (WrapFound(names, w, target, side)) {
+      w.target = target;
+      if (w.type == kWrapSphere || w.type == kWrapCylinder) w.sidesite = side;
+      suffixed++;
+    } else if (!WrapFound(names, w, w.target, w.sidesite)) {
+      return false;
+    }
+  }
+  return suffixed > 0;
+}
+
+bool ResolveEquality(const NameTable& names, EqualitySpec* q, const std::string& suffix) {
+  int type = q->type == kEqJoint    ? kObjJoint
+             : q->type == kEqTendon ? kObjTendon
+                                    : q->objtype;
+  std::string name1 = Suffixed(q->name1, suffix), name2 = Suffixed(q->name2, suffix);
+  if (!names.Has(type, name1)) return false;
+  if (!name2.empty() && !names.Has(type, name2)) return false;
+  q->name1 = name1;
+  q->name2 = name2;
+  return true;
+}
+
+bool Resolve(const NameTable& names, PairSpec* p, const std::string& suffix) {
+  return ResolveTwo(names, kObjGeom, &p->geom1, kObjGeom, &p->geom2, suffix);
+}
+bool Resolve(const NameTable& names, ExcludeSpec* x, const std::string& suffix) {
+  return ResolveTwo(names, kObjBody, &x->body1, kObjBody, &x->body2, suffix);
+}
+bool Resolve(const NameTable& names, TendonSpec* t, const std::string& suffix) {
+  return ResolveTendon(names, t, suffix);
+}
+bool Resolve(const NameTable& names, EqualitySpec* q, const std::string& suffix) {
+  return ResolveEquality(names, q, suffix);
+}
+bool Resolve(const NameTable& names, ActuatorSpec* a, const std::string& suffix) {
+  return ResolveActuator(names, a, suffix);
+}
+bool Resolve(const NameTable& names, SensorSpec* s, const std::string& suffix) {
+  return ResolveSensor(names, s, suffix);
+}
+
+// Appends a suffixed copy of every element of `list` (those present when the call
+// starts) whose suffixed references exist.
+template <typename T>
+void CopyReferencing(const NameTable& names, const std::string& suffix, std::vector<T>* list) {
+  size_t n = list->size();
+  for (size_t k = 0; k < n; k++) {
+    T copy = (*list)[k];
+    if (!Resolve(names, &copy, suffix)) continue;
+    copy.src.name = Suffixed(copy.src.name, suffix);
+    list->push_back(std::move(copy));
+  }
+}
+
+// Drops the elements that named something that is gone (they resolved before).
+template <typename T>
+void DropDangling(const NameTable& before, const NameTable& after, std::vector<T>* list) {
+  auto dangling = [&](const T& element) {
+    T probe = element;
+    if (!Resolve(before, &probe, "")) return false;  // a user error: kept for the compiler
+    probe = element;
+    return !Resolve(after, &probe, "");
+  };
+  list->erase(std::remove_if(list->begin(), list->end(), dangling), list->end());
+}
+
+// ---------------------------------------------------------------- tree copies
+
+// The frame chain of an element of the scratch body, with the template frame replaced
+// by one replica's frame (frames in between are copied once per replica).
+class FrameRebase {
+ public:
+  FrameRebase(const FrameSpec* from, FramePtr to) : from_(from), to_(std::move(to)) {}
+
+  FramePtr operator()(const FramePtr& frame) {
+    if (!frame) return frame;
+    if (frame.get() == from_) return to_;
+    auto it = done_.find(frame.get());
+    if (it != done_.end()) return it->second;
+    auto copy = std::make_shared<FrameSpec>(*frame);
+    copy->parent = (*this)(frame->parent);
+    done_[frame.get()] = copy;
+    return copy;
+  }
+
+ private:
+  const FrameSpec* from_;
+  FramePtr to_;
+  std::map<const FrameSpec*, FramePtr> done_;
+};
+
+// Appends the suffix to every name of a body subtree (camera targets included, as
+// MuJoCo namespaces them).
+void SuffixTree(BodySpec* body, const std::string& suffix) {
+  body->src.name = Suffixed(body->src.name, suffix);
+  for (JointSpec& j : body->joints) j.src.name = Suffixed(j.src.name, suffix);
+  for (GeomSpec& g : body->geoms) g.src.name = Suffixed(g.src.name, suffix);
+  for (SiteSpec& s : body->sites) s.src.name = Suffixed(s.src.name, suffix);
+  for (CameraSpec& c : body->cameras) {
+    c.src.name = Suffixed(c.src.name, suffix);
+    c.target = Suffixed(c.target, suffix);
+  }
+  for (auto& child : body->bodies) SuffixTree(child.get(), suffix);
+}
+
+// Appends one replica of the scratch body's elements to `body`, each list in order.
+void CopyReplica(const BodySpec& scratch, FrameRebase& rebase, const std::string& suffix,
+                 BodySpec* body) {
+  BodySpec renamed;
+  renamed.joints = scratch.joints;
+  renamed.geoms = scratch.geoms;
+  renamed.sites = scratch.sites;
+  renamed.cameras = scratch.cameras;
+  renamed.bodies = scratch.bodies;
+  SuffixTree(&renamed, suffix);
+  auto move_all = [&](auto& from, auto& to) {
+    for (auto& element : from) {
+      element.frame = rebase(element.frame);
+      to.push_back(std::move(element));
+    }
+  };
+  move_all(renamed.joints, body->joints);
+  move_all(renamed.geoms, body->geoms);
+  move_all(renamed.sites, body->sites);
+  move_all(renamed.cameras, body->cameras);
+  for (auto& child : renamed.bodies) {
+    child->frame = rebase(child->frame);
+    body->bodies.push_back(std::move(child));
+  }
+}
+
+// "sep" followed by the index, zero-padded to the digits of the count.
+std::string ReplicaSuffix(const std::string& sep, int count, int index) {
+  std::string digits = std::to_string(index);
+  size_t width = std::to_string(count).size();
+  if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
+  return sep + digits;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- <replicate>
+
+void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& frame,
+                       const DefaultClass* def) {
+  e.CheckAttributes({"count", "offset", "euler", "sep", "childclass"});
+  int count = 0;
+  if (!e.Int("count", &count)) e.Fail("required attribute missing: 'count'");
+  if (count < 1) e.Fail("replicate count must be positive");
+  std::array<double, 3> offset = {0, 0, 0}, euler = {0, 0, 0};
+  e.Numbers("offset", offset);
+  e.Numbers("euler", euler);
+  std::string sep;
+  e.Text("sep", &sep);
+  const DefaultClass* childclass = FindClass(e, "childclass");
+  // MuJoCo resizes and copies keyframes around each replica in ways not followed yet.
+  if (!spec_->keys.empty() || spec_->nkey > 0) {
+    NotSupported(e, "<replicate> in a model with keyframes");
+  }
+
+  // Read the children once, into a scratch body in the replicate's place.
+  auto scratch_owner = std::make_unique<BodySpec>();
+  BodySpec* scratch = scratch_owner.get();
+  scratch->src = e.src();
+  body->bodies.push_back(std::move(scratch_owner));
+  auto templ = std::make_shared<FrameSpec>();
+  templ->src = e.src();
+  templ->parent = frame;
+  if (IsWorld(body)) world_standins_.push_back(scratch);
+  Body(e, scratch, templ, childclass ? childclass : def);
+
+  // One replica per index: its frame, its tree elements, then the references to them.
+  double pos[3] = {0, 0, 0};
+  for (int i = 0; i < count; i++) {
+    auto replica = std::make_shared<FrameSpec>(*templ);
+    Orientation turn;
+    turn.kind = OrientKind::kEuler;
+    for (int k = 0; k < 3; k++) turn.euler[k] = i * euler[k];
+    compiler::ResolveOrientation(replica->quat.data(), spec_->compiler.degree,
+                                 spec_->compiler.eulerseq, turn);
+    std::copy(pos, pos + 3, replica->pos.begin());
+    // The next replica sits one offset further, in this replica's orientation.
+    double mat[9], step[3];
+    math::QuatToMat(mat, replica->quat.data());
+    math::MulMatVec3(step, mat, offset.data());
+    for (int k = 0; k < 3; k++) pos[k] += step[k];
+
+    std::string suffix = ReplicaSuffix(sep, count, i);
+    FrameRebase rebase(templ.get(), replica);
+    CopyReplica(*scratch, rebase, suffix, body);
+    ReplicateReferences(suffix);
+  }
+
+  // Remove the scratch body, and whatever still names its elements.
+  NameTable before = CollectNames(*spec_);
+  auto& siblings = body->bodies;
+  siblings.erase(std::find_if(siblings.begin(), siblings.end(),
+                              [&](const auto& b) { return b.get() == scratch; }));
+  world_standins_.erase(std::remove(world_standins_.begin(), world_standins_.end(), scratch),
+                        world_standins_.end());
+  // (each list against the names left after the lists before it)
+  DropDangling(before, CollectNames(*spec_), &spec_->pairs);
+  DropDangling(before, CollectNames(*spec_), &spec_->excludes);
+  DropDangling(before, CollectNames(*spec_), &spec_->tendons);
+  DropDangling(before, CollectNames(*spec_), &spec_->equalities);
+  DropDangling(before, CollectNames(*spec_), &spec_->actuators);
+  DropDangling(before, CollectNames(*spec_), &spec_->sensors);
+}
+
+void Reader::ReplicateReferences(const std::string& suffix) {
+  // In MuJoCo's order; tendons and actuators join the names before their users.
+  NameTable names = CollectNames(*spec_);
+  CopyReferencing(names, suffix, &spec_->pairs);
+  CopyReferencing(names, suffix, &spec_->excludes);
+  CopyReferencing(names, suffix, &spec_->tendons);
+  names = CollectNames(*spec_);
+  CopyReferencing(names, suffix, &spec_->equalities);
+  CopyReferencing(names, suffix, &spec_->actuators);
+  names = CollectNames(*spec_);
+  CopyReferencing(names, suffix, &spec_->sensors);
+}
+
+bool Reader::IsWorld(const BodySpec* body) const {
+  return body == &spec_->world ||
+         std::find(world_standins_.begin(), world_standins_.end(), body) !=
+             world_standins_.end();
+}
+
+}  // namespace simlab::mjcf
