@@ -82,6 +82,13 @@ TEST(Replicate, TreeAndReferences) { CheckModel("replicate_tree"); }
 // replicate; a camera target inside.
 TEST(Replicate, ReferencingElements) { CheckModel("replicate_refs"); }
 
+// The XML reference's example (nested, sep on the inner one: Alice-00, Alice-10, ...) with
+// a geom and a site of the same name and a light, and twelve free bodies (two-digit
+// suffixes) each followed by an unnamed frame sensor. (Their geoms sit off the body
+// origin: MuJoCo 3.5.1 gives a simple free body a diagonal M layout, M_rownnz 1, which
+// simlab's compiled M_rownnz/M_rowadr/M_colind do not follow yet.)
+TEST(Replicate, ReferenceExample) { CheckModel("replicate_doc"); }
+
 // ---------------------------------------------------------------- bad input
 
 // A worldbody fragment and the pieces its error message must contain.
