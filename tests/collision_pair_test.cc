@@ -153,6 +153,16 @@ void ComparePair(const std::string& name, const std::vector<Contact>& ours,
   }
 }
 
+// The margin MuJoCo's driver gives geoms a and b: an explicit <pair>'s own, else the
+// sum of the geoms' margins.
+double PairMargin(const Model& m, int a, int b) {
+  for (int p = 0; p < m.npair; p++) {
+    int p1 = m.pair_geom1[p], p2 = m.pair_geom2[p];
+    if ((p1 == a && p2 == b) || (p1 == b && p2 == a)) return m.pair_margin[p];
+  }
+  return m.geom_margin[a] + m.geom_margin[b];
+}
+
 TEST_P(CollisionPair, NarrowPhase) {
   const std::string name = GetParam();
   json golden = ReadGolden(name);
@@ -167,7 +177,7 @@ TEST_P(CollisionPair, NarrowPhase) {
       if (m.geom_type[a] > m.geom_type[b]) std::swap(a, b);
       CollideFn fn = CollisionFunction(m.geom_type[a], m.geom_type[b]);
       if (!fn) continue;
-      double margin = m.geom_margin[a] + m.geom_margin[b];  // as MuJoCo's driver
+      double margin = PairMargin(m, a, b);
       std::vector<Contact> con(kMaxContactPair);
       int n = fn(m, c.d, con.data(), a, b, margin);
       con.resize(n);

@@ -40,7 +40,8 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 // (tests/conformance/gravcomp/make_goldens.sh); friction cones and noslip
 // (tests/conformance/solver/make_goldens.sh); adhesion
 // (tests/conformance/adhesion/make_goldens.sh); contact scenes and the gantry lab
-// scenario (tools/make_contact_goldens.sh).
+// scenario (tools/make_contact_goldens.sh); height-field collisions
+// (tools/make_hfield_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
   for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
@@ -52,7 +53,8 @@ std::vector<Case> ReadCases() {
                            "tests/conformance/contact_cases.txt",
                            "tests/conformance/solver_cases.txt",
                            "tests/conformance/sensor_cases.txt",
-                           "tests/conformance/ray_cases.txt"}) {
+                           "tests/conformance/ray_cases.txt",
+                           "tests/conformance/hfield_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {

@@ -112,6 +112,12 @@ TEST(MjcfErrors, NotSupportedYet) {
               {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
   ExpectError("<mujoco>\n<asset>\n<hfield name=\"h\" file=\"h.png\"/>\n</asset>\n</mujoco>",
               {"bad.xml:3:", "<hfield name=\"h\">", "not supported yet"});
+  ExpectError("<mujoco>\n<option><flag nativeccd=\"disable\"/></option>\n<asset>\n"
+              "<hfield name=\"h\" nrow=\"2\" ncol=\"2\" size=\"1 1 .1 .1\"/>\n</asset>\n<worldbody>\n"
+              "<geom name=\"ground\" type=\"hfield\" hfield=\"h\"/>\n"
+              "<body><freejoint/><geom name=\"ball\" size=\".1\"/></body>\n</worldbody>\n</mujoco>",
+              {"bad.xml:7:", "<geom name=\"ground\">", "nativeccd flag disabled are not supported yet",
+               "'ball'"});
   ExpectError("<mujoco>\n<compiler fusestatic=\"true\"/>\n</mujoco>", {"bad.xml:2:", "fusestatic", "not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body>\n<composite/>\n</body>\n</worldbody>\n</mujoco>",
               {"bad.xml:4:", "<composite> is not supported yet"});

@@ -92,19 +92,27 @@ void HFieldGeomSize(GeomState* g) {
 }
 
 void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& state) {
-  // A pair is skipped when both geoms are welded to the same body (static geoms
-  // included); any other pair that passes the type/affinity test could collide.
+  // Height fields collide through MuJoCo's native CCD; with the nativeccd flag disabled
+  // MuJoCo switches to libccd's MPR, which is not supported yet. A pair is skipped when
+  // both geoms are welded to the same body (static geoms included); any other pair that
+  // passes the type/affinity test, or is a <pair>, could collide.
+  if (!(spec.option.disableflags & kDisableNativeccd)) return;
+  const std::string refusal =
+      "hfield collisions with the nativeccd flag disabled are not supported yet";
   for (const GeomState& h : state.geoms) {
     if (!h.hfield) continue;
     if (NamedInPair(spec, h.spec->src.name)) {
-      ThrowAt(h.spec->src, "hfield collisions are not supported yet (the geom is in a <pair>)");
+      ThrowAt(h.spec->src, refusal + " (the geom is in a <pair>)");
     }
     int hweld = state.bodies[h.body].weldid;
     for (const GeomState& g : state.geoms) {
-      if (&g == &h || state.bodies[g.body].weldid == hweld || !CanTouch(*h.spec, *g.spec)) continue;
-      ThrowAt(h.spec->src, "hfield collisions are not supported yet (the hfield can touch geom " +
-                               (g.spec->src.name.empty() ? std::string("at line ") +
-                                    std::to_string(g.spec->src.line) : "'" + g.spec->src.name + "'") +
+      if (&g == &h || state.bodies[g.body].weldid == hweld || !CanTouch(*h.spec, *g.spec)) {
+        continue;
+      }
+      std::string other = g.spec->src.name.empty()
+                              ? "at line " + std::to_string(g.spec->src.line)
+                              : "'" + g.spec->src.name + "'";
+      ThrowAt(h.spec->src, refusal + " (the hfield can touch geom " + other +
                                "; set contype and conaffinity to 0)");
     }
   }

@@ -4,8 +4,8 @@
 // MuJoCo's filters (contype/conaffinity, welded and parent bodies, <exclude>, bounding
 // spheres), merges the explicit <pair>s, and calls one narrow-phase function per geom
 // pair from the table below. Narrow-phase functions live in collision_primitive.cc
-// (analytic pairs), collision_box.cc (box pairs) and collision_convex.cc (GJK/EPA for
-// every other convex pair, meshes included).
+// (analytic pairs), collision_box.cc (box pairs), collision_convex.cc (GJK/EPA for
+// every other convex pair, meshes included) and collision_hfield.cc (height fields).
 #ifndef SIMLAB_ENGINE_COLLISION_H_
 #define SIMLAB_ENGINE_COLLISION_H_
 
@@ -70,6 +70,13 @@ int CollidePlaneConvex(const Model& m, const Data& d, Contact* con, int g1, int 
 // Any two convex geoms by GJK/EPA (MuJoCo's mjc_Convex with its native CCD).
 int CollideConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
                   double margin);
+
+// ------------------------------------------------------------ narrow phase: height fields
+
+// A height field (g1) and a convex geom: one contact per penetrating grid prism,
+// MuJoCo's mjc_ConvexHField (collision_hfield.cc).
+int CollideHFieldConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
+                        double margin);
 
 }  // namespace simlab
 

@@ -1,6 +1,7 @@
 // Which narrow-phase function handles which pair of geom types: MuJoCo's table
-// (mjCOLLISIONFUNC), by the types of the two geoms in increasing order. Hfields and
-// SDFs have no functions yet, so such pairs make no contacts.
+// (mjCOLLISIONFUNC), by the types of the two geoms in increasing order. As in MuJoCo,
+// planes and height fields never touch each other or themselves; SDFs have no
+// functions yet, so their pairs make no contacts.
 #include "engine/collision.h"
 
 namespace simlab {
@@ -15,8 +16,9 @@ const CollideFn kTable[kNumGeomTypes][kNumGeomTypes] = {
     /* plane */ {nullptr, nullptr, CollidePlaneSphere, CollidePlaneCapsule,
                  CollidePlaneConvex, CollidePlaneCylinder, CollidePlaneBox,
                  CollidePlaneConvex, nullptr},
-    /* hfield */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                  nullptr},
+    /* hfield */ {nullptr, nullptr, CollideHFieldConvex, CollideHFieldConvex,
+                  CollideHFieldConvex, CollideHFieldConvex, CollideHFieldConvex,
+                  CollideHFieldConvex, nullptr},
     /* sphere */ {nullptr, nullptr, CollideSphereSphere, CollideSphereCapsule, CollideConvex,
                   CollideSphereCylinder, CollideSphereBox, CollideConvex, nullptr},
     /* capsule */ {nullptr, nullptr, nullptr, CollideCapsuleCapsule, CollideConvex,
