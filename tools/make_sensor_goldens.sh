@@ -31,7 +31,7 @@ case_folder "$CASES"
 SENSOR="$SHARED_CORPUS/test/engine/testdata/sensor"
 CORPUS_MODELS=()
 # geometric sensors (camprojection, insidesite, distance/normal/fromto)
-CORPUS_MODELS+=(camprojection insidesite fromto_capsule_ellipsoid fromto_primitive)
+CORPUS_MODELS+=(camprojection insidesite fromto_capsule_ellipsoid fromto_primitive fromto_convex)
 # (fromto_body_body builds its bodies' geoms with <replicate>)
 CORPUS_MODELS+=(fromto_body_body)
 # contact sensors (site/geom/body/subtree criteria, reductions); the subtree scenes attach
@@ -41,10 +41,6 @@ cp "$SENSOR/humanoid.xml" "$OUT/models/"
 for name in "${CORPUS_MODELS[@]}"; do
   cp "$SENSOR/$name.xml" "$OUT/models/"
 done
-# fromto_convex.xml with its hfield made non-colliding: hfield collisions are not supported
-# yet, and MuJoCo finds no contacts with it in this scene (ncon is 0 at every step).
-derive "$SENSOR" fromto_convex nohfield "the hfield geom made non-colliding (contype/conaffinity 0)" \
-  -e 's|hfield="hfield" rgba="0.5 0.5 0.5 1"/>|hfield="hfield" rgba="0.5 0.5 0.5 1" contype="0" conaffinity="0"/>|'
 
 # --- 2. our own sensor models --------------------------------------------------------------
 cp tests/sensors/*.xml "$OUT/models/"
