@@ -232,6 +232,11 @@ TEST(CompilerConformance, MeshFit) {
     CheckModel(name, std::string(SIMLAB_SOURCE_DIR) + "/tests/meshes/" + name + ".xml");
   }
 }
+// Taxel meshes (tests/sensors/tactile.xml): plates (one with refquat and scale), a wedge
+// and inline normals, each with a normal and two tangents per vertex (mesh_normal).
+TEST(CompilerConformance, TactileMeshes) {
+  CheckModel("tactile", std::string(SIMLAB_SOURCE_DIR) + "/tests/sensors/tactile.xml");
+}
 
 }  // namespace
 }  // namespace simlab

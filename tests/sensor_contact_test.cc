@@ -1,4 +1,4 @@
-// Contact sensors: what the loader refuses (tactile, contact criteria), and physical
+// Contact sensors: what the loader refuses (tactile meshes, contact criteria), and physical
 // checks the goldens only imply: a box at rest on the floor is held up by its weight,
 // which the touch zones split between them and the contact sensor's net reduction
 // gathers under the box's centre.
@@ -19,11 +19,11 @@ void ExpectError(const std::string& xml, const std::vector<std::string>& pieces)
 }
 
 TEST(ContactSensorErrors, NameTheLineAndTheProblem) {
-  // Tactile sensors need mesh normals and signed distance fields: refused clearly.
+  // A tactile mesh needs a normal and two tangents per vertex; this one has one normal.
   ExpectError("<mujoco>\n<asset><mesh name=\"pad\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/></asset>\n"
               "<worldbody><geom name=\"pad\" type=\"mesh\" mesh=\"pad\"/></worldbody>\n"
               "<sensor>\n<tactile mesh=\"pad\" geom=\"pad\"/>\n</sensor>\n</mujoco>\n",
-              {"bad.xml:5:", "<tactile>", "tactile sensors are not supported yet"});
+              {"bad.xml:5:", "<tactile>", "needs a normal and two tangents per vertex"});
   const std::string head =
       "<mujoco>\n<worldbody>\n<geom name=\"floor\" type=\"plane\" size=\"1 1 .1\"/>\n"
       "<body name=\"b\"><freejoint/><geom name=\"g\" size=\".1\"/>"

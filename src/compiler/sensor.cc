@@ -91,17 +91,6 @@ int SensorDim(const Model& m, const SensorSpec& s, int objid) {
   }
 }
 
-// Sensor families whose engine code is still to come are refused with a clear message.
-void SupportedYet(const SensorSpec& s) {
-  const char* family = nullptr;
-  switch (s.type) {
-    // (tactile needs mesh normals and signed distance fields of the touched geoms)
-    case kSensTactile: family = "tactile"; break;
-    default: break;
-  }
-  if (family) ThrowAt(s.src, std::string(family) + " sensors are not supported yet");
-}
-
 // The id of the object a sensor names, or an error naming the sensor.
 int Resolve(const Model& m, const SensorSpec& s, int type, const std::string& name,
             const char* role) {
@@ -185,6 +174,14 @@ void CheckAttachment(const Model& m, const SensorSpec& s, int objid, int refid) 
     case kSensContact:
       if (s.intprm[1] < 0 || s.intprm[1] > 3) ThrowAt(s.src, "unknown reduction criterion");
       break;
+    case kSensTactile:
+      // Each taxel reads a normal and two tangents (9 numbers); MuJoCo would read past
+      // the mesh's own normals otherwise.
+      if (m.mesh_normalnum[objid] != 3 * m.mesh_vertnum[objid]) {
+        ThrowAt(s.src, "tactile sensor mesh '" + s.objname + "' needs a normal and two tangents "
+                       "per vertex (a builtin wedge or plate, or normal= with 9 numbers per vertex)");
+      }
+      break;
     case kSensUser:
       if (s.dim < 0) ThrowAt(s.src, "sensor dim must be non-negative in sensor");
       if (s.datatype == kDataAxis && s.dim != 3) {
@@ -196,6 +193,13 @@ void CheckAttachment(const Model& m, const SensorSpec& s, int objid, int refid) 
       break;
     default: break;
   }
+}
+
+// A delay needs a history buffer, and a buffer holds at most 2^24 samples (its cursor
+// is kept exactly in single precision). `buffer` names it in the message.
+void CheckHistory(const mjcf::Source& src, double delay, int nsample, const char* buffer) {
+  if (delay > 0 && nsample <= 0) ThrowAt(src, "setting delay > 0 without a history buffer");
+  if (nsample > (1 << 24)) ThrowAt(src, std::string("at most 2^24 samples in ") + buffer);
 }
 
 // Checks of the filtering, delay and sampling attributes.
@@ -210,10 +214,7 @@ void CheckCommon(const SensorSpec& s, int nuser) {
   if (s.interval[0] > 0 && s.interval[1] <= -s.interval[0]) {
     ThrowAt(s.src, "phase must be greater than -period in sensor");
   }
-  if (s.delay > 0 && s.nsample <= 0) {
-    ThrowAt(s.src, "setting delay > 0 without a history buffer");
-  }
-  if (s.nsample > (1 << 24)) ThrowAt(s.src, "at most 2^24 samples in sensor history buffer");
+  CheckHistory(s.src, s.delay, s.nsample, "sensor history buffer");
 }
 
 // One sensor's row of the model.
@@ -230,7 +231,6 @@ void CompileSensor(const SensorSpec& s, int i, Model* m) {
     ThrowAt(s.src, "reference frame object must be (x)body, geom, site or camera in sensor");
   }
   CheckAttachment(*m, s, objid, refid);
-  SupportedYet(s);
 
   // Type, objects and the data type, stage and size MuJoCo gives the type.
   m->sensor_type[i] = s.type;
@@ -267,8 +267,7 @@ void LayoutHistory(const mjcf::ModelSpec& spec, Model* m) {
   int adr = 0;
   for (int i = 0; i < m->nu; i++) {
     const mjcf::ActuatorSpec& a = spec.actuators[i];
-    if (a.delay > 0 && a.nsample <= 0) ThrowAt(a.src, "setting delay > 0 without a history buffer");
-    if (a.nsample > (1 << 24)) ThrowAt(a.src, "at most 2^24 samples in history buffer");
+    CheckHistory(a.src, a.delay, a.nsample, "history buffer");
     m->actuator_history[2 * i] = a.nsample;
     m->actuator_history[2 * i + 1] = a.interp;
     m->actuator_delay[i] = a.delay;

@@ -177,6 +177,7 @@ void ComputeAcc(const Model& m, Data& d, int i, double* out) {
     case kSensTendonLimitFrc: out[0] = LimitValue(d, kCnstrLimitTendon, id, d.efc_force); break;
     case kSensTouch: TouchSensor(m, d, i, out); break;
     case kSensContact: ContactSensor(m, d, i, out); break;
+    case kSensTactile: TactileSensor(m, d, i, out); break;
     case kSensAccelerometer: AccelerometerSensor(m, d, i, out); break;
     case kSensForce:
     case kSensTorque: ForceTorqueSensor(m, d, i, out); break;

@@ -66,6 +66,9 @@ void RangefinderSensor(const Model& m, Data& d, int i, double* out);
 // volume) and contact (matching contacts' fields per slot, sorted or netted).
 void TouchSensor(const Model& m, Data& d, int i, double* out);
 void ContactSensor(const Model& m, Data& d, int i, double* out);
+// Tactile sensor (sensor_tactile.cc): a mesh's vertices as taxels on a geom; pressure and
+// slip speeds of each taxel inside a primitive geom touching the geom's weld body.
+void TactileSensor(const Model& m, Data& d, int i, double* out);
 
 // Sensors of quantities computed on demand (sensor_acc.cc): accelerometer, force and
 // torque, framelinacc/frameangacc (RnePostConstraint), subtreelinvel/subtreeangmom
