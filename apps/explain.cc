@@ -294,6 +294,7 @@ std::string ObjectName(const Model& m, int type, int id) {
     case kObjJoint: names = &m.jnt_names; break;
     case kObjGeom: names = &m.geom_names; break;
     case kObjSite: names = &m.site_names; break;
+    case kObjCamera: names = &m.cam_names; break;
     case kObjTendon: names = &m.tendon_names; break;
     case kObjActuator: names = &m.actuator_names; break;
     case kObjMesh: names = &m.mesh_names; break;

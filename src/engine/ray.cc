@@ -23,13 +23,6 @@ void ToLocal(const double pos[3], const double mat[9], const double pnt[3], cons
   math::MulMatTVec3(lvec, mat, vec);
 }
 
-// A local normal turned into the world frame.
-void ToWorld(double normal[3], const double mat[9], const double local[3]) {
-  double world[3];
-  math::MulMatVec3(world, mat, local);
-  math::Copy3(normal, world);
-}
-
 void ClearNormal(double normal[3]) {
   if (normal) math::Zero3(normal);
 }
@@ -70,10 +63,9 @@ void NormalPlaneBasis(const double lvec[3], double b0[3], double b1[3]) {
 
 // Ray against triangle v (local frame): the projection of each corner onto the plane
 // normal to the ray decides inside/outside, then the ray meets the triangle's plane.
-// normal (if given) is the unit (v0-v2) x (v1-v2).
+// normal (if given) gets the unit (v0-v2) x (v1-v2) when the plane is met.
 double RayTriangle(const double v[3][3], const double lpnt[3], const double lvec[3],
                    const double b0[3], const double b1[3], double normal[3]) {
-  ClearNormal(normal);
   double planar[3][2];
   for (int i = 0; i < 3; i++) {
     double dif[3] = {v[i][0] - lpnt[0], v[i][1] - lpnt[1], v[i][2] - lpnt[2]};
@@ -115,12 +107,25 @@ double RayTriangle(const double v[3][3], const double lpnt[3], const double lvec
   return x;
 }
 
+// Ray against triangle v; a hit nearer than *x (or the first) replaces it, and its
+// normal replaces local_normal when that is given.
+void NearerTriangle(const double v[3][3], const double lpnt[3], const double lvec[3],
+                    const double b0[3], const double b1[3], double* x, double local_normal[3]) {
+  double tri_normal[3];
+  double sol = RayTriangle(v, lpnt, lvec, b0, b1, local_normal ? tri_normal : nullptr);
+  if (sol >= 0 && (*x < 0 || sol < *x)) {
+    *x = sol;
+    if (local_normal) math::Copy3(local_normal, tri_normal);
+  }
+}
+
 // ---------------------------------------------------------------- primitives
+//
+// Each writes its normal on a hit only; RayPrimitive clears it first.
 
 // Plane: the front face (local z up), within the size rectangle when it has one.
 double RayPlane(const double pos[3], const double mat[9], const double size[3],
                 const double pnt[3], const double vec[3], double normal[3]) {
-  ClearNormal(normal);
   double lpnt[3], lvec[3];
   ToLocal(pos, mat, pnt, vec, lpnt, lvec);
   if (lvec[2] > -kMinVal) return -1;
@@ -141,17 +146,15 @@ double RayPlane(const double pos[3], const double mat[9], const double size[3],
 // Sphere of squared radius r2 centred at pos (also the bounding-sphere test of others).
 double RaySphere(const double pos[3], double r2, const double pnt[3], const double vec[3],
                  double normal[3]) {
-  double dif[3] = {pnt[0] - pos[0], pnt[1] - pos[1], pnt[2] - pos[2]};
+  double dif[3];
+  math::Sub3(dif, pnt, pos);
   double roots[2];
   double x = QuadraticRoots(math::Dot3(vec, vec), math::Dot3(vec, dif),
                             math::Dot3(dif, dif) - r2, roots);
-  if (normal) {
-    ClearNormal(normal);
-    if (x >= 0) {
-      double hit[3] = {pnt[0] + x * vec[0], pnt[1] + x * vec[1], pnt[2] + x * vec[2]};
-      math::Sub3(normal, hit, pos);
-      math::Normalize3(normal);
-    }
+  if (normal && x >= 0) {
+    double hit[3] = {pnt[0] + x * vec[0], pnt[1] + x * vec[1], pnt[2] + x * vec[2]};
+    math::Sub3(normal, hit, pos);
+    math::Normalize3(normal);
   }
   return x;
 }
@@ -168,10 +171,7 @@ double RoundSide(double r, const double lpnt[3], const double lvec[3]) {
 double RayCapsule(const double pos[3], const double mat[9], const double size[3],
                   const double pnt[3], const double vec[3], double normal[3]) {
   double reach = size[0] + size[1];
-  if (RaySphere(pos, reach * reach, pnt, vec, nullptr) < 0) {
-    ClearNormal(normal);
-    return -1;
-  }
+  if (RaySphere(pos, reach * reach, pnt, vec, nullptr) < 0) return -1;
   double lpnt[3], lvec[3];
   ToLocal(pos, mat, pnt, vec, lpnt, lvec);
   double x = -1;
@@ -196,14 +196,11 @@ double RayCapsule(const double pos[3], const double mat[9], const double size[3]
     }
   }
 
-  if (normal) {
-    ClearNormal(normal);
-    if (x >= 0) {
-      double local[3] = {lpnt[0] + lvec[0] * x, lpnt[1] + lvec[1] * x,
-                         part == 0 ? 0 : lpnt[2] + lvec[2] * x - size[1] * part};
-      math::Normalize3(local);
-      ToWorld(normal, mat, local);
-    }
+  if (normal && x >= 0) {
+    double local[3] = {lpnt[0] + lvec[0] * x, lpnt[1] + lvec[1] * x,
+                       part == 0 ? 0 : lpnt[2] + lvec[2] * x - size[1] * part};
+    math::Normalize3(local);
+    math::MulMatVec3(normal, mat, local);
   }
   return x;
 }
@@ -219,14 +216,11 @@ double RayEllipsoid(const double pos[3], const double mat[9], const double size[
   double c = s[0] * lpnt[0] * lpnt[0] + s[1] * lpnt[1] * lpnt[1] + s[2] * lpnt[2] * lpnt[2] - 1;
   double roots[2];
   double x = QuadraticRoots(a, b, c, roots);
-  if (normal) {
-    ClearNormal(normal);
-    if (x >= 0) {
-      double local[3];
-      for (int k = 0; k < 3; k++) local[k] = s[k] * (lpnt[k] + x * lvec[k]);
-      math::Normalize3(local);
-      ToWorld(normal, mat, local);
-    }
+  if (normal && x >= 0) {
+    double local[3];
+    for (int k = 0; k < 3; k++) local[k] = s[k] * (lpnt[k] + x * lvec[k]);
+    math::Normalize3(local);
+    math::MulMatVec3(normal, mat, local);
   }
   return x;
 }
@@ -234,10 +228,7 @@ double RayEllipsoid(const double pos[3], const double mat[9], const double size[
 // Cylinder: the two flat disks, then the round side between them.
 double RayCylinder(const double pos[3], const double mat[9], const double size[3],
                    const double pnt[3], const double vec[3], double normal[3]) {
-  if (RaySphere(pos, size[0] * size[0] + size[1] * size[1], pnt, vec, nullptr) < 0) {
-    ClearNormal(normal);
-    return -1;
-  }
+  if (RaySphere(pos, size[0] * size[0] + size[1] * size[1], pnt, vec, nullptr) < 0) return -1;
   double lpnt[3], lvec[3];
   ToLocal(pos, mat, pnt, vec, lpnt, lvec);
   double x = -1;
@@ -259,17 +250,14 @@ double RayCylinder(const double pos[3], const double mat[9], const double size[3
     part = 0;
   }
 
-  if (normal) {
-    ClearNormal(normal);
-    if (x >= 0) {
-      double local[3] = {0, 0, static_cast<double>(part)};
-      if (part == 0) {
-        local[0] = lpnt[0] + lvec[0] * x;
-        local[1] = lpnt[1] + lvec[1] * x;
-        math::Normalize3(local);
-      }
-      ToWorld(normal, mat, local);
+  if (normal && x >= 0) {
+    double local[3] = {0, 0, static_cast<double>(part)};
+    if (part == 0) {
+      local[0] = lpnt[0] + lvec[0] * x;
+      local[1] = lpnt[1] + lvec[1] * x;
+      math::Normalize3(local);
     }
+    math::MulMatVec3(normal, mat, local);
   }
   return x;
 }
@@ -279,7 +267,6 @@ double RayCylinder(const double pos[3], const double mat[9], const double size[3
 double RayBox(const double pos[3], const double mat[9], const double size[3],
               const double pnt[3], const double vec[3], double all[6], double normal[3]) {
   if (all) std::fill(all, all + 6, -1.0);
-  ClearNormal(normal);
   if (RaySphere(pos, size[0] * size[0] + size[1] * size[1] + size[2] * size[2], pnt, vec,
                 nullptr) < 0) {
     return -1;
@@ -309,7 +296,7 @@ double RayBox(const double pos[3], const double mat[9], const double size[3],
   if (normal && x >= 0) {
     double local[3] = {0, 0, 0};
     local[axis] = side_hit;
-    ToWorld(normal, mat, local);
+    math::MulMatVec3(normal, mat, local);
   }
   return x;
 }
@@ -339,9 +326,9 @@ void CellRange(const double s[2], int n, int* lo, int* hi) {
 }
 
 // The two triangles of each cell near the segment where the ray is inside the top
-// box; updates x and the local normal with any nearer hit.
+// box; updates x and the local normal (if given) with any nearer hit.
 void HfieldTriangles(const HfieldGrid& g, const double lpnt[3], const double lvec[3],
-                     const double seg[2], bool want_normal, double* x, double local_normal[3]) {
+                     const double seg[2], double* x, double local_normal[3]) {
   double b0[3], b1[3];
   NormalPlaneBasis(lvec, b0, b1);
   double sx[2], sy[2];
@@ -362,13 +349,9 @@ void HfieldTriangles(const HfieldGrid& g, const double lpnt[3], const double lve
       g.Corner(r + 1, c, corner[3]);
       static constexpr int kTriangles[2][3] = {{0, 1, 2}, {0, 2, 3}};
       for (const int* t : kTriangles) {
-        double v[3][3], tri_normal[3];
+        double v[3][3];
         for (int k = 0; k < 3; k++) math::Copy3(v[k], corner[t[k]]);
-        double sol = RayTriangle(v, lpnt, lvec, b0, b1, want_normal ? tri_normal : nullptr);
-        if (sol >= 0 && (*x < 0 || sol < *x)) {
-          *x = sol;
-          if (want_normal) math::Copy3(local_normal, tri_normal);
-        }
+        NearerTriangle(v, lpnt, lvec, b0, b1, x, local_normal);
       }
     }
   }
@@ -411,6 +394,7 @@ void HfieldSides(const HfieldGrid& g, const double lpnt[3], const double lvec[3]
 
 double RayPrimitive(const double pos[3], const double mat[9], const double size[3],
                     const double pnt[3], const double vec[3], int type, double normal[3]) {
+  ClearNormal(normal);
   switch (type) {
     case kGeomPlane: return RayPlane(pos, mat, size, pnt, vec, normal);
     case kGeomSphere: return RaySphere(pos, size[0] * size[0], pnt, vec, normal);
@@ -418,7 +402,7 @@ double RayPrimitive(const double pos[3], const double mat[9], const double size[
     case kGeomEllipsoid: return RayEllipsoid(pos, mat, size, pnt, vec, normal);
     case kGeomCylinder: return RayCylinder(pos, mat, size, pnt, vec, normal);
     case kGeomBox: return RayBox(pos, mat, size, pnt, vec, nullptr, normal);
-    default: ClearNormal(normal); return -1;
+    default: return -1;
   }
 }
 
@@ -438,15 +422,11 @@ double RayMesh(const Model& m, const Data& d, int geom, const double pnt[3], con
   const int* face = &m.mesh_face[3 * m.mesh_faceadr[mesh]];
   double x = -1, local_normal[3] = {0, 0, 0};
   for (int f = 0; f < m.mesh_facenum[mesh]; f++) {
-    double v[3][3], tri_normal[3];
+    double v[3][3];
     for (int k = 0; k < 3; k++) math::Copy3(v[k], vert + 3 * face[3 * f + k]);
-    double sol = RayTriangle(v, lpnt, lvec, b0, b1, normal ? tri_normal : nullptr);
-    if (sol >= 0 && (x < 0 || sol < x)) {
-      x = sol;
-      if (normal) math::Copy3(local_normal, tri_normal);
-    }
+    NearerTriangle(v, lpnt, lvec, b0, b1, &x, normal ? local_normal : nullptr);
   }
-  if (normal && x >= 0) ToWorld(normal, xmat, local_normal);
+  if (normal && x >= 0) math::MulMatVec3(normal, xmat, local_normal);
   return x;
 }
 
@@ -492,9 +472,9 @@ double RayHfield(const Model& m, const Data& d, int geom, const double pnt[3],
   }
   double local_normal[3] = {0, 0, 0};
   if (normal && x >= 0) math::MulMatTVec3(local_normal, xmat, base_normal);
-  HfieldTriangles(g, lpnt, lvec, seg, normal != nullptr, &x, local_normal);
+  HfieldTriangles(g, lpnt, lvec, seg, &x, normal ? local_normal : nullptr);
   HfieldSides(g, lpnt, lvec, all, &x, local_normal);
-  if (normal && x >= 0) ToWorld(normal, xmat, local_normal);
+  if (normal && x >= 0) math::MulMatVec3(normal, xmat, local_normal);
   return x;
 }
 

@@ -66,10 +66,10 @@ PixelGeometry CameraPixels(const Model& m, int cam) {
   } else if (sensor[0] != 0 && sensor[1] != 0) {
     // MuJoCo stores intrinsics and sensor size as floats and computes these in float.
     auto f = [](double v) { return static_cast<float>(v); };
-    p.fx = f(f(f(intr[0]) / f(sensor[0])) * static_cast<float>(width));
-    p.fy = f(f(f(intr[1]) / f(sensor[1])) * static_cast<float>(height));
-    p.cx = f(f(f(intr[2]) / f(sensor[0])) * static_cast<float>(width));
-    p.cy = f(f(f(intr[3]) / f(sensor[1])) * static_cast<float>(height));
+    p.fx = f(intr[0]) / f(sensor[0]) * f(width);
+    p.fy = f(intr[1]) / f(sensor[1]) * f(height);
+    p.cx = f(intr[2]) / f(sensor[0]) * f(width);
+    p.cy = f(intr[3]) / f(sensor[1]) * f(height);
   } else {
     p.fx = p.fy = 0.5 / std::tan(m.cam_fovy[cam] * std::numbers::pi / 360.0) * height;
     p.cx = width / 2.0;
@@ -118,15 +118,14 @@ void CameraRangefinder(const Model& m, Data& d, int i, double* out) {
   RayFilter filter;
   filter.bodyexclude = m.cam_bodyid[cam];
 
-  // Row by row from the top; every pixel's normal is computed for orthographic
-  // cameras, as MuJoCo does, but only written when the mask asks.
-  const bool perspective = m.cam_projection[cam] != kOrthographic;
+  // Row by row from the top; normals only when the mask asks (they never change a distance).
+  double normal[3] = {0, 0, 0};
+  double* normal_out = Has(mask, kRayDataNormal) ? normal : nullptr;
   for (int row = 0; row < m.cam_resolution[2 * cam + 1]; row++) {
     for (int col = 0; col < m.cam_resolution[2 * cam]; col++) {
-      double origin[3], dir[3], normal[3] = {0, 0, 0};
+      double origin[3], dir[3];
       PixelRay(m, d, cam, p, col, row, origin, dir);
-      bool want_normal = !perspective || Has(mask, kRayDataNormal);
-      double dist = Ray(m, d, origin, dir, filter, nullptr, want_normal ? normal : nullptr);
+      double dist = Ray(m, d, origin, dir, filter, nullptr, normal_out);
       out = WriteRay(out, mask, dist, origin, dir, normal, &d.cam_xpos[3 * cam], cam_z);
     }
   }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "mjcf/reader.h"
+#include "simlab/simlab.h"
 
 namespace simlab::mjcf {
 
@@ -23,61 +24,61 @@ enum class Target {
   kSpecial     // read by its own function
 };
 
+// A sensor type (its element tag is SensorTypeName(type)) and how it names its object.
 struct SensorKind {
-  const char* tag;
   int type;
   Target target;
 };
 
 constexpr SensorKind kKinds[] = {
-    {"touch", kSensTouch, Target::kSite},
-    {"accelerometer", kSensAccelerometer, Target::kSite},
-    {"velocimeter", kSensVelocimeter, Target::kSite},
-    {"gyro", kSensGyro, Target::kSite},
-    {"force", kSensForce, Target::kSite},
-    {"torque", kSensTorque, Target::kSite},
-    {"magnetometer", kSensMagnetometer, Target::kSite},
-    {"camprojection", kSensCamProjection, Target::kSpecial},
-    {"rangefinder", kSensRangefinder, Target::kSpecial},
-    {"jointpos", kSensJointPos, Target::kJoint},
-    {"jointvel", kSensJointVel, Target::kJoint},
-    {"tendonpos", kSensTendonPos, Target::kTendon},
-    {"tendonvel", kSensTendonVel, Target::kTendon},
-    {"actuatorpos", kSensActuatorPos, Target::kActuator},
-    {"actuatorvel", kSensActuatorVel, Target::kActuator},
-    {"actuatorfrc", kSensActuatorFrc, Target::kActuator},
-    {"jointactuatorfrc", kSensJointActFrc, Target::kJoint},
-    {"tendonactuatorfrc", kSensTendonActFrc, Target::kTendon},
-    {"ballquat", kSensBallQuat, Target::kJoint},
-    {"ballangvel", kSensBallAngVel, Target::kJoint},
-    {"jointlimitpos", kSensJointLimitPos, Target::kJoint},
-    {"jointlimitvel", kSensJointLimitVel, Target::kJoint},
-    {"jointlimitfrc", kSensJointLimitFrc, Target::kJoint},
-    {"tendonlimitpos", kSensTendonLimitPos, Target::kTendon},
-    {"tendonlimitvel", kSensTendonLimitVel, Target::kTendon},
-    {"tendonlimitfrc", kSensTendonLimitFrc, Target::kTendon},
-    {"framepos", kSensFramePos, Target::kFrame},
-    {"framequat", kSensFrameQuat, Target::kFrame},
-    {"framexaxis", kSensFrameXAxis, Target::kFrame},
-    {"frameyaxis", kSensFrameYAxis, Target::kFrame},
-    {"framezaxis", kSensFrameZAxis, Target::kFrame},
-    {"framelinvel", kSensFrameLinVel, Target::kFrame},
-    {"frameangvel", kSensFrameAngVel, Target::kFrame},
-    {"framelinacc", kSensFrameLinAcc, Target::kFrameAcc},
-    {"frameangacc", kSensFrameAngAcc, Target::kFrameAcc},
-    {"subtreecom", kSensSubtreeCom, Target::kBody},
-    {"subtreelinvel", kSensSubtreeLinVel, Target::kBody},
-    {"subtreeangmom", kSensSubtreeAngMom, Target::kBody},
-    {"insidesite", kSensInsideSite, Target::kSpecial},
-    {"distance", kSensGeomDist, Target::kSpecial},
-    {"normal", kSensGeomNormal, Target::kSpecial},
-    {"fromto", kSensGeomFromTo, Target::kSpecial},
-    {"contact", kSensContact, Target::kSpecial},
-    {"e_potential", kSensEPotential, Target::kNone},
-    {"e_kinetic", kSensEKinetic, Target::kNone},
-    {"clock", kSensClock, Target::kNone},
-    {"tactile", kSensTactile, Target::kSpecial},
-    {"user", kSensUser, Target::kSpecial},
+    {kSensTouch, Target::kSite},
+    {kSensAccelerometer, Target::kSite},
+    {kSensVelocimeter, Target::kSite},
+    {kSensGyro, Target::kSite},
+    {kSensForce, Target::kSite},
+    {kSensTorque, Target::kSite},
+    {kSensMagnetometer, Target::kSite},
+    {kSensCamProjection, Target::kSpecial},
+    {kSensRangefinder, Target::kSpecial},
+    {kSensJointPos, Target::kJoint},
+    {kSensJointVel, Target::kJoint},
+    {kSensTendonPos, Target::kTendon},
+    {kSensTendonVel, Target::kTendon},
+    {kSensActuatorPos, Target::kActuator},
+    {kSensActuatorVel, Target::kActuator},
+    {kSensActuatorFrc, Target::kActuator},
+    {kSensJointActFrc, Target::kJoint},
+    {kSensTendonActFrc, Target::kTendon},
+    {kSensBallQuat, Target::kJoint},
+    {kSensBallAngVel, Target::kJoint},
+    {kSensJointLimitPos, Target::kJoint},
+    {kSensJointLimitVel, Target::kJoint},
+    {kSensJointLimitFrc, Target::kJoint},
+    {kSensTendonLimitPos, Target::kTendon},
+    {kSensTendonLimitVel, Target::kTendon},
+    {kSensTendonLimitFrc, Target::kTendon},
+    {kSensFramePos, Target::kFrame},
+    {kSensFrameQuat, Target::kFrame},
+    {kSensFrameXAxis, Target::kFrame},
+    {kSensFrameYAxis, Target::kFrame},
+    {kSensFrameZAxis, Target::kFrame},
+    {kSensFrameLinVel, Target::kFrame},
+    {kSensFrameAngVel, Target::kFrame},
+    {kSensFrameLinAcc, Target::kFrameAcc},
+    {kSensFrameAngAcc, Target::kFrameAcc},
+    {kSensSubtreeCom, Target::kBody},
+    {kSensSubtreeLinVel, Target::kBody},
+    {kSensSubtreeAngMom, Target::kBody},
+    {kSensInsideSite, Target::kSpecial},
+    {kSensGeomDist, Target::kSpecial},
+    {kSensGeomNormal, Target::kSpecial},
+    {kSensGeomFromTo, Target::kSpecial},
+    {kSensContact, Target::kSpecial},
+    {kSensEPotential, Target::kNone},
+    {kSensEKinetic, Target::kNone},
+    {kSensClock, Target::kNone},
+    {kSensTactile, Target::kSpecial},
+    {kSensUser, Target::kSpecial},
 };
 
 // The attributes every sensor but user, tactile and plugin accepts.
@@ -86,18 +87,8 @@ const std::vector<const char*> kCommon = {"name", "nsample", "interp", "delay", 
 
 // Object type keywords (MuJoCo's mju_str2Type); anything else is unknown.
 int ObjTypeFromName(const std::string& s) {
-  static const std::pair<const char*, int> kNames[] = {
-      {"body", kObjBody},         {"xbody", kObjXBody},       {"joint", kObjJoint},
-      {"dof", kObjDof},           {"geom", kObjGeom},         {"site", kObjSite},
-      {"camera", kObjCamera},     {"light", kObjLight},       {"flex", kObjFlex},
-      {"mesh", kObjMesh},         {"skin", kObjSkin},         {"hfield", kObjHfield},
-      {"texture", kObjTexture},   {"material", kObjMaterial}, {"pair", kObjPair},
-      {"exclude", kObjExclude},   {"equality", kObjEquality}, {"tendon", kObjTendon},
-      {"actuator", kObjActuator}, {"sensor", kObjSensor},     {"numeric", kObjNumeric},
-      {"text", kObjText},         {"tuple", kObjTuple},       {"key", kObjKey},
-      {"plugin", kObjPlugin}};
-  for (const auto& [name, type] : kNames) {
-    if (s == name) return type;
+  for (int type = kObjBody; type <= kObjPlugin; type++) {
+    if (s == ObjTypeName(type)) return type;
   }
   return kObjUnknown;
 }
@@ -300,7 +291,7 @@ void Reader::Sensor(const XmlElement& section) {
     if (e.tag() == "plugin") NotSupported(e, "the sensor plugin");
     const SensorKind* kind = nullptr;
     for (const SensorKind& k : kKinds) {
-      if (e.tag() == k.tag) kind = &k;
+      if (e.tag() == SensorTypeName(k.type)) kind = &k;
     }
     if (!kind) Unknown(e);
 
