@@ -2,8 +2,10 @@
 // work them out by hand (taxels sinking into the floor plane, whose signed distance is
 // the height), and the cases the goldens cannot show: mesh geoms are skipped (no
 // octree), a height field touching the sensor stops the step with an error.
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
