@@ -35,7 +35,8 @@ CORPUS_MODELS+=(camprojection insidesite fromto_capsule_ellipsoid fromto_primiti
 # (fromto_body_body builds its bodies' geoms with <replicate>)
 CORPUS_MODELS+=(fromto_body_body)
 # contact sensors (site/geom/body/subtree criteria, reductions); the subtree scenes attach
-# humanoid.xml, copied beside them (not a case of its own)
+# humanoid.xml, copied beside them (not a case of its own: it is model/humanoid/humanoid.xml,
+# a contact case with all its keyframes, tools/make_contact_goldens.sh)
 CORPUS_MODELS+=(contact contact_net contact_sorted contact_subtree contact_subtree_partial)
 cp "$SENSOR/humanoid.xml" "$OUT/models/"
 for name in "${CORPUS_MODELS[@]}"; do
