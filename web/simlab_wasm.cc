@@ -1,0 +1,446 @@
+// The engine for JavaScript (embind), built by tools/build_wasm.sh into
+// web/dist/simlab.mjs + simlab.wasm. One Simulation owns a compiled Model and its Data:
+//
+//   import createSimlab from './dist/simlab.mjs';
+//   const simlab = await createSimlab();           // in node: createSimlab({wasmBinary})
+//   const sim = new simlab.Simulation('gantry_gripper.xml', xml, {'gripper.xml': text});
+//   sim.resetKeyframe(0);                          // or resetKeyframe('home')
+//   sim.setData('ctrl', [0.12, 0, 0, 0.04]);
+//   sim.step(10);
+//   sim.data('qpos');                              // Float64Array copy, MuJoCo's names
+//   sim.delete();                                  // embind objects are freed by hand
+//
+// Every failure (bad MJCF, unknown name, index out of range) is thrown as a JavaScript
+// Error whose message is simlab::Error's ("file:line: <element>: problem"). The full
+// API is listed in web/README.md.
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+#include <sys/stat.h>
+
+#include <exception>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/field_view.h"
+#include "engine/engine.h"
+#include "simlab/simlab.h"
+
+namespace simlab::web {
+namespace {
+
+using emscripten::val;
+
+// ---------------------------------------------------------------- errors
+
+// Throws a JavaScript Error carrying the message. Call it outside any try block, with
+// nothing else owned by the calling frame (a JS exception skips C++ destructors).
+[[noreturn]] void ThrowJs(const std::string& message) {
+  val::global("Error").new_(message).throw_();
+}
+
+// Runs body(); a C++ exception from it becomes a JavaScript Error with the same text.
+template <typename Body>
+auto Guarded(Body&& body) -> decltype(body()) {
+  std::string message;
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    message = e.what();
+  }
+  ThrowJs(message);
+}
+
+// ---------------------------------------------------------------- the in-memory files
+
+// Creates every folder on the way to `path` (an absolute path in emscripten's MEMFS).
+void MakeParentFolders(const std::string& path) {
+  for (size_t slash = path.find('/', 1); slash != std::string::npos;
+       slash = path.find('/', slash + 1)) {
+    mkdir(path.substr(0, slash).c_str(), 0777);
+  }
+}
+
+// Writes one file: a JS string as UTF-8, or a Uint8Array / ArrayBuffer as bytes.
+void WriteMemFile(const std::string& path, const val& content) {
+  std::string bytes;
+  if (content.isString()) {
+    bytes = content.as<std::string>();
+  } else {
+    val array = val::global("Uint8Array").new_(content);
+    std::vector<uint8_t> raw = emscripten::convertJSArrayToNumberVector<uint8_t>(array);
+    bytes.assign(raw.begin(), raw.end());
+  }
+  MakeParentFolders(path);
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw Error(path + ": cannot write to the in-memory file system");
+}
+
+// A relative path that stays inside its model folder (no "..", not absolute).
+bool IsSafeRelativePath(const std::string& path) {
+  if (path.empty() || path[0] == '/') return false;
+  return path != ".." && path.rfind("../", 0) != 0 && path.find("/../") == std::string::npos;
+}
+
+// Each model gets a fresh folder, so that files of earlier models never leak in.
+std::string NextModelFolder() {
+  static int count = 0;
+  return "/simlab/model" + std::to_string(count++);
+}
+
+// A loader message names files as the caller did ("gantry.xml:3: ..."), without the
+// in-memory folder they were written to.
+std::string WithoutFolder(std::string message, const std::string& folder) {
+  for (size_t at = message.find(folder); at != std::string::npos; at = message.find(folder, at)) {
+    message.erase(at, folder.size());
+  }
+  return message;
+}
+
+// ---------------------------------------------------------------- arrays as JS values
+
+// A copy of a field as a Float64Array or Int32Array.
+val CopyOf(const FieldView& f) {
+  size_t n = static_cast<size_t>(f.rows) * f.cols;
+  if (f.is_int) return val::global("Int32Array").new_(emscripten::typed_memory_view(n, f.ints));
+  return val::global("Float64Array").new_(emscripten::typed_memory_view(n, f.doubles));
+}
+
+// A view into wasm memory (valid until the memory grows or the array is resized).
+val ViewOf(const FieldView& f) {
+  size_t n = static_cast<size_t>(f.rows) * f.cols;
+  if (f.is_int) return val(emscripten::typed_memory_view(n, f.ints));
+  return val(emscripten::typed_memory_view(n, f.doubles));
+}
+
+// The field named `name` (a copy: the list is usually a temporary).
+FieldView FindField(const std::vector<FieldView>& fields, const std::string& name,
+                    const char* owner) {
+  for (const FieldView& f : fields) {
+    if (name == f.name) return f;
+  }
+  throw Error(std::string("no ") + owner + " array named '" + name + "'");
+}
+
+val NamesOf(const std::vector<FieldView>& fields) {
+  val names = val::array();
+  for (const FieldView& f : fields) names.call<void>("push", std::string(f.name));
+  return names;
+}
+
+// { rows, cols, type } of a field.
+val ShapeOf(const FieldView& f) {
+  val shape = val::object();
+  shape.set("rows", f.rows);
+  shape.set("cols", f.cols);
+  shape.set("type", std::string(f.is_int ? "int" : "double"));
+  return shape;
+}
+
+// A JS object of named numbers ({timestep: 0.002, ...}).
+val NumbersObject(std::initializer_list<std::pair<const char*, double>> entries) {
+  val object = val::object();
+  for (const auto& [name, value] : entries) object.set(name, value);
+  return object;
+}
+
+val VectorToJs(const double* values, int n) {
+  return val::global("Float64Array").new_(emscripten::typed_memory_view(n, values));
+}
+
+// ---------------------------------------------------------------- names of objects
+
+// The name list of an object kind, by MuJoCo's field prefix ("body", "jnt", "cam", "eq",
+// "actuator", "key"...) or by its mjtObj keyword ("joint", "camera", "equality").
+const std::vector<std::string>* NamesOfKind(const Model& m, const std::string& kind) {
+#define SIMLAB_X(prefix, count) \
+  if (kind == #prefix) return &m.prefix##_names;
+  SIMLAB_MODEL_NAMED(SIMLAB_X)
+#undef SIMLAB_X
+  static const std::pair<const char*, const char*> kAliases[] = {
+      {"joint", "jnt"}, {"camera", "cam"}, {"equality", "eq"}, {"xbody", "body"},
+      {"keyframe", "key"}};
+  for (const auto& [alias, prefix] : kAliases) {
+    if (kind == alias) return NamesOfKind(m, prefix);
+  }
+  return nullptr;
+}
+
+const std::vector<std::string>& NamesOfKindOrThrow(const Model& m, const std::string& kind) {
+  const std::vector<std::string>* names = NamesOfKind(m, kind);
+  if (!names) throw Error("unknown object kind '" + kind + "'");
+  return *names;
+}
+
+// ---------------------------------------------------------------- the simulation
+
+class Simulation {
+ public:
+  // Compiles `xml`, written as `filename` into a fresh in-memory folder beside `files`
+  // ({relative path: text or bytes}: attached, included and asset files). The model is
+  // compiled before the object exists, so a bad file leaves nothing half-built.
+  static Simulation* Create(const std::string& filename, const std::string& xml,
+                            const val& files) {
+    return Guarded([&] { return new Simulation(Load(filename, xml, files)); });
+  }
+  static Simulation* CreateWithoutFiles(const std::string& filename, const std::string& xml) {
+    return Create(filename, xml, val::object());
+  }
+
+  // ---- state
+  void Reset() { ResetData(m_, d_); }
+  void ResetKeyframe(const val& key) {
+    Guarded([&] {
+      ResetDataKeyframe(m_, d_, KeyIndex(key));
+      return 0;
+    });
+  }
+  void Forward() { simlab::Forward(m_, d_); }
+  void Step(int n) {
+    for (int i = 0; i < n; i++) simlab::Step(m_, d_);
+  }
+  void StepOnce() { Step(1); }
+  double Time() const { return d_.time; }
+  void SetTime(double t) { d_.time = t; }
+
+  // ---- arrays by name
+  val Data(const std::string& name) {
+    return Guarded([&] { return CopyOf(FindField(AllDataFields(), name, "Data")); });
+  }
+  val DataView(const std::string& name) {
+    return Guarded([&] { return ViewOf(FindField(AllDataFields(), name, "Data")); });
+  }
+  val ModelArray(const std::string& name) {
+    return Guarded([&] { return CopyOf(FindField(m_.Fields(), name, "Model")); });
+  }
+  val ModelView(const std::string& name) {
+    return Guarded([&] { return ViewOf(FindField(m_.Fields(), name, "Model")); });
+  }
+  val DataShape(const std::string& name) {
+    return Guarded([&] { return ShapeOf(FindField(AllDataFields(), name, "Data")); });
+  }
+  val ModelShape(const std::string& name) {
+    return Guarded([&] { return ShapeOf(FindField(m_.Fields(), name, "Model")); });
+  }
+  val DataNames() { return NamesOf(AllDataFields()); }
+  val ModelNames() { return NamesOf(m_.Fields()); }
+
+  // Overwrites a Data array with `values` (an Array or typed array of its full size).
+  void SetData(const std::string& name, const val& values) {
+    Guarded([&] {
+      WriteAll(FindField(AllDataFields(), name, "Data"),
+               emscripten::convertJSArrayToNumberVector<double>(values));
+      return 0;
+    });
+  }
+  // Writes one number: data.NAME[index] = value.
+  void SetDataAt(const std::string& name, int index, double value) {
+    Guarded([&] {
+      const FieldView f = FindField(AllDataFields(), name, "Data");
+      CheckIndex(f, index);
+      if (f.is_int) {
+        f.ints[index] = static_cast<int>(value);
+      } else {
+        f.doubles[index] = value;
+      }
+      return 0;
+    });
+  }
+
+  // ---- sizes, options, names
+  val Sizes() const {
+    val sizes = val::object();
+#define SIMLAB_X(size) sizes.set(#size, m_.size);
+    SIMLAB_MODEL_SIZES(SIMLAB_X)
+#undef SIMLAB_X
+    return sizes;
+  }
+  val Option() const;
+  val Statistic() const;
+  // Scalars of Data: ncon, nefc, ne, nf, nl, nisland, solver_niter, nreset, energy.
+  val Counts() const;
+  int NameToId(const std::string& kind, const std::string& name) const {
+    return Guarded([&] {
+      const std::vector<std::string>& names = NamesOfKindOrThrow(m_, kind);
+      for (size_t i = 0; i < names.size(); i++) {
+        if (!name.empty() && names[i] == name) return static_cast<int>(i);
+      }
+      return -1;
+    });
+  }
+  std::string IdToName(const std::string& kind, int id) const {
+    return Guarded([&] {
+      const std::vector<std::string>& names = NamesOfKindOrThrow(m_, kind);
+      if (id < 0 || id >= static_cast<int>(names.size())) {
+        throw Error(kind + " id " + std::to_string(id) + " out of range (" +
+                    std::to_string(names.size()) + " of them)");
+      }
+      return names[id];
+    });
+  }
+  // The active contacts: [{geom1, geom2, dist, pos, frame, dim, efc_address, force}],
+  // force being the 6 numbers of MuJoCo's mj_contactForce (contact frame).
+  val Contacts() const;
+
+ private:
+  explicit Simulation(simlab::Model&& m) : m_(std::move(m)), d_(MakeData(m_)) {}
+  static simlab::Model Load(const std::string& filename, const std::string& xml,
+                            const val& files);
+  int KeyIndex(const val& key) const;
+  std::vector<FieldView> AllDataFields();
+  static void CheckIndex(const FieldView& f, int index);
+  static void WriteAll(const FieldView& f, const std::vector<double>& values);
+
+  simlab::Model m_;
+  simlab::Data d_;
+};
+
+simlab::Model Simulation::Load(const std::string& filename, const std::string& xml,
+                              const val& files) {
+  // Every file goes below one fresh folder; the main file is loaded from there, so
+  // relative file= attributes resolve as on disk.
+  if (!IsSafeRelativePath(filename)) throw Error(filename + ": the model needs a relative name");
+  const std::string folder = NextModelFolder();
+  val paths = val::global("Object").call<val>("keys", files);
+  const int n = paths["length"].as<int>();
+  for (int i = 0; i < n; i++) {
+    std::string path = paths[i].as<std::string>();
+    if (!IsSafeRelativePath(path)) throw Error(path + ": extra files need relative paths");
+    WriteMemFile(folder + "/" + path, files[path]);
+  }
+  WriteMemFile(folder + "/" + filename, val(xml));
+  try {
+    return LoadXml(folder + "/" + filename);
+  } catch (const Error& e) {
+    throw Error(WithoutFolder(e.what(), folder + "/"));
+  }
+}
+
+// A keyframe by index, or by name.
+int Simulation::KeyIndex(const val& key) const {
+  if (key.isNumber()) return key.as<int>();
+  if (!key.isString()) throw Error("a keyframe is chosen by index or name");
+  std::string name = key.as<std::string>();
+  for (int k = 0; k < m_.nkey; k++) {
+    if (m_.key_names[k] == name) return k;
+  }
+  throw Error("no keyframe named '" + name + "'");
+}
+
+// Data's arrays, then its constraint rows (efc_*, nefc rows each).
+std::vector<FieldView> Simulation::AllDataFields() {
+  std::vector<FieldView> fields = DataFields(m_, d_);
+#define SIMLAB_X(type, name, cols) fields.push_back(MakeFieldView(#name, d_.name, d_.nefc, cols));
+  SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
+#undef SIMLAB_X
+  return fields;
+}
+
+void Simulation::CheckIndex(const FieldView& f, int index) {
+  if (index < 0 || index >= f.rows * f.cols) {
+    throw Error(std::string(f.name) + "[" + std::to_string(index) + "]: index out of range (" +
+                f.name + " has " + std::to_string(f.rows * f.cols) + " numbers)");
+  }
+}
+
+void Simulation::WriteAll(const FieldView& f, const std::vector<double>& values) {
+  const int n = f.rows * f.cols;
+  if (static_cast<int>(values.size()) != n) {
+    throw Error(std::string(f.name) + " needs " + std::to_string(n) + " numbers, got " +
+                std::to_string(values.size()));
+  }
+  for (int i = 0; i < n; i++) {
+    if (f.is_int) {
+      f.ints[i] = static_cast<int>(values[i]);
+    } else {
+      f.doubles[i] = values[i];
+    }
+  }
+}
+
+val Simulation::Option() const {
+  const simlab::Option& o = m_.opt;
+  val opt = NumbersObject({{"timestep", o.timestep}, {"integrator", o.integrator},
+                           {"cone", o.cone}, {"solver", o.solver},
+                           {"iterations", o.iterations}, {"disableflags", o.disableflags},
+                           {"enableflags", o.enableflags}});
+  opt.set("gravity", VectorToJs(o.gravity.data(), 3));
+  return opt;
+}
+
+val Simulation::Statistic() const {
+  const simlab::Statistic& s = m_.stat;
+  val stat = NumbersObject(
+      {{"extent", s.extent}, {"meansize", s.meansize}, {"meanmass", s.meanmass}});
+  stat.set("center", VectorToJs(s.center.data(), 3));
+  return stat;
+}
+
+val Simulation::Counts() const {
+  val counts = NumbersObject({{"ncon", d_.ncon}, {"nefc", d_.nefc}, {"ne", d_.ne},
+                              {"nf", d_.nf}, {"nl", d_.nl}, {"nisland", d_.nisland},
+                              {"solver_niter", d_.solver_niter}, {"nreset", d_.nreset}});
+  counts.set("energy", VectorToJs(d_.energy, 2));
+  return counts;
+}
+
+val Simulation::Contacts() const {
+  val contacts = val::array();
+  for (int i = 0; i < d_.ncon; i++) {
+    const Contact& c = d_.contact[i];
+    double force[6] = {0, 0, 0, 0, 0, 0};
+    ContactForce(m_, d_, i, force);
+    val one = val::object();
+    one.set("geom1", c.geom[0]);
+    one.set("geom2", c.geom[1]);
+    one.set("dist", c.dist);
+    one.set("pos", VectorToJs(c.pos, 3));
+    one.set("frame", VectorToJs(c.frame, 9));
+    one.set("dim", c.dim);
+    one.set("efc_address", c.efc_address);
+    one.set("force", VectorToJs(force, 6));
+    contacts.call<void>("push", one);
+  }
+  return contacts;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- the JS names
+
+EMSCRIPTEN_BINDINGS(simlab) {
+  using emscripten::class_;
+  emscripten::function("referenceVersion",
+                       emscripten::optional_override([] { return std::string(ReferenceVersion()); }));
+  class_<Simulation>("Simulation")
+      .constructor(&Simulation::Create, emscripten::allow_raw_pointers())
+      .constructor(&Simulation::CreateWithoutFiles, emscripten::allow_raw_pointers())
+      .function("reset", &Simulation::Reset)
+      .function("resetKeyframe", &Simulation::ResetKeyframe)
+      .function("forward", &Simulation::Forward)
+      .function("step", &Simulation::Step)
+      .function("step", &Simulation::StepOnce)
+      .property("time", &Simulation::Time, &Simulation::SetTime)
+      .function("data", &Simulation::Data)
+      .function("dataView", &Simulation::DataView)
+      .function("model", &Simulation::ModelArray)
+      .function("modelView", &Simulation::ModelView)
+      .function("dataShape", &Simulation::DataShape)
+      .function("modelShape", &Simulation::ModelShape)
+      .function("dataNames", &Simulation::DataNames)
+      .function("modelNames", &Simulation::ModelNames)
+      .function("setData", &Simulation::SetData)
+      .function("setDataAt", &Simulation::SetDataAt)
+      .function("sizes", &Simulation::Sizes)
+      .function("option", &Simulation::Option)
+      .function("statistic", &Simulation::Statistic)
+      .function("counts", &Simulation::Counts)
+      .function("nameToId", &Simulation::NameToId)
+      .function("idToName", &Simulation::IdToName)
+      .function("contacts", &Simulation::Contacts);
+}
+
+}  // namespace simlab::web
