@@ -24,3 +24,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
+
+# The web lab's npm packages (web/package.json: three, uPlot, playwright-core), once.
+web="$(dirname "$0")/../web"
+if [ -f "$web/package-lock.json" ] && [ ! -d "$web/node_modules" ]; then
+  echo "installing web/node_modules (npm ci)"
+  (cd "$web" && npm ci --no-audit --no-fund >/dev/null)
+fi

@@ -5,4 +5,6 @@ cd "$(dirname "$0")/.."
 bash tools/install_deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j2
+# The engine in WebAssembly (web/dist), which ctest compares with the native build.
+bash tools/build_wasm.sh
 cd build && ctest --output-on-failure -j2

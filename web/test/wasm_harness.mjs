@@ -1,0 +1,122 @@
+// Shared by the WebAssembly tests: finding and loading web/dist/simlab.mjs in node,
+// reading a model with its extra files, control CSVs, and rollouts on both engines.
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { spawnSync } from 'node:child_process';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+
+// Exit code ctest reads as "skipped" (SKIP_RETURN_CODE).
+export const kSkip = 77;
+
+// Command-line options as {name: value} from "--name value" pairs.
+export function parseOptions(argv, defaults) {
+  const options = { ...defaults };
+  for (let i = 0; i < argv.length; i += 2) {
+    if (!argv[i].startsWith('--') || i + 1 >= argv.length) throw new Error(`bad option ${argv[i]}`);
+    options[argv[i].slice(2)] = argv[i + 1];
+  }
+  return options;
+}
+
+// The newest file below the engine's sources (what the WASM build is made from).
+function newestSource() {
+  let newest = { file: '', mtime: 0 };
+  const visit = (p) => {
+    const st = fs.statSync(p);
+    if (st.isDirectory()) {
+      for (const name of fs.readdirSync(p)) visit(path.join(p, name));
+    } else if (/\.(cc|h)$/.test(p) && st.mtimeMs > newest.mtime) {
+      newest = { file: p, mtime: st.mtimeMs };
+    }
+  };
+  for (const dir of ['src', 'include', 'web/simlab_wasm.cc']) visit(path.join(repoRoot, dir));
+  return newest;
+}
+
+// Why the WASM build cannot be tested (missing, or older than the sources unless
+// `staleOk`), or ''.
+export function whyNotTestable(dist, staleOk = false) {
+  const wasm = path.join(dist, 'simlab.wasm');
+  if (!fs.existsSync(wasm) || !fs.existsSync(path.join(dist, 'simlab.mjs'))) {
+    const emscripten = spawnSync('em++', ['--version']).status === 0;
+    return `no WebAssembly build in ${dist} (` +
+           (emscripten ? 'bash tools/build_wasm.sh makes it' : 'emscripten is not installed') + ')';
+  }
+  const newest = newestSource();
+  if (!staleOk && newest.mtime > fs.statSync(wasm).mtimeMs) {
+    return `${wasm} is older than ${path.relative(repoRoot, newest.file)} ` +
+           '(bash tools/build_wasm.sh rebuilds it)';
+  }
+  return '';
+}
+
+// The module factory's result, with the binary read from disk (node has no fetch of file paths).
+export async function loadSimlab(dist) {
+  const { default: createSimlab } = await import(pathToFileURL(path.join(dist, 'simlab.mjs')).href);
+  return createSimlab({ wasmBinary: fs.readFileSync(path.join(dist, 'simlab.wasm')) });
+}
+
+// A Simulation of models/NAME with its extra files (paths relative to the model's folder).
+export function openModel(simlab, modelPath, extraFiles = []) {
+  const folder = path.dirname(modelPath);
+  const files = {};
+  for (const rel of extraFiles) files[rel] = fs.readFileSync(path.join(folder, rel), 'utf8');
+  return new simlab.Simulation(path.basename(modelPath), fs.readFileSync(modelPath, 'utf8'), files);
+}
+
+// Control rows of a CSV as `simlab rollout --ctrl` reads it ('#' lines are comments).
+export function readControls(csvPath) {
+  return fs.readFileSync(csvPath, 'utf8').split('\n')
+    .filter((line) => line.trim() !== '' && !line.trim().startsWith('#'))
+    .map((line) => line.split(',').map(Number));
+}
+
+// The native rollout (JSON Lines) of the same inputs: one record per step.
+export function nativeRollout(simlabExe, modelPath, { key = -1, ctrl, steps }) {
+  const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'simlab-wasm-')), 'native.jsonl');
+  const args = ['rollout', modelPath, '--steps', String(steps), '--out', out];
+  if (key >= 0) args.push('--key', String(key));
+  if (ctrl) args.push('--ctrl', ctrl);
+  const run = spawnSync(simlabExe, args, { encoding: 'utf8' });
+  if (run.status !== 0) throw new Error(`${simlabExe} ${args.join(' ')} failed: ${run.stderr}`);
+  const lines = fs.readFileSync(out, 'utf8').trim().split('\n');
+  fs.rmSync(path.dirname(out), { recursive: true });
+  return lines.slice(1).map((line) => JSON.parse(line));
+}
+
+// The same order of work as `simlab rollout`: reset (keyframe), forward, record step 0;
+// then per step: write the control row (the last one repeats), step, record.
+export function wasmRollout(sim, { key = -1, controls, steps, fields, record = true }) {
+  if (key >= 0) sim.resetKeyframe(key); else sim.reset();
+  const records = [];
+  const take = (step) => {
+    if (!record) return;
+    const r = { step, time: sim.time, ncon: sim.counts().ncon };
+    for (const name of fields) r[name] = sim.data(name);
+    records.push(r);
+  };
+  sim.forward();
+  take(0);
+  for (let step = 1; step <= steps; step++) {
+    if (controls && controls.length) sim.setData('ctrl', controls[Math.min(step - 1, controls.length - 1)]);
+    sim.step(1);
+    take(step);
+  }
+  return records;
+}
+
+// The WASM module and the native simlab to compare it with; exits 77 (skipped) with the
+// reason when the WASM build cannot be tested (`--stale ok`: test it even if older than
+// the sources, e.g. while others edit them).
+export async function openBuilds(options) {
+  const reason = whyNotTestable(options.dist, options.stale === 'ok');
+  if (reason) {
+    console.log(`SKIPPED: ${reason}`);
+    process.exit(kSkip);
+  }
+  if (!fs.existsSync(options.simlab)) throw new Error(`no native simlab at ${options.simlab}`);
+  return loadSimlab(options.dist);
+}
