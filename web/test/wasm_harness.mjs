@@ -118,5 +118,11 @@ export async function openBuilds(options) {
     process.exit(kSkip);
   }
   if (!fs.existsSync(options.simlab)) throw new Error(`no native simlab at ${options.simlab}`);
+  // Both builds must come from the same sources (others may edit them meanwhile).
+  const newest = newestSource();
+  if (options.stale !== 'ok' && newest.mtime > fs.statSync(options.simlab).mtimeMs) {
+    console.log(`SKIPPED: ${options.simlab} is older than ${path.relative(repoRoot, newest.file)}`);
+    process.exit(kSkip);
+  }
   return loadSimlab(options.dist);
 }
