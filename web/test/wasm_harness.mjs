@@ -126,3 +126,19 @@ export async function openBuilds(options) {
   }
   return loadSimlab(options.dist);
 }
+
+// playwright-core from web/node_modules, or exits 77 (skipped) saying what is missing
+// when it or Chromium (options.chromium) is not there.
+export async function playwrightOrSkip(options) {
+  let playwright = null;
+  try {
+    playwright = await import(path.join(repoRoot, 'web/node_modules/playwright-core/index.mjs'));
+  } catch {
+    playwright = null;
+  }
+  if (!playwright || !fs.existsSync(options.chromium)) {
+    console.log(`SKIPPED: needs ${options.chromium} and web/node_modules (bash tools/install_deps.sh)`);
+    process.exit(kSkip);
+  }
+  return playwright;
+}

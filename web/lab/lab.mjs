@@ -1,0 +1,397 @@
+// The live lab of a lesson's lab block: mountLab(element, spec, {baseUrl}) loads the
+// engine (web/dist, WebAssembly) and models/<model>.xml with the files it attaches or
+// includes, resets to the block's keyframe and shows the 3D view, sliders, readouts,
+// plots and note, simulating in real time. See web/README.md, "The lab".
+import { arrayReader, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
+import { LivePlot } from './plot.mjs';
+import { LabScene } from './scene.mjs';
+import { parseLabSpec } from './spec.mjs';
+
+// At most this many steps per animation frame (a slow machine falls behind real time
+// rather than freezing); wall-clock gaps longer than kMaxGap (a hidden tab) are skipped.
+const kMaxStepsPerFrame = 2000;
+const kMaxGap = 0.25;
+
+let enginePromise = null;
+
+// The WebAssembly module, loaded once per page.
+function loadEngine(distUrl) {
+  if (!enginePromise) {
+    enginePromise = import(new URL('simlab.mjs', distUrl).href).then((m) => m.default());
+  }
+  return enginePromise;
+}
+
+// The files an MJCF text refers to by <model file=...> and <include file=...>.
+function referencedFiles(xml) {
+  const files = [];
+  const tag = /<\s*(model|include)\b[^>]*?\bfile\s*=\s*("([^"]*)"|'([^']*)')/g;
+  let match;
+  while ((match = tag.exec(xml))) files.push(match[3] ?? match[4]);
+  return files;
+}
+
+async function fetchText(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+  return response.text();
+}
+
+// models/<name>.xml and, recursively, the models and includes it refers to (paths
+// relative to its folder, as the loader resolves them).
+async function fetchModel(baseUrl, name) {
+  const folder = new URL('models/', baseUrl);
+  const filename = `${name}.xml`;
+  const xml = await fetchText(new URL(filename, folder));
+  const files = {};
+  const pending = referencedFiles(xml);
+  while (pending.length) {
+    const rel = pending.shift();
+    if (rel in files) continue;
+    files[rel] = await fetchText(new URL(rel, folder));
+    pending.push(...referencedFiles(files[rel]));
+  }
+  return { filename, xml, files };
+}
+
+// A DOM element with a class and optional text.
+function make(tag, className, text) {
+  const node = document.createElement(tag);
+  if (className) node.className = className;
+  if (text !== undefined) node.textContent = text;
+  return node;
+}
+
+const kStyle = `
+.simlab-lab { font: 14px system-ui, sans-serif; border: 1px solid #c8ccd4; border-radius: 6px;
+  padding: 8px; background: #fff; max-width: 900px; }
+.simlab-lab--dock { position: sticky; top: 0; z-index: 5; }
+.simlab-lab h3 { margin: 0 0 6px; font-size: 15px; }
+.simlab-lab-view { width: 100%; position: relative; }
+.simlab-lab-canvas { display: block; width: 100%; border-radius: 4px; cursor: grab; }
+.simlab-lab-toolbar { display: flex; gap: 10px; align-items: center; flex-wrap: wrap; margin: 6px 0; }
+.simlab-lab-stats { margin-left: auto; font-variant-numeric: tabular-nums; color: #555; }
+.simlab-lab-control { display: grid; grid-template-columns: 16em 1fr 7em; gap: 8px; align-items: center; }
+.simlab-lab-readouts { display: grid; grid-template-columns: repeat(auto-fill, minmax(13em, 1fr));
+  gap: 2px 16px; margin: 6px 0; font-variant-numeric: tabular-nums; }
+.simlab-lab-readout .value { font-weight: 600; margin-left: 0.4em; }
+.simlab-lab-error { color: #b00020; }
+.simlab-lab-note { color: #444; font-size: 13px; margin: 6px 0 0; }
+`;
+
+function addStyle() {
+  if (document.getElementById('simlab-lab-style')) return;
+  const style = make('style');
+  style.id = 'simlab-lab-style';
+  style.textContent = kStyle;
+  document.head.appendChild(style);
+  const css = make('link');
+  css.rel = 'stylesheet';
+  css.href = new URL('../node_modules/uplot/dist/uPlot.min.css', import.meta.url).href;
+  document.head.appendChild(css);
+}
+
+// Mounts the lab of `spec` (an object, or a block's JSON text with typographic quotes)
+// into `element`; resolves to its controller (also element.simlabLab). A model that
+// fails to load shows its error in the element and rejects.
+export async function mountLab(element, spec, options = {}) {
+  const labSpec = typeof spec === 'string' ? parseLabSpec(spec) : spec;
+  const baseUrl = options.baseUrl ? new URL(options.baseUrl, document.baseURI)
+    : new URL('../../', import.meta.url);
+  const distUrl = new URL(options.distUrl ?? '../dist/', import.meta.url);
+  addStyle();
+  element.textContent = '';
+  const root = make('div', 'simlab-lab' + (labSpec.dock ? ' simlab-lab--dock' : ''));
+  element.appendChild(root);
+  if (labSpec.title) root.appendChild(make('h3', '', labSpec.title));
+  const status = root.appendChild(make('div', 'simlab-lab-status', `loading ${labSpec.model}...`));
+  try {
+    const [simlab, files] = await Promise.all([loadEngine(distUrl), fetchModel(baseUrl, labSpec.model)]);
+    const sim = new simlab.Simulation(files.filename, files.xml, files.files);
+    status.remove();
+    const lab = new Lab(root, labSpec, sim);
+    element.simlabLab = lab;
+    return lab;
+  } catch (error) {
+    status.className = 'simlab-lab-error';
+    status.textContent = `lab "${labSpec.title ?? labSpec.model}": ${error.message ?? error}`;
+    throw error;
+  }
+}
+
+// One mounted lab: the simulation, its widgets and the animation loop.
+class Lab {
+  constructor(root, spec, sim) {
+    this.root = root;
+    this.spec = spec;
+    this.sim = sim;
+    this.timestep = sim.option().timestep;
+    this.toggles = { contacts: false, forces: false, joints: false };
+    this.playing = spec.autoplay !== false;
+    this.modelArrays = new Map();
+    this.read = arrayReader((source, name) => this.array(source, name));
+    // Frame rate and real-time factor over the last half second; engineFactor is simulated
+    // time per second spent stepping (how much faster than real time it could run).
+    this.stats = { fps: 0, realTimeFactor: 0, engineFactor: 0, frames: 0, busy: 0,
+                   windowStart: performance.now(), simStart: 0 };
+
+    this.view = root.appendChild(make('div', 'simlab-lab-view'));
+    this.scene = new LabScene(this.view, Number(spec.height) > 0 ? Number(spec.height) : 300, spec.camera);
+    this.buildToolbar();
+    this.controls = (spec.controls ?? []).map((c) => this.buildControl(c));
+    this.readouts = this.buildReadouts(spec.readouts ?? []);
+    this.plots = (spec.plots ?? []).map((p) => this.buildPlot(p));
+    if (spec.note) root.appendChild(make('p', 'simlab-lab-note', spec.note));
+    this.sceneModel = this.modelObject();
+    this.scene.build(this.sceneModel, sim.statistic().extent || 1);
+    new ResizeObserver(() => this.resize()).observe(root);
+
+    this.reset();
+    this.frame = this.frame.bind(this);
+    this.lastFrame = null;
+    requestAnimationFrame(this.frame);
+  }
+
+  // A Model or Data array by name, or null if there is none (Model arrays are copied
+  // once; Data arrays are views, taken again every frame).
+  array(source, name) {
+    try {
+      if (source === 'data') return this.sim.dataView(name);
+      if (!this.modelArrays.has(name)) this.modelArrays.set(name, this.sim.model(name));
+      return this.modelArrays.get(name);
+    } catch {
+      return null;
+    }
+  }
+
+  // The Model arrays the 3D view needs, by name.
+  modelObject() {
+    const names = ['geom_type', 'geom_size', 'geom_rgba', 'geom_group', 'geom_dataid', 'mesh_vertadr',
+      'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_vert', 'mesh_face', 'hfield_size',
+      'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data', 'jnt_type', 'jnt_dofadr'];
+    const model = {};
+    for (const name of names) model[name] = this.array('model', name) ?? new Float64Array(0);
+    return model;
+  }
+
+  buildToolbar() {
+    const bar = this.root.appendChild(make('div', 'simlab-lab-toolbar'));
+    this.playButton = bar.appendChild(make('button', 'simlab-lab-play'));
+    this.playButton.addEventListener('click', () => (this.playing ? this.pause() : this.play()));
+    const reset = bar.appendChild(make('button', 'simlab-lab-reset', 'reset'));
+    reset.addEventListener('click', () => this.reset());
+    for (const name of this.spec.toggles ?? []) {
+      if (!(name in this.toggles)) continue;
+      const label = bar.appendChild(make('label', 'simlab-lab-toggle'));
+      const box = label.appendChild(make('input'));
+      box.type = 'checkbox';
+      box.dataset.toggle = name;
+      box.addEventListener('change', () => { this.toggles[name] = box.checked; this.draw(); });
+      label.append(` ${name}`);
+    }
+    this.statsText = bar.appendChild(make('span', 'simlab-lab-stats'));
+    this.updatePlayButton();
+  }
+
+  // A slider writing its target (data.NAME[i]) on input; a bad target disables it and
+  // says why.
+  buildControl(spec) {
+    const row = this.root.appendChild(make('div', 'simlab-lab-control'));
+    row.appendChild(make('label', '', spec.label ?? spec.set));
+    const slider = row.appendChild(make('input'));
+    slider.type = 'range';
+    Object.assign(slider, { min: spec.min, max: spec.max, step: spec.step ?? 'any' });
+    slider.setAttribute('aria-label', spec.label ?? spec.set);
+    const shown = row.appendChild(make('span', 'simlab-lab-value'));
+    const control = { spec, slider, shown, target: null };
+    try {
+      control.target = parseTarget(spec.set);
+      this.read('data', control.target.name, control.target.index);
+    } catch (error) {
+      control.target = null;
+      slider.disabled = true;
+      shown.className = 'simlab-lab-error';
+      shown.textContent = error.message;
+    }
+    slider.addEventListener('input', () => this.applyControl(control));
+    return control;
+  }
+
+  applyControl(control) {
+    if (!control.target) return;
+    const value = Number(control.slider.value);
+    this.sim.setDataAt(control.target.name, control.target.index, value);
+    control.shown.textContent = `${value} ${control.spec.unit ?? ''}`;
+  }
+
+  buildReadouts(specs) {
+    const box = this.root.appendChild(make('div', 'simlab-lab-readouts'));
+    return specs.map((spec) => {
+      const row = box.appendChild(make('div', 'simlab-lab-readout'));
+      row.appendChild(make('span', 'label', spec.label ?? spec.expr));
+      const value = row.appendChild(make('span', 'value'));
+      const readout = { spec, row, value, tree: null, error: '', current: NaN };
+      try {
+        readout.tree = parseExpr(spec.expr);
+      } catch (error) {
+        readout.error = error.message;
+      }
+      return readout;
+    });
+  }
+
+  buildPlot(spec) {
+    const box = this.root.appendChild(make('div', 'simlab-lab-plot'));
+    const traces = (spec.traces ?? []).map((trace) => {
+      try {
+        return parseExpr(trace.expr);
+      } catch {
+        return null;
+      }
+    });
+    return { traces, plot: new LivePlot(box, { ...spec, traces: spec.traces ?? [] }, this.width()) };
+  }
+
+  width() {
+    return Math.max(200, (this.root.clientWidth || 640) - 16);
+  }
+
+  resize() {
+    this.scene.resize();
+    for (const { plot } of this.plots) plot.setWidth(this.width());
+  }
+
+  // The value of a parsed expression now, or NaN with the error.
+  evaluate(tree) {
+    try {
+      return { value: evaluateExpr(tree, this.read), error: '' };
+    } catch (error) {
+      return { value: NaN, error: error.message };
+    }
+  }
+
+  // Readouts, plot samples and the 3D view from the current state.
+  draw() {
+    this.read.clear();
+    for (const r of this.readouts) {
+      const result = r.tree ? this.evaluate(r.tree) : { value: NaN, error: r.error };
+      r.current = result.value;
+      r.error = result.error;
+      r.value.className = result.error ? 'value simlab-lab-error' : 'value';
+      r.value.textContent = result.error ? result.error : result.value.toFixed(r.spec.digits ?? 3);
+    }
+    const time = this.sim.time;
+    for (const { traces, plot } of this.plots) {
+      plot.push(time, traces.map((tree) => (tree ? this.evaluate(tree).value : NaN)));
+      plot.draw();
+    }
+    this.scene.update(this.sceneState(), this.toggles);
+    this.scene.render();
+  }
+
+  sceneState() {
+    const wantsContacts = this.toggles.contacts || this.toggles.forces;
+    return {
+      model: this.sceneModel,
+      geom_xpos: this.sim.dataView('geom_xpos'), geom_xmat: this.sim.dataView('geom_xmat'),
+      xanchor: this.sim.dataView('xanchor'), xaxis: this.sim.dataView('xaxis'),
+      qfrc_actuator: this.sim.dataView('qfrc_actuator'),
+      contacts: wantsContacts ? this.sim.contacts() : [],
+    };
+  }
+
+  // The animation loop: while playing, steps to keep simulation time with the wall clock
+  // (several steps per frame), then draws and updates the frame rate and real-time factor.
+  frame(now) {
+    if (this.disposed) return;
+    const gap = this.lastFrame === null ? 0 : Math.min(kMaxGap, (now - this.lastFrame) / 1000);
+    this.lastFrame = now;
+    if (this.playing) {
+      this.debt += gap;
+      const steps = Math.min(kMaxStepsPerFrame, Math.floor(this.debt / this.timestep));
+      const start = performance.now();
+      if (steps > 0) this.sim.step(steps);
+      this.stats.busy += performance.now() - start;
+      this.debt = steps === kMaxStepsPerFrame ? 0 : this.debt - steps * this.timestep;
+    }
+    this.draw();
+    this.countFrame(now);
+    requestAnimationFrame(this.frame);
+  }
+
+  countFrame(now) {
+    const s = this.stats;
+    s.frames++;
+    const elapsed = (now - s.windowStart) / 1000;
+    if (elapsed < 0.5) return;
+    s.fps = s.frames / elapsed;
+    const simulated = Math.max(0, this.sim.time - s.simStart);
+    s.realTimeFactor = this.playing ? simulated / elapsed : 0;
+    s.engineFactor = s.busy > 0 ? simulated / (s.busy / 1000) : 0;
+    s.frames = 0;
+    s.busy = 0;
+    s.windowStart = now;
+    s.simStart = this.sim.time;
+    this.statsText.textContent = `${s.fps.toFixed(0)} fps, real-time factor ${s.realTimeFactor.toFixed(2)}` +
+      (s.engineFactor ? ` (engine ${s.engineFactor.toFixed(0)}x)` : '');
+  }
+
+  updatePlayButton() {
+    this.playButton.textContent = this.playing ? 'pause' : 'play';
+  }
+
+  play() {
+    this.playing = true;
+    this.debt = 0;
+    this.updatePlayButton();
+  }
+
+  pause() {
+    this.playing = false;
+    this.updatePlayButton();
+  }
+
+  // The keyframe (or the default state), the sliders back at their initial values,
+  // written into ctrl, and empty plots.
+  reset() {
+    if (this.spec.key !== undefined && this.spec.key !== null) this.sim.resetKeyframe(this.spec.key);
+    else this.sim.reset();
+    for (const control of this.controls) {
+      control.slider.value = control.spec.value ?? control.spec.min;
+      this.applyControl(control);
+    }
+    this.sim.forward();
+    for (const { plot } of this.plots) plot.clear();
+    this.debt = 0;
+    this.stats.simStart = this.sim.time;
+    this.draw();
+  }
+
+  // For tests and lesson scripts: the slider of control k moved to `value` (as input
+  // from the user would), n steps without pacing, the readouts' values.
+  setControl(k, value) {
+    const control = this.controls[k];
+    control.slider.value = value;
+    control.slider.dispatchEvent(new Event('input'));
+  }
+
+  step(n = 1) {
+    this.sim.step(n);
+    this.draw();
+  }
+
+  // The animation clock: the last frame's wall time (ms) and the simulation time then.
+  clock() {
+    return { wall: this.lastFrame, time: this.sim.time };
+  }
+
+  readoutValues() {
+    return this.readouts.map((r) => ({ label: r.spec.label, value: r.current, text: r.value.textContent, error: r.error }));
+  }
+
+  dispose() {
+    this.disposed = true;
+    this.scene.dispose();
+    this.sim.delete();
+  }
+}

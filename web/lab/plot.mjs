@@ -1,0 +1,55 @@
+// A live uPlot chart of a lab block's plot: traces against simulation time over the
+// last `window` seconds, dashed where asked.
+import uPlot from '../node_modules/uplot/dist/uPlot.esm.js';
+
+const kHeight = 200;
+const kColors = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b'];
+
+export class LivePlot {
+  // spec: {ylabel, window, traces: [{label, dash}]}; width in pixels.
+  constructor(container, spec, width) {
+    this.window = Number(spec.window) > 0 ? Number(spec.window) : 5;
+    this.columns = [[], ...spec.traces.map(() => [])];
+    const series = [{ label: 't (s)' }, ...spec.traces.map((trace, i) => ({
+      label: trace.label ?? `trace ${i}`,
+      stroke: kColors[i % kColors.length],
+      width: 1.5,
+      dash: trace.dash ? [6, 4] : undefined,
+      value: (u, v) => (v == null ? '-' : v.toFixed(3)),
+    }))];
+    this.chart = new uPlot({
+      width, height: kHeight, series, legend: { live: false },
+      cursor: { show: false },
+      scales: { x: { time: false } },
+      axes: [{ label: 'time (s)' }, { label: spec.ylabel ?? '', size: 55 }],
+    }, this.columns, container);
+  }
+
+  // Appends one sample (values may be NaN where a trace failed) and drops old ones.
+  push(time, values) {
+    if (this.columns[0].length && time < this.columns[0][this.columns[0].length - 1]) this.clear();
+    this.columns[0].push(time);
+    values.forEach((v, i) => this.columns[i + 1].push(Number.isFinite(v) ? v : null));
+    let drop = 0;
+    while (drop < this.columns[0].length && this.columns[0][drop] < time - this.window) drop++;
+    if (drop) for (const column of this.columns) column.splice(0, drop);
+  }
+
+  // Redraws with the x axis spanning the window that ends now.
+  draw() {
+    const t = this.columns[0];
+    const end = t.length ? t[t.length - 1] : 0;
+    this.chart.batch(() => {
+      this.chart.setData(this.columns, false);
+      this.chart.setScale('x', { min: Math.max(0, end - this.window), max: Math.max(this.window, end) });
+    });
+  }
+
+  clear() {
+    for (const column of this.columns) column.length = 0;
+  }
+
+  setWidth(width) {
+    this.chart.setSize({ width, height: kHeight });
+  }
+}

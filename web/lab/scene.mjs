@@ -1,0 +1,293 @@
+// The lab's 3D view: every geom of a model drawn with three.js from geom_xpos/geom_xmat,
+// a camera placed as MuJoCo's free camera (azimuth, elevation, distance, lookat) with
+// mouse orbit, pan and zoom, and overlays for contacts, forces and joint axes.
+import * as THREE from '../node_modules/three/build/three.module.js';
+
+// mjtGeom numbers.
+const kPlane = 0, kHfield = 1, kSphere = 2, kCapsule = 3, kEllipsoid = 4, kCylinder = 5,
+  kBox = 6, kMesh = 7;
+// mjtJoint numbers of the joints that have one axis.
+const kSlide = 2, kHinge = 3;
+// Metres of arrow per newton (or newton metre); arrows are capped at kMaxArrow.
+const kForceScale = 0.02, kMaxArrow = 0.3, kAxisLength = 0.08;
+// MuJoCo hides geom groups 3 and up by default.
+const kVisibleGroups = 3;
+
+// Three.js primitives are built along y; MuJoCo's capsules and cylinders run along z.
+function alongZ(geometry) {
+  return geometry.rotateX(Math.PI / 2);
+}
+
+// A grid of the height field's elevations in its own frame (rows along y, columns along x).
+function heightFieldGeometry(model, id) {
+  const [rx, ry, elevation] = model.hfield_size.slice(4 * id, 4 * id + 3);
+  const nrow = model.hfield_nrow[id], ncol = model.hfield_ncol[id], adr = model.hfield_adr[id];
+  const positions = new Float32Array(3 * nrow * ncol);
+  for (let r = 0; r < nrow; r++) {
+    for (let c = 0; c < ncol; c++) {
+      const k = r * ncol + c;
+      positions.set([rx * (2 * c / (ncol - 1) - 1), ry * (2 * r / (nrow - 1) - 1),
+        elevation * model.hfield_data[adr + k]], 3 * k);
+    }
+  }
+  const indices = [];
+  for (let r = 0; r + 1 < nrow; r++) {
+    for (let c = 0; c + 1 < ncol; c++) {
+      const k = r * ncol + c;
+      indices.push(k, k + 1, k + ncol + 1, k, k + ncol + 1, k + ncol);
+    }
+  }
+  return indexedGeometry(positions, indices);
+}
+
+// A triangle mesh of mesh `id` in the geom's frame (the compiler already centred it).
+function meshGeometry(model, id) {
+  const vadr = model.mesh_vertadr[id], vnum = model.mesh_vertnum[id];
+  const fadr = model.mesh_faceadr[id], fnum = model.mesh_facenum[id];
+  const positions = Float32Array.from(model.mesh_vert.subarray(3 * vadr, 3 * (vadr + vnum)));
+  return indexedGeometry(positions, Array.from(model.mesh_face.subarray(3 * fadr, 3 * (fadr + fnum))));
+}
+
+function indexedGeometry(positions, indices) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setIndex(indices);
+  geometry.computeVertexNormals();
+  return geometry;
+}
+
+// The three.js geometry of geom `g`, or null for types the view does not draw (sdf).
+function geomGeometry(model, g, extent) {
+  const s = model.geom_size.subarray(3 * g, 3 * g + 3);
+  switch (model.geom_type[g]) {
+    case kPlane: {
+      // A zero size means an infinite plane; draw it large relative to the model.
+      const half = (k) => (s[k] > 0 ? s[k] : 4 * extent);
+      return new THREE.PlaneGeometry(2 * half(0), 2 * half(1));
+    }
+    case kHfield: return heightFieldGeometry(model, model.geom_dataid[g]);
+    case kSphere: return new THREE.SphereGeometry(s[0], 24, 16);
+    case kCapsule: return alongZ(new THREE.CapsuleGeometry(s[0], 2 * s[1], 8, 24));
+    case kEllipsoid: return new THREE.SphereGeometry(1, 24, 16).scale(s[0], s[1], s[2]);
+    case kCylinder: return alongZ(new THREE.CylinderGeometry(s[0], s[0], 2 * s[1], 24));
+    case kBox: return new THREE.BoxGeometry(2 * s[0], 2 * s[1], 2 * s[2]);
+    case kMesh: return meshGeometry(model, model.geom_dataid[g]);
+    default: return null;
+  }
+}
+
+function geomMaterial(model, g) {
+  const [r, gr, b, a] = model.geom_rgba.subarray(4 * g, 4 * g + 4);
+  return new THREE.MeshStandardMaterial({
+    color: new THREE.Color(r, gr, b), opacity: a, transparent: a < 1,
+    roughness: 0.7, metalness: 0.05, flatShading: model.geom_type[g] === kMesh,
+  });
+}
+
+// Sets a three.js object's matrix from a position and a row-major 3x3 rotation.
+function setPose(object, pos, mat) {
+  object.matrix.set(mat[0], mat[1], mat[2], pos[0],
+                    mat[3], mat[4], mat[5], pos[1],
+                    mat[6], mat[7], mat[8], pos[2],
+                    0, 0, 0, 1);
+  object.matrixWorldNeedsUpdate = true;
+}
+
+// A pool of arrows of one colour, reused frame to frame; unused ones are hidden.
+class ArrowPool {
+  constructor(scene, color) {
+    this.scene = scene;
+    this.color = color;
+    this.arrows = [];
+    this.used = 0;
+  }
+
+  begin() { this.used = 0; }
+
+  // An arrow from `origin` along `vector` (length capped), skipped when tiny.
+  add(origin, vector) {
+    const v = new THREE.Vector3(...vector);
+    const length = Math.min(v.length(), kMaxArrow);
+    if (length < 1e-4) return;
+    if (this.used === this.arrows.length) {
+      const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, this.color);
+      this.scene.add(arrow);
+      this.arrows.push(arrow);
+    }
+    const arrow = this.arrows[this.used++];
+    arrow.position.set(...origin);
+    arrow.setDirection(v.normalize());
+    arrow.setLength(length, Math.min(0.3 * length, 0.02), Math.min(0.15 * length, 0.01));
+    arrow.visible = true;
+  }
+
+  end() {
+    for (let i = this.used; i < this.arrows.length; i++) this.arrows[i].visible = false;
+  }
+}
+
+// The camera's pose from MuJoCo's free-camera numbers: it looks along
+// (cos el cos az, cos el sin az, sin el) at `target` from `distance` away, z up.
+export function cameraPosition({ azimuth, elevation, distance, target }) {
+  const az = azimuth * Math.PI / 180, el = elevation * Math.PI / 180;
+  const forward = [Math.cos(el) * Math.cos(az), Math.cos(el) * Math.sin(az), Math.sin(el)];
+  return forward.map((f, k) => target[k] - distance * f);
+}
+
+export class LabScene {
+  constructor(container, height, cameraSpec) {
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    this.renderer.domElement.className = 'simlab-lab-canvas';
+    container.appendChild(this.renderer.domElement);
+    this.container = container;
+    this.height = height;
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0.93, 0.95, 0.98);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+    sun.position.set(1, -1.5, 3);
+    this.scene.add(sun);
+    // MuJoCo's default vertical field of view is 45 degrees.
+    this.camera = new THREE.PerspectiveCamera(45, 1, 0.005, 100);
+    this.camera.up.set(0, 0, 1);
+    this.view = { azimuth: 90, elevation: -45, distance: 2, target: [0, 0, 0], ...cameraSpec };
+    this.view.target = [...this.view.target];
+    this.contactPoints = [];
+    this.arrows = {
+      contact: new ArrowPool(this.scene, 0xd62728),
+      actuator: new ArrowPool(this.scene, 0x2ca02c),
+      axis: new ArrowPool(this.scene, 0x1f77b4),
+    };
+    this.attachMouse(this.renderer.domElement);
+    this.resize();
+  }
+
+  resize() {
+    const width = this.container.clientWidth || 640;
+    this.renderer.setSize(width, this.height);
+    this.camera.aspect = width / this.height;
+    this.camera.updateProjectionMatrix();
+  }
+
+  // One three.js mesh per visible geom of the model.
+  build(model, extent) {
+    this.geoms = [];
+    for (let g = 0; g < model.geom_type.length; g++) {
+      if (model.geom_group[g] >= kVisibleGroups) continue;
+      const geometry = geomGeometry(model, g, extent);
+      if (!geometry) continue;
+      const mesh = new THREE.Mesh(geometry, geomMaterial(model, g));
+      mesh.matrixAutoUpdate = false;
+      this.scene.add(mesh);
+      this.geoms.push({ g, mesh });
+    }
+  }
+
+  // Poses every geom from the state; `overlays` draws the toggled extras.
+  update(state, toggles) {
+    for (const { g, mesh } of this.geoms) {
+      setPose(mesh, state.geom_xpos.subarray(3 * g, 3 * g + 3), state.geom_xmat.subarray(9 * g, 9 * g + 9));
+    }
+    this.drawContacts(toggles.contacts ? state.contacts : []);
+    this.drawForces(toggles.forces ? state : null);
+    this.drawAxes(toggles.joints ? state : null);
+  }
+
+  drawContacts(contacts) {
+    while (this.contactPoints.length < contacts.length) {
+      const dot = new THREE.Mesh(new THREE.SphereGeometry(0.004, 8, 6),
+                                 new THREE.MeshBasicMaterial({ color: 0xff7f0e }));
+      this.scene.add(dot);
+      this.contactPoints.push(dot);
+    }
+    this.contactPoints.forEach((dot, i) => {
+      dot.visible = i < contacts.length;
+      if (dot.visible) dot.position.set(contacts[i].pos[0], contacts[i].pos[1], contacts[i].pos[2]);
+    });
+  }
+
+  // Contact forces (world frame, from the contact frame's rows) and the actuators'
+  // generalized forces on each slide and hinge joint, along its axis.
+  drawForces(state) {
+    const { contact, actuator } = this.arrows;
+    contact.begin();
+    actuator.begin();
+    if (state) {
+      for (const c of state.contacts) {
+        const world = [0, 1, 2].map((k) => [0, 1, 2].reduce((sum, row) => sum + c.force[row] * c.frame[3 * row + k], 0));
+        contact.add([c.pos[0], c.pos[1], c.pos[2]], world.map((x) => x * kForceScale));
+      }
+      this.forEachAxis(state, (j, anchor, axis) => {
+        const f = state.qfrc_actuator[state.model.jnt_dofadr[j]] * kForceScale;
+        actuator.add(anchor, axis.map((x) => x * f));
+      });
+    }
+    contact.end();
+    actuator.end();
+  }
+
+  drawAxes(state) {
+    const { axis: pool } = this.arrows;
+    pool.begin();
+    if (state) this.forEachAxis(state, (j, anchor, axis) => pool.add(anchor, axis.map((x) => x * kAxisLength)));
+    pool.end();
+  }
+
+  forEachAxis(state, visit) {
+    const type = state.model.jnt_type;
+    for (let j = 0; j < type.length; j++) {
+      if (type[j] !== kSlide && type[j] !== kHinge) continue;
+      visit(j, Array.from(state.xanchor.subarray(3 * j, 3 * j + 3)), Array.from(state.xaxis.subarray(3 * j, 3 * j + 3)));
+    }
+  }
+
+  render() {
+    this.camera.position.set(...cameraPosition(this.view));
+    this.camera.lookAt(...this.view.target);
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  // Left drag orbits (azimuth, elevation), right or shift drag pans the target, the
+  // wheel zooms (distance).
+  attachMouse(canvas) {
+    let last = null;
+    canvas.addEventListener('contextmenu', (e) => e.preventDefault());
+    canvas.addEventListener('pointerdown', (e) => {
+      last = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey };
+      canvas.setPointerCapture(e.pointerId);
+    });
+    canvas.addEventListener('pointerup', () => { last = null; });
+    canvas.addEventListener('pointermove', (e) => {
+      if (!last) return;
+      const dx = e.clientX - last.x, dy = e.clientY - last.y;
+      last.x = e.clientX;
+      last.y = e.clientY;
+      if (last.pan) this.pan(dx, dy); else this.orbit(dx, dy);
+    });
+    canvas.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      this.view.distance = Math.min(50, Math.max(0.05, this.view.distance * Math.exp(0.001 * e.deltaY)));
+    }, { passive: false });
+  }
+
+  orbit(dx, dy) {
+    this.view.azimuth -= 0.4 * dx;
+    this.view.elevation = Math.max(-89, Math.min(89, this.view.elevation + 0.4 * dy));
+  }
+
+  // Moves the target in the camera's image plane, by the pixels dragged at its distance.
+  pan(dx, dy) {
+    const perPixel = 2 * this.view.distance * Math.tan(Math.PI / 8) / this.height;
+    const right = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 0);
+    const up = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 1);
+    for (let k = 0; k < 3; k++) {
+      this.view.target[k] += perPixel * (-dx * right.getComponent(k) + dy * up.getComponent(k));
+    }
+  }
+
+  dispose() {
+    this.renderer.dispose();
+    this.renderer.domElement.remove();
+  }
+}
