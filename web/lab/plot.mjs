@@ -15,6 +15,7 @@ export class LivePlot {
       stroke: kColors[i % kColors.length],
       width: 1.5,
       dash: trace.dash ? [6, 4] : undefined,
+      points: { show: false },
       value: (u, v) => (v == null ? '-' : v.toFixed(3)),
     }))];
     this.chart = new uPlot({

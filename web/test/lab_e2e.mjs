@@ -219,7 +219,7 @@ function compareWithNative(result) {
 }
 
 // Chromium on a page of the lab served from here; close() ends both.
-async function openLabPage(playwright) {
+async function openLabPage(playwright, query = '') {
   const server = await serve();
   const browser = await playwright.chromium.launch({
     executablePath: options.chromium,
@@ -231,7 +231,7 @@ async function openLabPage(playwright) {
   const problems = [];
   page.on('pageerror', (e) => problems.push(String(e)));
   page.on('console', (m) => { if (m.type() === 'error') problems.push(m.text()); });
-  await page.goto(`http://127.0.0.1:${server.address().port}/web/lab/index.html`);
+  await page.goto(`http://127.0.0.1:${server.address().port}/web/lab/index.html${query}`);
   const close = async () => {
     await browser.close();
     server.close();
@@ -239,27 +239,59 @@ async function openLabPage(playwright) {
   return { page, problems, close };
 }
 
-async function testLab({ page, problems }) {
+async function waitForLab(page) {
   await page.waitForFunction(() => window.lab || document.getElementById('error').textContent, null, { timeout: 60000 });
   const error = await page.locator('#error').textContent();
   check(!error, `the lab mounted${error ? `: ${error}` : ''}`);
   check(await page.locator('canvas.simlab-lab-canvas').count() === 1, 'the lab has its 3D view');
+}
+
+// Lesson 2.3's lab, verbatim.
+async function testLessonLab({ page, problems }) {
+  await waitForLab(page);
   await interactive(page);
   compareWithNative(await deterministic(page));
   check(problems.length === 0, `no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
-  console.log(`screenshots in ${options.shots}`);
+}
+
+// web/lab/fixtures/all_geoms.json: every geom type drawn, bad expressions and a bad
+// control target shown as errors while the rest keeps running.
+async function testAllGeoms({ page, problems }) {
+  await waitForLab(page);
+  const drawn = await page.evaluate(() => window.lab.scene.geoms.map(({ g }) => g));
+  const types = await page.evaluate(() => Array.from(window.lab.sim.model('geom_type')));
+  check(drawn.length === types.length && [0, 1, 2, 3, 4, 5, 6, 7].every((t) => types.includes(t)),
+        `all ${types.length} geoms drawn (types ${[...new Set(types)].sort()})`);
+  for (const box of await page.locator('input[data-toggle]').all()) await box.check();
+  await page.waitForTimeout(1500);
+  const r = await readouts(page);
+  check(/no data array named 'qpoz'/.test(r.unknown.text), `unknown name: "${r.unknown.text}"`);
+  check(/model\.body_mass\[99\]: index out of range/.test(r['out of range'].text),
+        `index out of range: "${r['out of range'].text}"`);
+  check(/column 16: expected a number/.test(r.syntax.text), `syntax error: "${r.syntax.text}"`);
+  check(r['slide (m)'].value > 0.01 && r.arithmetic.value === 1,
+        `the other readouts keep working: slide ${r['slide (m)'].text}, arithmetic ${r.arithmetic.text}`);
+  const bad = page.getByRole('slider', { name: 'bad target' });
+  const message = await page.locator('.simlab-lab-control', { has: bad }).locator('.simlab-lab-error').textContent();
+  check(await bad.isDisabled() && /ctrl\[7\]: index out of range/.test(message), `bad control target: "${message}"`);
+  await page.screenshot({ path: path.join(options.shots, 'lab_all_geoms.png'), fullPage: true });
+  check(problems.length === 0, `no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
 }
 
 async function main() {
   await openBuilds(options);
   const playwright = await playwrightOrSkip(options);
   fs.mkdirSync(options.shots, { recursive: true });
-  const session = await openLabPage(playwright);
-  try {
-    await testLab(session);
-  } finally {
-    await session.close();
+  for (const [query, test] of [['', testLessonLab],
+    ['?spec=fixtures/all_geoms.json&base=fixtures/', testAllGeoms]]) {
+    const session = await openLabPage(playwright, query);
+    try {
+      await test(session);
+    } finally {
+      await session.close();
+    }
   }
+  console.log(`screenshots in ${options.shots}`);
   console.log('PASS');
 }
 
