@@ -165,7 +165,8 @@ export class LabScene {
 
   resize() {
     const width = this.container.clientWidth || 640;
-    this.renderer.setSize(width, this.height);
+    this.renderer.setSize(width, this.height, false);
+    this.renderer.domElement.style.height = `${this.height}px`;
     this.camera.aspect = width / this.height;
     this.camera.updateProjectionMatrix();
   }
