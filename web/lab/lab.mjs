@@ -289,14 +289,16 @@ class Lab {
     this.scene.render();
   }
 
+  // What the view draws; contacts first, since views taken before a call that grows wasm
+  // memory would go stale.
   sceneState() {
     const wantsContacts = this.toggles.contacts || this.toggles.forces;
+    const contacts = wantsContacts ? this.sim.contacts() : [];
     return {
-      model: this.sceneModel,
+      model: this.sceneModel, contacts,
       geom_xpos: this.sim.dataView('geom_xpos'), geom_xmat: this.sim.dataView('geom_xmat'),
       xanchor: this.sim.dataView('xanchor'), xaxis: this.sim.dataView('xaxis'),
       qfrc_actuator: this.sim.dataView('qfrc_actuator'),
-      contacts: wantsContacts ? this.sim.contacts() : [],
     };
   }
 
