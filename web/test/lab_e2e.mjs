@@ -143,6 +143,27 @@ async function interactive(page) {
   check(/fps, real-time factor/.test(shown) && rtf >= 0.99 && stats.engineFactor >= 1,
         'the page keeps real time (the engine is faster than real time)');
   await orbit(page);
+  await pauseAndReset(page);
+}
+
+// The pause button stops time; reset goes back to the keyframe with the sliders at their
+// initial values.
+async function pauseAndReset(page) {
+  await page.getByRole('button', { name: 'pause' }).click();
+  const t0 = await page.evaluate(() => window.lab.sim.time);
+  await page.waitForTimeout(300);
+  const t1 = await page.evaluate(() => window.lab.sim.time);
+  await page.getByRole('button', { name: 'reset' }).click();
+  const state = await page.evaluate(() => ({
+    time: window.lab.sim.time, qpos: Array.from(window.lab.sim.data('qpos')),
+    ctrl: Array.from(window.lab.sim.data('ctrl')),
+    sliders: Array.from(document.querySelectorAll('input[type=range]'), (s) => Number(s.value)),
+  }));
+  const key = await page.evaluate(() => Array.from(window.lab.sim.model('key_qpos') ?? []).slice(0, 12));
+  check(t1 === t0 && state.time === 0 && state.sliders.join() === '0.12,0,0.04' &&
+        state.ctrl.join() === '0.12,0,0,0.04' && (key.length === 0 || state.qpos.join() === key.join()),
+        `pause holds time at ${t0.toFixed(3)} s; reset: time 0, sliders ${state.sliders}, ctrl ${state.ctrl}`);
+  await page.getByRole('button', { name: 'play' }).click();
 }
 
 // The mouse orbits (dragging up lowers the elevation, as the camera rises) and zooms.
