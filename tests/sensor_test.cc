@@ -2,6 +2,8 @@
 // around the values that conformance goldens cannot show: the user sensor callback,
 // cutoffs, noise kept but never applied, the disable flag, and sensor names.
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <span>
 #include <string>
 #include <vector>
@@ -131,6 +133,60 @@ TEST(Sensors, DisableFlagSkipsThem) {
   d.qpos[0] = 0.4;
   Forward(m, d);
   EXPECT_EQ(d.sensordata[0], 0);
+}
+
+}  // namespace
+}  // namespace simlab
+
+namespace simlab {
+namespace {
+
+std::string ReadSource(const std::string& rel) {
+  std::ifstream in(std::string(SIMLAB_SOURCE_DIR) + "/" + rel);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Loads `xml`; a model that loads is stepped a few times. Returns whether it loaded;
+// an error must name the file.
+bool LoadAndStep(const std::string& xml) {
+  try {
+    Model m = LoadXmlString(xml, "mutated.xml");
+    Data d = MakeData(m);
+    for (int k = 0; k < 3; k++) Step(m, d);
+    return true;
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("mutated.xml:", 0), 0u) << e.what();
+    return false;
+  }
+}
+
+// Sensor sections cut short, and every attribute value of every sensor element
+// replaced by bad values (negative, empty, unknown names, huge), load with a clear
+// error or run: never a crash.
+TEST(SensorErrors, MutatedSensorFilesNeverCrash) {
+  for (const char* file : {"tests/sensors/simple_sensors.xml", "tests/sensors/touch.xml",
+                           "tests/sensors/geometry_sensors.xml"}) {
+    std::string xml = ReadSource(file);
+    ASSERT_FALSE(xml.empty()) << file;
+    size_t begin = xml.find("<sensor>"), end = xml.find("</sensor>");
+    ASSERT_NE(begin, std::string::npos) << file;
+    int loaded = 0, refused = 0;
+    for (size_t cut = begin; cut < end; cut += 13) {
+      (LoadAndStep(xml.substr(0, cut)) ? loaded : refused)++;
+    }
+    // Each quoted value inside the section, replaced in turn.
+    for (size_t q = xml.find('"', begin); q < end; q = xml.find('"', xml.find('"', q + 1) + 1)) {
+      size_t close = xml.find('"', q + 1);
+      for (const char* bad : {"-1", "", "nope", "1e300", "0 0 0 0 0 0 0"}) {
+        std::string mutated = xml.substr(0, q + 1) + bad + xml.substr(close);
+        (LoadAndStep(mutated) ? loaded : refused)++;
+      }
+    }
+    EXPECT_GT(refused, 0) << file;
+    EXPECT_GT(loaded, 0) << file;
+  }
 }
 
 }  // namespace
