@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "explain.h"
+#include "lab.h"
 #include "rollout.h"
 #include "simlab/simlab.h"
 
@@ -11,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   simlab::apps::AddRolloutCommand(app);
   simlab::apps::AddExplainCommand(app);
+  simlab::apps::AddLabCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

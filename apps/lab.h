@@ -1,0 +1,67 @@
+// `simlab lab LESSON.txt [--port P]`: serves the lesson page on 127.0.0.1 (a small
+// static HTTP/1.1 GET server): web/lesson (the page), web/lab (the live lab), web/dist
+// (the engine in WebAssembly), the three and uplot packages, the lesson text and models/.
+#ifndef SIMLAB_APPS_LAB_H_
+#define SIMLAB_APPS_LAB_H_
+
+#include <atomic>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace simlab::apps {
+
+// What the server may hand out: the repository (for web/ and models/) and the lesson.
+struct LabSite {
+  std::filesystem::path repo_root;
+  std::filesystem::path lesson_file;
+};
+
+// The file a URL path names, or nothing when it is outside every allowed root
+// ("..", unknown prefixes, missing files).
+std::optional<std::filesystem::path> ResolveLabPath(const LabSite& site,
+                                                    const std::string& url_path);
+
+// Content-Type for a file by its extension (application/wasm, text/javascript, ...).
+std::string LabMimeType(const std::filesystem::path& file);
+
+// The XML files a model pulls in through file="..." (include, attach), relative to its
+// folder, found recursively; a JSON object {"model": ..., "files": [...]}.
+std::string LabModelFilesJson(const std::filesystem::path& model_file);
+
+// A listening socket on 127.0.0.1 that serves `site`, one thread per connection.
+class LabServer {
+ public:
+  // Binds 127.0.0.1:port (0 = any free port). Throws simlab::Error when it cannot.
+  LabServer(LabSite site, int port);
+  ~LabServer();
+  LabServer(const LabServer&) = delete;
+  LabServer& operator=(const LabServer&) = delete;
+
+  int port() const { return port_; }
+  // Accepts connections until Stop().
+  void Serve();
+  // Makes Serve() return (from any thread).
+  void Stop();
+
+ private:
+  LabSite site_;
+  int listen_fd_ = -1;
+  int port_ = 0;
+  std::atomic<bool> stopping_{false};
+};
+
+// Finds the repository (the folder holding web/lesson/index.html) from the current
+// directory or the executable's location; throws simlab::Error when there is none.
+std::filesystem::path FindLabRepoRoot();
+
+// Registers the subcommand.
+void AddLabCommand(CLI::App& app);
+
+}  // namespace simlab::apps
+
+#endif  // SIMLAB_APPS_LAB_H_
