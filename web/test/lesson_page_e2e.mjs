@@ -125,6 +125,20 @@ async function checkQuiz(page) {
   console.log('knowledge check: 12 wrong, 13 right, "1.5" wrong, "15" right, "3" right, open reference shown');
 }
 
+// Without web/lab/lab.mjs (the request refused here), the lab section shows the parsed spec.
+async function checkPlaceholder(browser, url) {
+  const page = await browser.newPage();
+  await page.route('**/lab/lab.mjs', (route) => route.fulfill({ status: 404, body: 'missing' }));
+  await page.goto(url);
+  await page.waitForSelector('section.lab-mount[data-mounted="placeholder"]', { timeout: 15000 });
+  const spec = JSON.parse(await page.locator('section.lab-mount pre.lab-spec').textContent());
+  assert.equal(spec.model, 'gantry_gripper');
+  assert.equal(spec.controls.length, 3);
+  assert.equal(await page.locator('.quiz .question').count(), 4);
+  await page.close();
+  console.log('without /lab/lab.mjs: the lab section shows the parsed spec, the rest of the page works');
+}
+
 async function main() {
   const playwright = await loadPlaywright();
   if (!playwright || !fs.existsSync(options.chromium)) {
@@ -155,6 +169,7 @@ async function main() {
     await checkQuiz(page);
     await page.locator('.quiz').screenshot({ path: path.join(outDir, 'lesson_page_quiz.png') });
     assert.deepEqual(lessonErrors, []);
+    await checkPlaceholder(browser, url);
     console.log(`screenshots in ${outDir}: lesson_page_top.png lesson_page_model.png lesson_page_full.png lesson_page_quiz.png`);
     console.log('PASS');
   } finally {
