@@ -151,7 +151,12 @@ export class LabScene {
     // MuJoCo's default vertical field of view is 45 degrees.
     this.camera = new THREE.PerspectiveCamera(45, 1, 0.005, 100);
     this.camera.up.set(0, 0, 1);
-    this.view = { azimuth: 90, elevation: -45, distance: 2, target: [0, 0, 0], ...cameraSpec };
+    // A lab block's elevation is the angle above the horizon the camera looks down from
+    // (the lesson's 20 sees the scene from above); MuJoCo's free camera counts it the
+    // other way (its elevation is where it looks: -45 in MuJoCo's viewer is from above).
+    const spec = { ...cameraSpec };
+    if (spec.elevation !== undefined) spec.elevation = -spec.elevation;
+    this.view = { azimuth: 90, elevation: -45, distance: 2, target: [0, 0, 0], ...spec };
     this.view.target = [...this.view.target];
     this.contactPoints = [];
     this.arrows = {
