@@ -221,6 +221,7 @@ class Lab {
     if (!control.target) return;
     const value = Number(control.slider.value);
     this.sim.setDataAt(control.target.name, control.target.index, value);
+    this.changed = true;
     control.shown.textContent = `${value} ${control.spec.unit ?? ''}`;
   }
 
@@ -272,6 +273,7 @@ class Lab {
 
   // Readouts, plot samples and the 3D view from the current state.
   draw() {
+    this.changed = false;
     this.read.clear();
     for (const r of this.readouts) {
       const result = r.tree ? this.evaluate(r.tree) : { value: NaN, error: r.error };
@@ -308,6 +310,7 @@ class Lab {
     if (this.disposed) return;
     const gap = this.lastFrame === null ? 0 : Math.min(kMaxGap, (now - this.lastFrame) / 1000);
     this.lastFrame = now;
+    const timeBefore = this.sim.time;
     if (this.playing) {
       this.debt += gap;
       const steps = Math.min(kMaxStepsPerFrame, Math.floor(this.debt / this.timestep));
@@ -316,7 +319,10 @@ class Lab {
       this.stats.busy += performance.now() - start;
       this.debt = steps === kMaxStepsPerFrame ? 0 : this.debt - steps * this.timestep;
     }
-    this.draw();
+    // Readouts and plots only when time moved or something asked for it; the 3D view
+    // always (the camera may have moved).
+    if (this.changed || this.sim.time !== timeBefore) this.draw();
+    else this.scene.render();
     this.countFrame(now);
     requestAnimationFrame(this.frame);
   }

@@ -26,9 +26,12 @@ export class LivePlot {
     }, this.columns, container);
   }
 
-  // Appends one sample (values may be NaN where a trace failed) and drops old ones.
+  // Appends one sample (values may be NaN where a trace failed) and drops old ones; a
+  // sample at the same time as the last one (nothing stepped) is skipped.
   push(time, values) {
-    if (this.columns[0].length && time < this.columns[0][this.columns[0].length - 1]) this.clear();
+    const last = this.columns[0].length ? this.columns[0][this.columns[0].length - 1] : NaN;
+    if (time === last) return;
+    if (time < last) this.clear();
     this.columns[0].push(time);
     values.forEach((v, i) => this.columns[i + 1].push(Number.isFinite(v) ? v : null));
     let drop = 0;
