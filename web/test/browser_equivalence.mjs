@@ -103,6 +103,7 @@ async function main() {
     const result = await page.evaluate(rolloutInPage, { model: kModel, ctrl: kCtrl, every: kEvery });
     const native = nativeRollout(options.simlab, path.join(repoRoot, kModel),
                                  { key: 0, ctrl: path.join(repoRoot, kCtrl), steps: result.steps });
+    if (result.records.length === 0) throw new Error('the page recorded no checkpoints');
     let worst = 0;
     for (const r of result.records) {
       for (const field of ['qpos', 'actuator_force']) {

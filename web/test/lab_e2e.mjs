@@ -95,6 +95,19 @@ async function waitFor(page, seconds, predicate, invariant = () => {}) {
   }
 }
 
+// Samples the readouts for `seconds` (real time), the finger readouts equal in each;
+// returns how many samples were taken.
+async function fingersStayEqual(page, seconds) {
+  const end = Date.now() + 1000 * seconds;
+  let samples = 0;
+  do {
+    fingersEqual(await readouts(page));
+    samples++;
+    await page.waitForTimeout(50);
+  } while (Date.now() < end);
+  return samples;
+}
+
 function fingersEqual(r) {
   if (r['left finger (m)'].text !== r['right finger (m)'].text) {
     throw new Error(`finger readouts differ: ${r['left finger (m)'].text} vs ${r['right finger (m)'].text}`);
@@ -113,10 +126,12 @@ async function interactive(page) {
   await dragSlider(page, 'ctrl[2]: carriage z target', -0.33);
   await waitFor(page, 1.5, () => false, fingersEqual);  // the carriage comes down
   await dragSlider(page, 'ctrl[3]: grip half-opening', 0);
-  const gripped = await waitFor(page, 5, (r) => Math.abs(Math.abs(r['grip force (N)'].value) - range[1]) < 1e-9, fingersEqual);
-  check(gripped !== null, `grip force readout reaches the forcerange: ${gripped?.['grip force (N)'].text} N`);
-  const settled = await waitFor(page, 0.3, () => false, fingersEqual);
-  check(settled === null, 'finger readouts stayed equal while the gripper closed');
+  // Closing pulls the fingers to lower qpos: the force saturates at the lower bound.
+  const bound = range[0];
+  const gripped = await waitFor(page, 5, (r) => Math.abs(r['grip force (N)'].value - bound) < 1e-9, fingersEqual);
+  check(gripped !== null, `grip force readout reaches the forcerange bound ${bound}: ${gripped?.['grip force (N)'].text} N`);
+  const samples = await fingersStayEqual(page, 0.3);
+  check(samples > 0, `finger readouts stayed equal while the gripper closed (${samples} samples)`);
   const before = (await readouts(page))['cube z (m)'].value;
   const clock0 = await page.evaluate(() => window.lab.clock());
 
@@ -144,6 +159,7 @@ async function interactive(page) {
         'the page keeps real time (the engine is faster than real time)');
   await orbit(page);
   await pauseAndReset(page);
+  return range;
 }
 
 // The pause button stops time; reset goes back to the keyframe with the sliders at their
@@ -153,6 +169,10 @@ async function pauseAndReset(page) {
   const t0 = await page.evaluate(() => window.lab.sim.time);
   await page.waitForTimeout(300);
   const t1 = await page.evaluate(() => window.lab.sim.time);
+  const samples = await page.evaluate(() => window.lab.plots.map(({ plot }) => plot.columns[0].length));
+  await page.waitForTimeout(300);
+  const samplesLater = await page.evaluate(() => window.lab.plots.map(({ plot }) => plot.columns[0].length));
+  check(samples.join() === samplesLater.join(), `plots hold ${samples} samples while paused`);
   await page.getByRole('button', { name: 'reset' }).click();
   const state = await page.evaluate(() => ({
     time: window.lab.sim.time, qpos: Array.from(window.lab.sim.data('qpos')),
@@ -210,8 +230,26 @@ async function deterministic(page) {
       run(40);
     }
     run(200);
-    return { rows, checkpoints, exprs: lab.spec.readouts.map((r) => r.expr) };
+    return { rows, checkpoints, exprs: lab.spec.readouts.map((r) => r.expr),
+             labels: lab.spec.readouts.map((r) => r.label) };
   });
+}
+
+// The API session did what the sliders asked: ctrl rows with z at -0.33 and the grip at
+// 0, the grip force saturated once closed, the cube raised by the end.
+function checkSliderSession(result, range) {
+  const near = (x, y) => Math.abs(x - y) < 1e-12;
+  const lowered = result.rows.findIndex((row) => near(row[2], -0.33));
+  const closed = result.rows.findIndex((row) => near(row[2], -0.33) && row[3] === 0);
+  check(lowered >= 0 && closed > lowered,
+        `control rows hold z -0.33 from step ${lowered} and grip 0 from step ${closed}`);
+  const readout = (checkpoint, label) => checkpoint.readouts[result.labels.indexOf(label)];
+  const grip = result.checkpoints.map((c) => readout(c, 'grip force (N)'));
+  const cube = result.checkpoints.map((c) => readout(c, 'cube z (m)'));
+  const last = result.checkpoints.length - 1;
+  check(Math.abs(grip[1] - range[0]) < 1e-9 && cube[last] > cube[1] + 0.1,
+        `checkpoints: grip force ${grip[1]} N at the bound ${range[0]}, cube z ${cube[1].toFixed(4)} -> ` +
+        `${cube[last].toFixed(4)} m`);
 }
 
 function compareWithNative(result) {
@@ -270,8 +308,10 @@ async function waitForLab(page) {
 // Lesson 2.3's lab, verbatim.
 async function testLessonLab({ page, problems }) {
   await waitForLab(page);
-  await interactive(page);
-  compareWithNative(await deterministic(page));
+  const range = await interactive(page);
+  const session = await deterministic(page);
+  checkSliderSession(session, range);
+  compareWithNative(session);
   check(problems.length === 0, `no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
 }
 
