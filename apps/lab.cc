@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -107,14 +108,16 @@ std::string ReadFileBytes(const fs::path& file) {
 }
 
 // Every file="..." a model's XML names, relative to its folder, recursively for XML.
+// Absolute names and names that leave the folder (also through links) are skipped.
 void CollectModelFiles(const fs::path& folder, const std::string& relative,
                        std::set<std::string>& found) {
   static const std::regex kFileAttribute(R"(\bfile\s*=\s*["']([^"']+)["'])");
   const std::string xml = ReadFileBytes(folder / relative);
   for (std::sregex_iterator it(xml.begin(), xml.end(), kFileAttribute), end; it != end; ++it) {
     const std::string name = (*it)[1].str();
-    if (ClimbsOut(name) || !found.insert(name).second) continue;
-    if (fs::path(name).extension() == ".xml" && fs::is_regular_file(folder / name)) {
+    if (name[0] == '/' || fs::path(name).has_root_path() || ClimbsOut(name)) continue;
+    if (!found.insert(name).second) continue;
+    if (fs::path(name).extension() == ".xml" && InsideRoot(folder, folder / name)) {
       CollectModelFiles(folder, name, found);
     }
   }

@@ -130,6 +130,18 @@ TEST_F(LabServerTest, RefusesPathsOutsideItsRoots) {
   EXPECT_FALSE(ResolveLabPath(LabSite{kRepo, scratch_ / "lesson-test.txt"}, "/lesson/../../README.md"));
 }
 
+// An absolute file= (here an XML outside the model folder naming a file of its own) is
+// neither listed nor read; relative files next to the model are.
+TEST_F(LabServerTest, ModelFileListSkipsAbsoluteNames) {
+  const fs::path folder = scratch_ / "model";
+  fs::create_directories(folder);
+  std::ofstream(scratch_ / "outside.xml") << R"(<mujoco><include file="leaked.xml"/></mujoco>)";
+  std::ofstream(folder / "part.xml") << "<mujoco/>";
+  std::ofstream(folder / "main.xml") << "<mujoco><include file=\"" + (scratch_ / "outside.xml").string() +
+                                            "\"/><include file=\"part.xml\"/></mujoco>";
+  EXPECT_EQ(LabModelFilesJson(folder / "main.xml"), R"({"files":["part.xml"],"model":"main.xml"})");
+}
+
 TEST_F(LabServerTest, AnswersOnlyGetAndHead) {
   EXPECT_EQ(Fetch(port(), "POST / HTTP/1.1\r\nHost: x\r\n\r\n").status, 405);
   EXPECT_EQ(Fetch(port(), "nonsense\r\n\r\n").status, 400);
