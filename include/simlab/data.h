@@ -211,6 +211,8 @@ struct Data {
 
   // Contacts of the last collision stage: the first ncon entries (capacity grows as needed).
   std::vector<Contact> contact;
+  // Narrow-phase output of the distance/normal/fromto sensors (kMaxContactPair, reused).
+  std::vector<Contact> distance_scratch;
   BroadPhaseScratch broadphase;
   SolverScratch solver_scratch;
 

@@ -180,7 +180,9 @@ void GeomDistanceSensor(const Model& m, Data& d, int i, double* out) {
   int first1, count1, first2, count2;
   GeomRange(m, m.sensor_objtype[i], m.sensor_objid[i], &first1, &count1);
   GeomRange(m, m.sensor_reftype[i], m.sensor_refid[i], &first2, &count2);
-  Contact con[kMaxContactPair];
+  // The narrow phase writes into scratch kept in Data, not a fresh (zero-filled) array.
+  if (d.distance_scratch.size() < kMaxContactPair) d.distance_scratch.resize(kMaxContactPair);
+  Contact* con = d.distance_scratch.data();
   for (int g1 = first1; g1 < first1 + count1; g1++) {
     for (int g2 = first2; g2 < first2 + count2; g2++) {
       double pair_fromto[6];
