@@ -29,7 +29,6 @@
 set -euo pipefail
 
 source "$(dirname "$0")/oracle_case.sh"
-SHARED_CORPUS="$(cd "$ROOT/../shared/corpus/mujoco" && pwd)"
 STEPS=500
 TOL=1e-8
 

@@ -17,7 +17,6 @@
 set -euo pipefail
 
 source "$(dirname "$0")/oracle_case.sh"
-SHARED_CORPUS="$(cd "$ROOT/../shared/corpus/mujoco" && pwd)"
 STEPS=200
 TOL=1e-8
 CONTACTS=yes

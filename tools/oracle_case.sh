@@ -1,7 +1,8 @@
 # oracle_case.sh — sourced by the golden scripts (tools/make_*_goldens.sh,
 # tests/conformance/*/make_goldens.sh): the oracle's location and the steps they share.
 #
-# Sourcing sets ROOT (the repository) and ORACLE (../shared/oracle beside it), checks that
+# Sourcing sets ROOT (the repository), ORACLE (../shared/oracle beside it) and
+# SHARED_CORPUS (MuJoCo's models in ../shared/corpus/mujoco), checks that
 # `npm ci` was run there, and sets EVERY=10 unless the script set it. The functions use
 # $OUT (the case folder, with models/, goldens/, ctrl/).
 #
@@ -25,6 +26,7 @@
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # (SIMLAB_ORACLE, as for tools/oracle_model.mjs, names another oracle folder.)
 ORACLE="${SIMLAB_ORACLE:-$(cd "$ROOT/../shared/oracle" && pwd)}"
+SHARED_CORPUS="$(cd "$ROOT/../shared/corpus/mujoco" && pwd)"
 EVERY="${EVERY:-10}"
 [ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
 
