@@ -54,13 +54,8 @@ void TrackPose(const Model& m, Data& d, int i) {
 }  // namespace
 
 void CameraFixedPose(const Model& m, Data& d, int i) {
-  int body = m.cam_bodyid[i];
-  double* xpos = &d.cam_xpos[3 * i];
-  MulMatVec3(xpos, &d.xmat[9 * body], &m.cam_pos[3 * i]);
-  AddScaled3(xpos, &d.xpos[3 * body], 1);
-  double q[4];
-  MulQuat(q, &d.xquat[4 * body], &m.cam_quat[4 * i]);
-  QuatToMat(&d.cam_xmat[9 * i], q);
+  LocalToGlobal(d, &d.cam_xpos[3 * i], &d.cam_xmat[9 * i], &m.cam_pos[3 * i],
+                &m.cam_quat[4 * i], m.cam_bodyid[i], 0);
 }
 
 void CamLight(const Model& m, Data& d) {

@@ -23,6 +23,11 @@ void Kinematics(const Model& m, Data& d);
 void ComPos(const Model& m, Data& d);
 // cam_xpos, cam_xmat: every camera's pose after its tracking mode (camera.cc).
 void CamLight(const Model& m, Data& d);
+// World pose (xpos, xmat) of a frame given in body coordinates (pos, quat); `sameframe`
+// (MuJoCo's mjtSameFrame, 0 for none) copies the body's or its inertial frame's pose
+// instead (kinematics.cc).
+void LocalToGlobal(const Data& d, double* xpos, double* xmat, const double* pos,
+                   const double* quat, int body, int sameframe);
 // Camera i's pose carried by its body alone (the fixed mode).
 void CameraFixedPose(const Model& m, Data& d, int i);
 // ten_length, ten_J, ten_wrapadr, ten_wrapnum, wrap_obj, wrap_xpos (tendon.cc).

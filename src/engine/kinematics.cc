@@ -13,13 +13,10 @@ namespace simlab {
 
 using namespace math;
 
-namespace {
-
 // Sameframe codes (mjtSameFrame): a child frame that coincides with the body frame or
 // the inertial frame is copied instead of recomputed.
 enum SameFrame { kSameNone = 0, kSameBody, kSameInertia, kSameBodyRot, kSameInertiaRot };
 
-// World pose of a frame given in body coordinates.
 void LocalToGlobal(const Data& d, double* xpos, double* xmat, const double* pos,
                    const double* quat, int body, int sameframe) {
   // Position.
@@ -47,6 +44,8 @@ void LocalToGlobal(const Data& d, double* xpos, double* xmat, const double* pos,
     }
   }
 }
+
+namespace {
 
 // Applies the joints of body i to its frame (xpos, xquat), filling xanchor and xaxis.
 void ApplyJoints(const Model& m, Data& d, int i, double* xpos, double* xquat) {
