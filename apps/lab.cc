@@ -2,11 +2,13 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -14,9 +16,8 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <regex>
-#include <set>
 #include <sstream>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -44,6 +45,19 @@ constexpr Mount kMounts[] = {
 
 // Largest request head we read; anything longer is refused.
 constexpr size_t kMaxRequestHead = 16384;
+// Files go out in pieces of this size, never whole in memory.
+constexpr size_t kStreamChunk = 64 * 1024;
+// A peer that stops reading an answer for this long is dropped (frees its slot).
+constexpr time_t kSendTimeoutSeconds = 30;
+
+using Clock = std::chrono::steady_clock;
+
+// What every connection's thread needs: the site, the port Host must name, the limits.
+struct ServeContext {
+  LabSite site;
+  int port = 0;
+  LabLimits limits;
+};
 
 // Decodes %XX escapes; nothing when an escape is malformed or decodes to NUL.
 std::optional<std::string> PercentDecode(const std::string& text) {
@@ -99,106 +113,268 @@ std::optional<std::string> CleanUrlPath(const std::string& url_path) {
   return decoded;
 }
 
-// Reads a whole file as bytes.
-std::string ReadFileBytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
-// Every file="..." a model's XML names, relative to its folder, recursively for XML.
-// Absolute names and names that leave the folder (also through links) are skipped.
-void CollectModelFiles(const fs::path& folder, const std::string& relative,
-                       std::set<std::string>& found) {
-  static const std::regex kFileAttribute(R"(\bfile\s*=\s*["']([^"']+)["'])");
-  const std::string xml = ReadFileBytes(folder / relative);
-  for (std::sregex_iterator it(xml.begin(), xml.end(), kFileAttribute), end; it != end; ++it) {
-    const std::string name = (*it)[1].str();
-    if (name[0] == '/' || fs::path(name).has_root_path() || ClimbsOut(name)) continue;
-    if (!found.insert(name).second) continue;
-    if (fs::path(name).extension() == ".xml" && InsideRoot(folder, folder / name)) {
-      CollectModelFiles(folder, name, found);
-    }
-  }
-}
-
-// One HTTP response with a body and the headers every answer carries.
-std::string HttpResponse(int status, const std::string& reason, const std::string& type,
-                         const std::string& body, bool head_only) {
+// The status line and the headers every answer carries, for a body of `length` bytes.
+std::string ResponseHead(int status, const std::string& reason, const std::string& type,
+                         uintmax_t length) {
   std::ostringstream out;
   out << "HTTP/1.1 " << status << " " << reason << "\r\n"
       << "Content-Type: " << type << "\r\n"
-      << "Content-Length: " << body.size() << "\r\n"
+      << "Content-Length: " << length << "\r\n"
       << "Cache-Control: no-store\r\n"
       << "X-Content-Type-Options: nosniff\r\n"
       << "Connection: close\r\n\r\n";
-  if (!head_only) out << body;
   return out.str();
 }
 
-// A plain-text error answer.
-std::string HttpError(int status, const std::string& reason, const std::string& detail) {
-  return HttpResponse(status, reason, "text/plain; charset=utf-8",
-                      std::to_string(status) + " " + reason + ": " + detail + "\n", false);
+// A whole answer held in memory: the headers, then the body unless only headers are wanted.
+std::string TextResponse(int status, const std::string& reason, const std::string& type,
+                         const std::string& body, bool head_only) {
+  const std::string head = ResponseHead(status, reason, type, body.size());
+  return head_only ? head : head + body;
 }
 
-// The answer to one request head ("GET /path HTTP/1.1\r\n...").
-std::string Answer(const LabSite& site, const std::string& head) {
+// A plain-text error answer whose body says why.
+std::string ErrorResponse(int status, const std::string& reason, const std::string& detail,
+                          bool head_only = false) {
+  return TextResponse(status, reason, "text/plain; charset=utf-8",
+                      std::to_string(status) + " " + reason + ": " + detail + "\n", head_only);
+}
+
+// Sends all of `size` bytes; false once the peer has gone away or stopped reading.
+bool SendAll(int fd, const char* data, size_t size) {
+  size_t sent = 0;
+  while (sent < size) {
+    const ssize_t n = ::send(fd, data + sent, size - sent, MSG_NOSIGNAL);
+    if (n <= 0) return false;
+    sent += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+bool SendAll(int fd, const std::string& bytes) { return SendAll(fd, bytes.data(), bytes.size()); }
+
+// Copies `size` bytes of `in` to the socket a chunk at a time; stops early when the file
+// ends sooner (it shrank) or the peer leaves.
+void StreamBytes(int fd, std::istream& in, uintmax_t size) {
+  std::vector<char> chunk(kStreamChunk);
+  for (uintmax_t left = size; left > 0;) {
+    in.read(chunk.data(), static_cast<std::streamsize>(std::min<uintmax_t>(left, chunk.size())));
+    const auto got = static_cast<size_t>(in.gcount());
+    if (got == 0 || !SendAll(fd, chunk.data(), got)) return;
+    left -= got;
+  }
+}
+
+// Streams a file: headers with its size, then its bytes (none for HEAD). A file that
+// exists but cannot be opened or sized (permissions) answers 500.
+void SendFile(int fd, const fs::path& file, bool head_only) {
+  std::ifstream in(file, std::ios::binary);
+  std::error_code ec;
+  const uintmax_t size = fs::file_size(file, ec);
+  if (!in || ec) {
+    SendAll(fd, ErrorResponse(500, "Internal Server Error",
+                              "cannot read " + file.filename().string(), head_only));
+    return;
+  }
+  if (!SendAll(fd, ResponseHead(200, "OK", LabMimeType(file), size)) || head_only) return;
+  StreamBytes(fd, in, size);
+}
+
+// ASCII lower case.
+std::string Lowercase(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// `text` without leading and trailing spaces and tabs.
+std::string TrimBlanks(const std::string& text) {
+  const size_t first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
+// The trimmed values of every header called `name` (lower case; matched ignoring case).
+std::vector<std::string> HeaderValues(const std::string& head, const std::string& name) {
+  std::vector<std::string> values;
+  for (size_t start = head.find("\r\n"); start != std::string::npos;) {
+    start += 2;
+    const size_t end = head.find("\r\n", start);
+    if (end == std::string::npos || end == start) break;
+    const std::string line = head.substr(start, end - start);
+    const size_t colon = line.find(':');
+    if (colon != std::string::npos && Lowercase(line.substr(0, colon)) == name) {
+      values.push_back(TrimBlanks(line.substr(colon + 1)));
+    }
+    start = end;
+  }
+  return values;
+}
+
+// True when a Host value names this server: 127.0.0.1, localhost or [::1] (any case) with
+// our port (the port may be left out only when it is 80).
+bool IsOwnHost(const std::string& host, int port) {
+  const std::string lower = Lowercase(host);
+  const std::string with_port = ":" + std::to_string(port);
+  for (const std::string name : {"127.0.0.1", "localhost", "[::1]"}) {
+    if (lower == name + with_port || (port == 80 && lower == name)) return true;
+  }
+  return false;
+}
+
+// Why a request's Host is refused, or empty when it names this server. A page of another
+// site whose name was rebound to 127.0.0.1 still sends its own name, so it gets nothing.
+// Every request needs exactly one Host, HTTP/1.0 too (browsers always send it).
+std::string HostProblem(const std::string& head, int port) {
+  const std::vector<std::string> hosts = HeaderValues(head, "host");
+  if (hosts.empty()) return "the request has no Host header";
+  if (hosts.size() > 1) return "the request has more than one Host header";
+  if (IsOwnHost(hosts[0], port)) return "";
+  return "Host '" + hosts[0] + "' is not this server (127.0.0.1:" + std::to_string(port) +
+         ", localhost:" + std::to_string(port) + " or [::1]:" + std::to_string(port) + ")";
+}
+
+// Sends what a GET or HEAD of `target` names: the lesson's name, a file, or 404.
+void ServeTarget(const LabSite& site, int fd, const std::string& target, bool head_only) {
+  // lesson.json: which lesson is served (the page's title comes from its name).
+  const auto clean = CleanUrlPath(target);
+  if (clean && *clean == "/lesson.json") {
+    const nlohmann::json about = {{"file", site.lesson_file.filename().string()}};
+    SendAll(fd, TextResponse(200, "OK", "application/json", about.dump(), head_only));
+    return;
+  }
+  const auto file = ResolveLabPath(site, target);
+  if (!file) {
+    SendAll(fd, ErrorResponse(404, "Not Found", target, head_only));
+    return;
+  }
+  SendFile(fd, *file, head_only);
+}
+
+// Answers one complete request head ("GET /path HTTP/1.1\r\nHost: ...\r\n\r\n").
+void Answer(const ServeContext& context, int fd, const std::string& head) {
   std::istringstream first_line(head.substr(0, head.find("\r\n")));
   std::string method, target, version;
   first_line >> method >> target >> version;
-  if (version.rfind("HTTP/1.", 0) != 0) return HttpError(400, "Bad Request", "not HTTP/1.x");
+  if (version.rfind("HTTP/1.", 0) != 0) {
+    SendAll(fd, ErrorResponse(400, "Bad Request", "not HTTP/1.x"));
+    return;
+  }
   const bool head_only = method == "HEAD";
-  if (method != "GET" && !head_only) {
-    return HttpError(405, "Method Not Allowed", "only GET and HEAD are served");
-  }
-  const auto clean = CleanUrlPath(target);
-  // models/NAME.files.json: the files a model pulls in, for the lab's loader.
-  static const std::regex kFilesJson(R"(^/models/([A-Za-z0-9_.-]+\.xml)\.files\.json$)");
-  std::smatch match;
-  if (clean && std::regex_match(*clean, match, kFilesJson)) {
-    if (auto model = ResolveLabPath(site, "/models/" + match[1].str())) {
-      return HttpResponse(200, "OK", "application/json", LabModelFilesJson(*model), head_only);
-    }
-  }
-  // lesson.json: which lesson is served (the page's title comes from its name).
-  if (clean && *clean == "/lesson.json") {
-    const nlohmann::json about = {{"file", site.lesson_file.filename().string()}};
-    return HttpResponse(200, "OK", "application/json", about.dump(), head_only);
-  }
-  const auto file = clean ? ResolveLabPath(site, *clean) : std::nullopt;
-  if (!file) return HttpError(404, "Not Found", target);
-  return HttpResponse(200, "OK", LabMimeType(*file), ReadFileBytes(*file), head_only);
-}
-
-// Sends all of `bytes` (a peer that went away is not our problem).
-void SendAll(int fd, const std::string& bytes) {
-  size_t sent = 0;
-  while (sent < bytes.size()) {
-    const ssize_t n = ::send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
-    if (n <= 0) return;
-    sent += static_cast<size_t>(n);
+  const std::string host_problem = HostProblem(head, context.port);
+  if (!host_problem.empty()) {
+    SendAll(fd, ErrorResponse(421, "Misdirected Request", host_problem, head_only));
+  } else if (method != "GET" && !head_only) {
+    SendAll(fd, ErrorResponse(405, "Method Not Allowed", "only GET and HEAD are served"));
+  } else {
+    ServeTarget(context.site, fd, target, head_only);
   }
 }
 
-// Reads one request head from a connection, answers it and closes it.
-void HandleConnection(const LabSite& site, int fd) {
-  timeval timeout{5, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-  std::string head;
+// Milliseconds left until `deadline`, rounded up (0 once it has passed).
+int MillisecondsLeft(Clock::time_point deadline) {
+  const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
+  return static_cast<int>(std::max<std::chrono::milliseconds::rep>(left.count(), 0));
+}
+
+// Waits until `fd` has bytes (or an end) to read; false when `deadline` passes first.
+bool WaitReadable(int fd, Clock::time_point deadline) {
+  for (int left; (left = MillisecondsLeft(deadline)) > 0;) {
+    pollfd watch{fd, POLLIN, 0};
+    const int ready = ::poll(&watch, 1, left);
+    if (ready > 0) return true;
+    if (ready < 0 && errno != EINTR) return false;
+  }
+  return false;
+}
+
+// How reading a request head ended.
+enum class HeadRead { kComplete, kClosed, kTooLong, kTimedOut };
+
+// Reads up to the blank line that ends a request head, all before `deadline`: one budget
+// for every read, so a peer trickling a byte at a time is cut off as well.
+HeadRead ReadRequestHead(int fd, Clock::time_point deadline, std::string& head) {
   char buffer[4096];
-  while (head.find("\r\n\r\n") == std::string::npos && head.size() < kMaxRequestHead) {
+  while (head.find("\r\n\r\n") == std::string::npos) {
+    if (head.size() >= kMaxRequestHead) return HeadRead::kTooLong;
+    if (!WaitReadable(fd, deadline)) return HeadRead::kTimedOut;
     const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
-    if (n <= 0) break;
+    if (n <= 0) return HeadRead::kClosed;
     head.append(buffer, static_cast<size_t>(n));
   }
-  if (head.find("\r\n\r\n") != std::string::npos) {
-    SendAll(fd, Answer(site, head));
-  } else if (!head.empty()) {
-    SendAll(fd, HttpError(400, "Bad Request", "incomplete or oversized request head"));
+  return HeadRead::kComplete;
+}
+
+// Ends our side, drops a little of whatever the peer sent that we did not read (so the
+// close does not reset the connection under our answer) and closes.
+void CloseConnection(int fd) {
+  ::shutdown(fd, SHUT_WR);
+  char sink[4096];
+  for (int i = 0; i < 16 && ::recv(fd, sink, sizeof sink, MSG_DONTWAIT) > 0; ++i) {
   }
   ::close(fd);
+}
+
+// Reads one request head from a connection, answers it and closes it. A connection that
+// sent nothing before the deadline is closed without a word (like an idle preconnect).
+void HandleConnection(const ServeContext& context, int fd) {
+  const timeval send_timeout{kSendTimeoutSeconds, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &send_timeout, sizeof send_timeout);
+  std::string head;
+  const HeadRead outcome = ReadRequestHead(fd, Clock::now() + context.limits.head_deadline, head);
+  if (outcome == HeadRead::kComplete) {
+    Answer(context, fd, head);
+  } else if (outcome == HeadRead::kTimedOut && !head.empty()) {
+    SendAll(fd, ErrorResponse(408, "Request Timeout", "the request head took too long"));
+  } else if (!head.empty()) {
+    SendAll(fd, ErrorResponse(400, "Bad Request", "incomplete or oversized request head"));
+  }
+  CloseConnection(fd);
+}
+
+// One of the server's connection slots, held while a connection's thread runs; the
+// destructor gives it back on every way out, so another connection can come in.
+class ConnectionSlot {
+ public:
+  // Takes a slot unless `limit` are taken already (then held() is false).
+  ConnectionSlot(std::shared_ptr<std::atomic<int>> open, int limit) : open_(std::move(open)) {
+    if (open_->fetch_add(1) >= limit) Release();
+  }
+  ConnectionSlot(ConnectionSlot&& other) noexcept = default;
+  ConnectionSlot& operator=(ConnectionSlot&&) = delete;
+  ~ConnectionSlot() { Release(); }
+  bool held() const { return open_ != nullptr; }
+
+ private:
+  void Release() {
+    if (open_) open_->fetch_sub(1);
+    open_.reset();
+  }
+  std::shared_ptr<std::atomic<int>> open_;
+};
+
+// Answers 503 without reading the request, never blocking the accept loop, and closes.
+void RefuseBusy(int fd) {
+  const std::string reply =
+      ErrorResponse(503, "Service Unavailable", "too many open connections, try again");
+  ::send(fd, reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  CloseConnection(fd);
+}
+
+// Hands a new connection to a thread of its own, or refuses it at once when every slot is
+// taken (or no thread can be started).
+void Dispatch(const std::shared_ptr<const ServeContext>& context,
+              const std::shared_ptr<std::atomic<int>>& open, int fd) {
+  ConnectionSlot slot(open, context->limits.max_connections);
+  if (slot.held()) {
+    try {
+      std::thread([context, fd, slot = std::move(slot)] { HandleConnection(*context, fd); })
+          .detach();
+      return;
+    } catch (const std::system_error&) {
+      // the slot went back with the lambda; refuse below
+    }
+  }
+  RefuseBusy(fd);
 }
 
 // Text of the last socket error, for messages.
@@ -275,17 +451,13 @@ std::string LabMimeType(const fs::path& file) {
   return "application/octet-stream";
 }
 
-std::string LabModelFilesJson(const fs::path& model_file) {
-  std::set<std::string> found;
-  CollectModelFiles(model_file.parent_path(), model_file.filename().string(), found);
-  nlohmann::json out = {{"model", model_file.filename().string()},
-                        {"files", std::vector<std::string>(found.begin(), found.end())}};
-  return out.dump();
-}
-
-LabServer::LabServer(LabSite site, int port) : site_(std::move(site)) {
+LabServer::LabServer(LabSite site, int port, LabLimits limits)
+    : site_(std::move(site)), limits_(limits) {
   if (port < 0 || port > 65535) {
     throw Error("lab: --port " + std::to_string(port) + " is not a TCP port (0 to 65535)");
+  }
+  if (limits_.head_deadline.count() <= 0 || limits_.max_connections <= 0) {
+    throw Error("lab: the request deadline and the connection cap must be positive");
   }
   listen_fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
   if (listen_fd_ < 0) throw Error(SocketError("socket"));
@@ -312,13 +484,14 @@ LabServer::~LabServer() {
 }
 
 void LabServer::Serve() {
+  const auto context = std::make_shared<const ServeContext>(ServeContext{site_, port_, limits_});
   while (!stopping_) {
     const int fd = ::accept(listen_fd_, nullptr, nullptr);
     if (fd < 0) {
       if (errno == EINTR || errno == ECONNABORTED) continue;
       return;  // Stop() shut the socket down
     }
-    std::thread([site = site_, fd] { HandleConnection(site, fd); }).detach();
+    Dispatch(context, open_connections_, fd);
   }
 }
 

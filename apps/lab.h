@@ -1,11 +1,15 @@
 // `simlab lab LESSON.txt [--port P]`: serves the lesson page on 127.0.0.1 (a small
-// static HTTP/1.1 GET server): web/lesson (the page), web/lab (the live lab), web/dist
+// static HTTP/1.1 GET/HEAD server): web/lesson (the page), web/lab (the live lab), web/dist
 // (the engine in WebAssembly), the three and uplot packages, the lesson text and models/.
+// Only requests whose Host names this server are answered (DNS-rebinding defence), a
+// request head must arrive within a total deadline, and open connections are capped.
 #ifndef SIMLAB_APPS_LAB_H_
 #define SIMLAB_APPS_LAB_H_
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -29,15 +33,20 @@ std::optional<std::filesystem::path> ResolveLabPath(const LabSite& site,
 // Content-Type for a file by its extension (application/wasm, text/javascript, ...).
 std::string LabMimeType(const std::filesystem::path& file);
 
-// The XML files a model pulls in through file="..." (include, attach), relative to its
-// folder, found recursively; a JSON object {"model": ..., "files": [...]}.
-std::string LabModelFilesJson(const std::filesystem::path& model_file);
+// How long and how many: a connection must deliver its whole request head within
+// head_deadline (one budget for all its reads, so a peer trickling bytes is cut off too),
+// and at most max_connections are served at once (one more is answered 503 at once).
+struct LabLimits {
+  std::chrono::milliseconds head_deadline{10000};
+  int max_connections = 64;
+};
 
 // A listening socket on 127.0.0.1 that serves `site`, one thread per connection.
 class LabServer {
  public:
-  // Binds 127.0.0.1:port (0 = any free port). Throws simlab::Error when it cannot.
-  LabServer(LabSite site, int port);
+  // Binds 127.0.0.1:port (0 = any free port). Throws simlab::Error when it cannot or
+  // when the limits are not positive.
+  LabServer(LabSite site, int port, LabLimits limits = {});
   ~LabServer();
   LabServer(const LabServer&) = delete;
   LabServer& operator=(const LabServer&) = delete;
@@ -50,6 +59,9 @@ class LabServer {
 
  private:
   LabSite site_;
+  LabLimits limits_;
+  // Connections being served; shared with their detached threads, which may outlive us.
+  std::shared_ptr<std::atomic<int>> open_connections_ = std::make_shared<std::atomic<int>>(0);
   int listen_fd_ = -1;
   int port_ = 0;
   std::atomic<bool> stopping_{false};

@@ -1,17 +1,25 @@
 // `simlab lab`'s static server: started on an ephemeral port in a thread, it serves the
 // lesson page, the WebAssembly engine as application/wasm, the lesson text and models,
-// and answers 404 for paths that climb out of its roots.
+// and answers 404 for paths that climb out of its roots. It answers only requests whose
+// Host names it (421 otherwise), cuts off slow request heads (408), answers 503 beyond its
+// connection cap, streams large files intact and answers 500 for unreadable ones.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <random>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "lab.h"
 
@@ -22,63 +30,130 @@ namespace fs = std::filesystem;
 
 const fs::path kRepo = SIMLAB_SOURCE_DIR;
 
-// Status code, Content-Type and body of one response.
+using namespace std::chrono_literals;
+
+// Status code, Content-Type, Content-Length (-1 when absent) and body of one response.
 struct Reply {
   int status = 0;
   std::string type;
+  long long length = -1;
   std::string body;
 };
 
-// Sends a raw request to 127.0.0.1:port and reads the whole answer.
-Reply Fetch(int port, const std::string& request) {
+// The Host value the server accepts.
+std::string HostOf(int port) { return "127.0.0.1:" + std::to_string(port); }
+
+// A client socket connected to 127.0.0.1:port; reads give up after 5 s so a server that
+// never answers fails the test instead of hanging it.
+int Connect(int port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   address.sin_port = htons(static_cast<uint16_t>(port));
   EXPECT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-  ::send(fd, request.data(), request.size(), 0);
+  const timeval timeout{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  return fd;
+}
+
+// Everything the server sends until it closes.
+std::string ReadAll(int fd) {
   std::string raw;
   char buffer[65536];
   for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) raw.append(buffer, n);
-  ::close(fd);
+  return raw;
+}
+
+// The value of header `name` ("Content-Type: ") in a response head, or empty.
+std::string HeaderValue(const std::string& raw, size_t head_end, const std::string& name) {
+  const size_t at = raw.find(name);
+  if (at >= head_end) return "";
+  return raw.substr(at + name.size(), raw.find("\r\n", at) - at - name.size());
+}
+
+// Splits a raw answer into its parts.
+Reply ParseReply(const std::string& raw) {
   Reply reply;
   const size_t head_end = raw.find("\r\n\r\n");
   if (raw.size() < 12 || head_end == std::string::npos) return reply;
   reply.status = std::stoi(raw.substr(9, 3));
-  const size_t type_at = raw.find("Content-Type: ");
-  if (type_at < head_end) {
-    reply.type = raw.substr(type_at + 14, raw.find("\r\n", type_at) - type_at - 14);
-  }
+  reply.type = HeaderValue(raw, head_end, "Content-Type: ");
+  const std::string length = HeaderValue(raw, head_end, "Content-Length: ");
+  if (!length.empty()) reply.length = std::stoll(length);
   reply.body = raw.substr(head_end + 4);
   return reply;
 }
 
-Reply Get(int port, const std::string& path) {
-  return Fetch(port, "GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+// Sends a raw request to 127.0.0.1:port and reads the whole answer.
+Reply Fetch(int port, const std::string& request) {
+  const int fd = Connect(port);
+  ::send(fd, request.data(), request.size(), MSG_NOSIGNAL);
+  const std::string raw = ReadAll(fd);
+  ::close(fd);
+  return ParseReply(raw);
 }
 
-// A server on a free port, serving in a background thread for one test.
+Reply Get(int port, const std::string& path) {
+  return Fetch(port, "GET " + path + " HTTP/1.1\r\nHost: " + HostOf(port) + "\r\n\r\n");
+}
+
+Reply Head(int port, const std::string& path) {
+  return Fetch(port, "HEAD " + path + " HTTP/1.1\r\nHost: " + HostOf(port) + "\r\n\r\n");
+}
+
+// A file's bytes.
+std::string ReadBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// A server on a free port, serving in a background thread until destroyed.
+class RunningServer {
+ public:
+  explicit RunningServer(LabSite site, LabLimits limits = {})
+      : server_(std::move(site), 0, limits), thread_([this] { server_.Serve(); }) {}
+  ~RunningServer() {
+    server_.Stop();
+    thread_.join();
+  }
+  int port() const { return server_.port(); }
+
+ private:
+  LabServer server_;
+  std::thread thread_;
+};
+
+// A server on the repository for each test, and a scratch folder for its files.
 class LabServerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     fs::create_directories(scratch_);
-    std::ofstream(scratch_ / "lesson-test.txt") << "## A lesson\nSome text.\n";
+    std::ofstream(lesson()) << "## A lesson\nSome text.\n";
     // A fake engine binary, so the test does not need the WebAssembly build.
     std::ofstream(scratch_ / "engine.wasm") << "wasm";
-    server_ = std::make_unique<LabServer>(LabSite{kRepo, scratch_ / "lesson-test.txt"}, 0);
-    thread_ = std::thread([this] { server_->Serve(); });
+    server_ = std::make_unique<RunningServer>(LabSite{kRepo, lesson()});
   }
   void TearDown() override {
-    server_->Stop();
-    thread_.join();
+    server_.reset();
     fs::remove_all(scratch_);
   }
   int port() const { return server_->port(); }
+  fs::path lesson() const { return scratch_ / "lesson-test.txt"; }
+
+  // A repository of our own (a page and an empty models/) for files made by a test.
+  fs::path MakeSiteRoot() const {
+    const fs::path root = scratch_ / "site";
+    fs::create_directories(root / "web/lesson");
+    fs::create_directories(root / "models");
+    std::ofstream(root / "web/lesson/index.html") << "<html></html>";
+    return root;
+  }
 
   fs::path scratch_ = fs::temp_directory_path() / ("simlab_lab_test_" + std::to_string(::getpid()));
-  std::unique_ptr<LabServer> server_;
-  std::thread thread_;
+  std::unique_ptr<RunningServer> server_;
 };
 
 TEST_F(LabServerTest, ServesThePageOnAnEphemeralPort) {
@@ -100,9 +175,8 @@ TEST_F(LabServerTest, ServesTheLessonTextAndModels) {
   const Reply model = Get(port(), "/models/gantry_gripper.xml");
   EXPECT_EQ(model.status, 200);
   EXPECT_EQ(model.type, "application/xml");
-  const Reply files = Get(port(), "/models/gantry_gripper.xml.files.json");
-  EXPECT_EQ(files.status, 200);
-  EXPECT_EQ(files.body, R"({"files":["gripper.xml"],"model":"gantry_gripper.xml"})");
+  // The old file-list endpoint is gone (the lab's loader finds included files itself).
+  EXPECT_EQ(Get(port(), "/models/gantry_gripper.xml.files.json").status, 404);
 }
 
 TEST_F(LabServerTest, WasmHasItsMimeType) {
@@ -112,6 +186,7 @@ TEST_F(LabServerTest, WasmHasItsMimeType) {
     EXPECT_EQ(wasm.status, 200);
     EXPECT_EQ(wasm.type, "application/wasm");
     EXPECT_EQ(wasm.body.substr(0, 4), std::string("\0asm", 4));
+    EXPECT_TRUE(wasm.body == ReadBytes(kRepo / "web/dist/simlab.wasm"));
   }
   EXPECT_EQ(LabMimeType(scratch_ / "engine.wasm"), "application/wasm");
   EXPECT_EQ(LabMimeType("x.mjs"), "text/javascript; charset=utf-8");
@@ -130,25 +205,142 @@ TEST_F(LabServerTest, RefusesPathsOutsideItsRoots) {
   EXPECT_FALSE(ResolveLabPath(LabSite{kRepo, scratch_ / "lesson-test.txt"}, "/lesson/../../README.md"));
 }
 
-// An absolute file= (here an XML outside the model folder naming a file of its own) is
-// neither listed nor read; relative files next to the model are.
-TEST_F(LabServerTest, ModelFileListSkipsAbsoluteNames) {
-  const fs::path folder = scratch_ / "model";
-  fs::create_directories(folder);
-  std::ofstream(scratch_ / "outside.xml") << R"(<mujoco><include file="leaked.xml"/></mujoco>)";
-  std::ofstream(folder / "part.xml") << "<mujoco/>";
-  std::ofstream(folder / "main.xml") << "<mujoco><include file=\"" + (scratch_ / "outside.xml").string() +
-                                            "\"/><include file=\"part.xml\"/></mujoco>";
-  EXPECT_EQ(LabModelFilesJson(folder / "main.xml"), R"({"files":["part.xml"],"model":"main.xml"})");
+TEST_F(LabServerTest, AnswersOnlyGetAndHead) {
+  EXPECT_EQ(Fetch(port(), "POST / HTTP/1.1\r\nHost: " + HostOf(port()) + "\r\n\r\n").status, 405);
+  EXPECT_EQ(Fetch(port(), "nonsense\r\n\r\n").status, 400);
+  // HEAD: the headers a GET would send (Content-Length included), no body.
+  const Reply head = Head(port(), "/lesson.txt");
+  EXPECT_EQ(head.status, 200);
+  EXPECT_EQ(head.type, "text/plain; charset=utf-8");
+  EXPECT_EQ(head.length, 23);
+  EXPECT_EQ(head.body, "");
+  const Reply lesson_json = Head(port(), "/lesson.json");
+  EXPECT_EQ(lesson_json.status, 200);
+  EXPECT_GT(lesson_json.length, 0);
+  EXPECT_EQ(lesson_json.body, "");
 }
 
-TEST_F(LabServerTest, AnswersOnlyGetAndHead) {
-  EXPECT_EQ(Fetch(port(), "POST / HTTP/1.1\r\nHost: x\r\n\r\n").status, 405);
-  EXPECT_EQ(Fetch(port(), "nonsense\r\n\r\n").status, 400);
-  const Reply head = Fetch(port(), "HEAD /lesson.txt HTTP/1.1\r\nHost: x\r\n\r\n");
+// DNS-rebinding defence: only a Host naming this server (any case) is answered.
+TEST_F(LabServerTest, AnswersOnlyItsOwnHost) {
+  const std::string own_port = std::to_string(port());
+  const std::vector<std::string> own = {"127.0.0.1:" + own_port, "LocalHost:" + own_port,
+                                        "[::1]:" + own_port};
+  for (const std::string& host : own) {
+    const std::string request = "GET /lesson.txt HTTP/1.1\r\nhOsT:  " + host + " \r\n\r\n";
+    EXPECT_EQ(Fetch(port(), request).status, 200) << host;
+  }
+  const std::string other_port = std::to_string(port() == 65535 ? 1 : port() + 1);
+  const std::vector<std::string> foreign = {"evil.example:" + own_port, "evil.example", "127.0.0.1",
+                                            "127.0.0.1:" + other_port,
+                                            "localhost.evil.example:" + own_port, ""};
+  for (const std::string& host : foreign) {
+    const Reply reply = Fetch(port(), "GET /lesson.txt HTTP/1.1\r\nHost: " + host + "\r\n\r\n");
+    EXPECT_EQ(reply.status, 421) << host;
+    EXPECT_NE(reply.body.find("is not this server"), std::string::npos) << host;
+    EXPECT_EQ(reply.body.find("Some text"), std::string::npos) << host;
+  }
+}
+
+// A request without Host (HTTP/1.0 too) or with two of them is refused the same way.
+TEST_F(LabServerTest, RefusesMissingOrRepeatedHost) {
+  for (const char* version : {"HTTP/1.1", "HTTP/1.0"}) {
+    const Reply reply = Fetch(port(), std::string("GET /lesson.txt ") + version + "\r\n\r\n");
+    EXPECT_EQ(reply.status, 421) << version;
+    EXPECT_EQ(reply.type, "text/plain; charset=utf-8");
+    EXPECT_NE(reply.body.find("no Host header"), std::string::npos) << reply.body;
+  }
+  const Reply twice = Fetch(port(), "GET /lesson.txt HTTP/1.1\r\nHost: " + HostOf(port()) +
+                                        "\r\nHost: evil.example\r\n\r\n");
+  EXPECT_EQ(twice.status, 421);
+  EXPECT_NE(twice.body.find("more than one Host"), std::string::npos) << twice.body;
+}
+
+// True when `fd` has something to read (or has been closed) within `wait`.
+bool Readable(int fd, std::chrono::milliseconds wait) {
+  pollfd watch{fd, POLLIN, 0};
+  return ::poll(&watch, 1, static_cast<int>(wait.count())) > 0;
+}
+
+// A slow-loris head (one byte every 50 ms, well inside any per-read timeout) is cut off
+// once the whole-head deadline (300 ms here) has passed.
+TEST_F(LabServerTest, SlowRequestHeadIsCutOffByTheDeadline) {
+  RunningServer slow(LabSite{kRepo, lesson()}, LabLimits{300ms, 64});
+  const std::string request = "GET /lesson.txt HTTP/1.1\r\nHost: " + HostOf(slow.port()) + "\r\n\r\n";
+  const int fd = Connect(slow.port());
+  const auto start = std::chrono::steady_clock::now();
+  size_t sent = 0;
+  while (sent < request.size() && !Readable(fd, 50ms)) {
+    ::send(fd, &request[sent++], 1, MSG_NOSIGNAL);
+  }
+  const std::string raw = ReadAll(fd);
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  ::close(fd);
+  EXPECT_LT(sent, request.size());
+  EXPECT_EQ(raw.substr(0, 12), "HTTP/1.1 408") << raw;
+  EXPECT_GE(elapsed, 250ms);
+  EXPECT_LT(elapsed, 2s);
+}
+
+// Asks for the lesson until it is served (slots come back as threads leave); false
+// after about 2 s.
+bool EventuallyServed(int port) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    if (Get(port, "/lesson.txt").status == 200) return true;
+    std::this_thread::sleep_for(20ms);
+  }
+  return false;
+}
+
+// With every slot held by an idle connection, one more is answered 503 at once; once the
+// idle ones hang up, requests are served again.
+TEST_F(LabServerTest, ConnectionsBeyondTheCapAreAnswered503) {
+  constexpr int kCap = 4;
+  RunningServer capped(LabSite{kRepo, lesson()}, LabLimits{20s, kCap});
+  std::vector<int> idle;
+  for (int i = 0; i < kCap; ++i) idle.push_back(Connect(capped.port()));
+  const int extra = Connect(capped.port());
+  const Reply refused = ParseReply(ReadAll(extra));  // sent nothing: the answer comes anyway
+  ::close(extra);
+  EXPECT_EQ(refused.status, 503);
+  EXPECT_NE(refused.body.find("too many open connections"), std::string::npos) << refused.body;
+  for (const int fd : idle) ::close(fd);
+  EXPECT_TRUE(EventuallyServed(capped.port()));
+}
+
+// A file of several chunks (3 MiB and a bit, random bytes) arrives whole, with its size
+// as Content-Length; HEAD gives the same length and no bytes.
+TEST_F(LabServerTest, LargeFilesStreamIntact) {
+  const fs::path root = MakeSiteRoot();
+  std::string bytes(3 * 1024 * 1024 + 123, '\0');
+  std::mt19937 random(7);
+  for (char& c : bytes) c = static_cast<char>(random());
+  std::ofstream(root / "models/big.bin", std::ios::binary) << bytes;
+  RunningServer site(LabSite{root, lesson()});
+  const Reply reply = Get(site.port(), "/models/big.bin");
+  EXPECT_EQ(reply.status, 200);
+  EXPECT_EQ(reply.type, "application/octet-stream");
+  EXPECT_EQ(reply.length, static_cast<long long>(bytes.size()));
+  EXPECT_EQ(reply.body.size(), bytes.size());
+  EXPECT_TRUE(reply.body == bytes);
+  const Reply head = Head(site.port(), "/models/big.bin");
   EXPECT_EQ(head.status, 200);
+  EXPECT_EQ(head.length, static_cast<long long>(bytes.size()));
   EXPECT_EQ(head.body, "");
 }
+
+// A file that is there but cannot be opened answers 500, not an empty 200.
+TEST_F(LabServerTest, UnreadableFileAnswers500) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root reads a file whatever its mode";
+  const fs::path root = MakeSiteRoot();
+  std::ofstream(root / "models/secret.xml") << "<mujoco/>";
+  fs::permissions(root / "models/secret.xml", fs::perms::none);
+  RunningServer site(LabSite{root, lesson()});
+  const Reply reply = Get(site.port(), "/models/secret.xml");
+  EXPECT_EQ(reply.status, 500);
+  EXPECT_NE(reply.body.find("cannot read secret.xml"), std::string::npos) << reply.body;
+  EXPECT_EQ(Get(site.port(), "/").status, 200);
+}
+
 
 TEST(LabServer, PortInUseIsAClearError) {
   LabServer first({kRepo, kRepo / "README.md"}, 0);
@@ -158,6 +350,13 @@ TEST(LabServer, PortInUseIsAClearError) {
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("cannot listen on 127.0.0.1:"), std::string::npos) << e.what();
   }
+}
+
+TEST(LabServer, LimitsMustBePositive) {
+  EXPECT_THROW(LabServer({kRepo, kRepo / "README.md"}, 0, LabLimits{std::chrono::milliseconds(0), 4}),
+               std::exception);
+  EXPECT_THROW(LabServer({kRepo, kRepo / "README.md"}, 0, LabLimits{std::chrono::seconds(1), 0}),
+               std::exception);
 }
 
 }  // namespace
