@@ -1,18 +1,25 @@
 # The lab's tests, run by ctest: the expression parser and lab-block reader in node
-# (web/test/lab_expr.mjs, no WebAssembly), and the lab end to end in headless Chromium
-# (web/test/lab_e2e.mjs: sliders, readouts, real time, readouts equal to the native
-# `simlab rollout`; screenshots saved in the build folder's lab_screenshots). The
-# browser test reports "skipped" (77) with the reason when web/dist is missing or older
-# than the sources, or Chromium / web/node_modules are missing.
+# (web/test/lab_expr.mjs, no WebAssembly), and the lab end to end in headless Chromium on
+# the lesson page served by `simlab lab` (web/test/lab_e2e.mjs: the lab against its block,
+# toggles, sliders, readouts, real time, readouts equal to the native `simlab rollout`;
+# screenshots saved in the build folder's lab_screenshots). The browser test reports
+# "skipped" (77) with the reason when web/dist is missing or older than the sources, or
+# Chromium / web/node_modules are missing; with SIMLAB_REQUIRE_BROWSER_TESTS it fails.
 find_program(SIMLAB_NODE node)
 if(SIMLAB_NODE)
   add_test(NAME lab_expr
            COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/lab_expr.mjs
            WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+  # The lab's model file finder in node (web/lab/model_files.mjs), and the fixture with its
+  # STL mesh compiled by the WebAssembly build when web/dist exists.
+  add_test(NAME lab_model_files
+           COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/model_files.mjs
+                   --dist ${CMAKE_SOURCE_DIR}/web/dist
+           WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   add_test(NAME lab_e2e
            COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/lab_e2e.mjs
                    --simlab $<TARGET_FILE:simlab> --dist ${CMAKE_SOURCE_DIR}/web/dist
-                   --shots ${CMAKE_BINARY_DIR}/lab_screenshots
+                   --shots ${CMAKE_BINARY_DIR}/lab_screenshots ${SIMLAB_BROWSER_REQUIRE}
            WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   set_tests_properties(lab_e2e PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 RUN_SERIAL TRUE)
 endif()

@@ -16,61 +16,9 @@
 // fence without its closing ``` ends at the next block that is clearly not its content
 // (another fence, a heading, a callout, the knowledge check, or a prose sentence).
 
-// ---------------------------------------------------------------- quotes and JSON
+import { checkLabSpec, isDoubleQuote, parseLenientJson } from '../lab/spec.mjs';
 
-const kOpenDouble = '\u201c';
-const kCloseDouble = '\u201d';
-const kSingles = /[\u2018\u2019]/g;
-
-function isDoubleQuote(c) {
-  return c === '"' || c === kOpenDouble || c === kCloseDouble;
-}
-
-// The next character after position i that is not white space ('' at the end).
-function nextVisible(text, i) {
-  while (i < text.length && /\s/.test(text[i])) i++;
-  return i < text.length ? text[i] : '';
-}
-
-// Typographic quotes -> ASCII: a double quote that opens or closes a JSON string becomes
-// ", one inside a string (followed by more text) becomes \", and ‘ ’ become '.
-export function normalizeQuotes(text) {
-  let out = '';
-  let inString = false;
-  for (let i = 0; i < text.length; i++) {
-    const c = text[i];
-    if (inString && c === '\\' && i + 1 < text.length) {
-      const escaped = text[++i];
-      out += isDoubleQuote(escaped) ? '\\"' : c + escaped;
-    } else if (isDoubleQuote(c) && !inString) {
-      out += '"';
-      inString = true;
-    } else if (isDoubleQuote(c)) {
-      const closes = ',:}]'.includes(nextVisible(text, i + 1)) || nextVisible(text, i + 1) === '';
-      out += closes ? '"' : '\\"';
-      inString = !closes;
-    } else {
-      out += c.replace(kSingles, "'");
-    }
-  }
-  return out;
-}
-
-// JSON with typographic quotes: the careful normalisation first, then a plain
-// replacement. Returns {value} or {error}.
-export function parseLenientJson(text) {
-  const attempts = [normalizeQuotes(text),
-    text.replace(/[\u201c\u201d]/g, '"').replace(kSingles, "'")];
-  let firstError = null;
-  for (const candidate of attempts) {
-    try {
-      return { value: JSON.parse(candidate) };
-    } catch (e) {
-      firstError ??= e.message;
-    }
-  }
-  return { error: firstError };
-}
+// ---------------------------------------------------------------- JSON objects over lines
 
 // End index (exclusive) of the balanced {...} starting at `start` in `text`, honouring
 // strings with any kind of double quote; -1 when it never closes.
@@ -261,6 +209,16 @@ function unclosedEnd(lines, j) {
   return lines.length;
 }
 
+// Why a lab block's JSON is not a usable spec ('' when it is).
+function labSpecProblem(spec) {
+  try {
+    checkLabSpec(spec);
+    return '';
+  } catch (e) {
+    return e.message;
+  }
+}
+
 // A lab block: ```lab ENGINE {json} (``` optional), the JSON possibly over several lines.
 function readLab(lines, i, info) {
   const engine = /^[A-Za-z]\w*/.exec(info)?.[0] ?? '';
@@ -270,6 +228,8 @@ function readLab(lines, i, info) {
   const parsed = parseLenientJson(json);
   const block = { type: 'lab', engine, spec: parsed.value ?? null, raw: json };
   if (parsed.error) block.error = parsed.error;
+  else block.error = labSpecProblem(parsed.value);
+  if (!block.error) delete block.error;
   const closedAfter = rest.startsWith('```') || (next < lines.length && lines[next].trim() === '```');
   return { block, next: !rest.startsWith('```') && closedAfter ? next + 1 : next };
 }

@@ -1,56 +1,47 @@
-// The lab end to end in headless Chromium (Debian's, driven by playwright-core): serves the
-// repository on 127.0.0.1, opens web/lab/index.html (lesson 2.3's lab block, verbatim with
-// its typographic quotes), and like a student: turns the toggles on, drags the carriage z
-// slider to -0.33 and the grip slider to 0 (mouse, then arrow keys for the exact value),
-// waits for the grip force readout to reach the grip actuator's forcerange (read from
-// model.actuator_forcerange) with both finger readouts equal, then raises z slowly with
-// the arrow keys: the cube height readout must rise. Saves screenshots before and after,
-// checks the frame rate and real-time factor shown on the page, and finally drives the
-// sliders through the page's API with pacing off and compares every readout with the
-// same expressions evaluated on `simlab rollout` of the same control sequence.
+// The lab end to end in headless Chromium (Debian's, driven by playwright-core), on the
+// lesson page as a student gets it: starts `simlab lab LESSON`, opens its page and finds
+// the live lab in the lesson. Checks the lab against its block in the lesson (title,
+// camera, sliders with labels, units, ranges, steps and initial values, readouts, plot
+// traces, window and dashes, note, dock) and that its picture is not blank; turns the
+// toggles on (contact points, force arrows and joint axes appear, and go again when
+// turned off); drags the carriage z slider to -0.33 and the grip slider to 0 (mouse,
+// then arrow keys for the exact value), waits for the grip force readout to reach the
+// grip actuator's forcerange (read from model.actuator_forcerange) with both finger
+// readouts equal, then raises z slowly with the arrow keys: the cube height readout must
+// rise, and stay up. Saves screenshots before and after, checks the frame rate and
+// real-time factor shown on the page, and finally drives the sliders through the lab's
+// API with pacing off and compares every readout with the same expressions evaluated on
+// `simlab rollout` of the same control sequence. A second page (web/lab/index.html with
+// web/lab/fixtures/all_geoms.json) draws every geom type and shows bad expressions as
+// errors.
 //
-//   node web/test/lab_e2e.mjs --simlab build/simlab [--dist web/dist] [--shots DIR] [--tol 1e-12]
+//   node web/test/lab_e2e.mjs --simlab build/simlab [--lesson PATH] [--shots DIR]
+//                             [--tol 1e-12] [--require yes]
 //
-// Exits 77 (ctest: skipped) when the WASM build, Chromium or playwright-core is missing.
+// Exits 77 (ctest: skipped) when the WASM build, Chromium or playwright-core is missing
+// (with --require yes: fails).
 import fs from 'node:fs';
-import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { evaluateExpr, parseExpr } from '../lab/expr.mjs';
+import { parseLesson } from '../lesson/parse.mjs';
+import { collectProblems, kDefaultLesson, openLabSession } from './browser_harness.mjs';
 import {
-  nativeRollout, openBuilds, parseOptions, playwrightOrSkip, repoRoot,
+  nativeRollout, openBuilds, parseOptions, repoRoot,
 } from './wasm_harness.mjs';
 
 const options = parseOptions(process.argv.slice(2), {
   simlab: path.join(repoRoot, 'build/simlab'),
   dist: path.join(repoRoot, 'web/dist'),
+  lesson: kDefaultLesson,
   shots: path.join(os.tmpdir(), 'simlab-lab-e2e'),
   tol: '1e-12',
   chromium: '/usr/bin/chromium',
 });
 
-// Serves the repository read-only on 127.0.0.1 (web/dist from --dist).
-function serve() {
-  const types = { '.mjs': 'text/javascript', '.js': 'text/javascript', '.wasm': 'application/wasm',
-    '.html': 'text/html', '.css': 'text/css', '.json': 'application/json' };
-  const server = http.createServer((req, res) => {
-    const url = decodeURIComponent(new URL(req.url, 'http://localhost').pathname);
-    if (url === '/favicon.ico') {
-      res.writeHead(204);
-      res.end();
-      return;
-    }
-    const file = url.startsWith('/web/dist/') ? path.join(options.dist, url.slice(10)) : path.join(repoRoot, url);
-    const inside = file.startsWith(repoRoot) || file.startsWith(path.resolve(options.dist));
-    if (!inside || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
-      res.writeHead(404);
-      res.end();
-      return;
-    }
-    res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'text/plain; charset=utf-8' });
-    res.end(fs.readFileSync(file));
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
+// A screenshot of the lab (on the lesson page: the lab's section) into --shots.
+async function shoot(page, name) {
+  await page.locator('section.lab-mount').screenshot({ path: path.join(options.shots, name) });
 }
 
 function check(condition, message) {
@@ -115,13 +106,12 @@ function fingersEqual(r) {
 }
 
 // The student's session, paced in real time.
-async function interactive(page) {
+async function interactive(page, spec) {
   const gripId = await page.evaluate(() => window.lab.sim.nameToId('actuator', 'gripper/grip'));
   const range = await page.evaluate((id) => Array.from(window.lab.sim.model('actuator_forcerange')).slice(2 * id, 2 * id + 2), gripId);
   check(gripId === 3 && range[0] < range[1], `grip actuator ${gripId} has forcerange [${range}]`);
-  for (const box of await page.locator('input[data-toggle]').all()) await box.check();
   await page.waitForTimeout(1000);
-  await page.screenshot({ path: path.join(options.shots, 'lab_before.png'), fullPage: true });
+  await shoot(page, 'lab_before.png');
 
   await dragSlider(page, 'ctrl[2]: carriage z target', -0.33);
   await waitFor(page, 1.5, () => false, fingersEqual);  // the carriage comes down
@@ -135,8 +125,7 @@ async function interactive(page) {
   const before = (await readouts(page))['cube z (m)'].value;
   const clock0 = await page.evaluate(() => window.lab.clock());
 
-  // Raise z slowly, 5 mm at a time, from -0.33 to -0.18 (within a few seconds: the
-  // model's soft friction lets a held cube creep and drop after about 6 s).
+  // Raise z slowly, 5 mm at a time, from -0.33 to -0.18.
   const z = page.getByRole('slider', { name: 'ctrl[2]: carriage z target' });
   for (let k = 0; k < 30; k++) {
     await z.press('ArrowRight');
@@ -147,9 +136,11 @@ async function interactive(page) {
   const after = await readouts(page);
   const clock1 = await page.evaluate(() => window.lab.clock());
   const stats = await page.evaluate(() => window.lab.stats);
-  await page.screenshot({ path: path.join(options.shots, 'lab_after.png'), fullPage: true });
+  await shoot(page, 'lab_after.png');
   check(after['cube z (m)'].value > before + 0.1,
         `cube height readout rose from ${before.toFixed(4)} to ${after['cube z (m)'].text} m`);
+  const cube = await page.evaluate(() => Array.from(window.lab.sim.data('qpos')).slice(5, 8));
+  await checkPicture(page, cube, 'the lifted cube');
   const rtf = (clock1.time - clock0.time) / ((clock1.wall - clock0.wall) / 1000);
   const shown = await page.locator('.simlab-lab-stats').textContent();
   console.log(`page shows "${shown}"; real-time factor over the raise ${rtf.toFixed(4)} ` +
@@ -157,14 +148,20 @@ async function interactive(page) {
               `engine ${stats.engineFactor.toFixed(0)}x real time`);
   check(/fps, real-time factor/.test(shown) && rtf >= 0.99 && stats.engineFactor >= 1,
         'the page keeps real time (the engine is faster than real time)');
+  // Held up, the cube stays in the grip (the model's hard elliptic friction stops the creep).
+  await page.waitForTimeout(2000);
+  const held = await readouts(page);
+  check(Math.abs(held['cube z (m)'].value - after['cube z (m)'].value) < 2e-3,
+        `two seconds later the cube is still held at ${held['cube z (m)'].text} m`);
+  await checkPlotWindow(page, spec.plots[0].window);
   await orbit(page);
-  await pauseAndReset(page);
+  await pauseAndReset(page, spec);
   return range;
 }
 
 // The pause button stops time; reset goes back to the keyframe with the sliders at their
 // initial values.
-async function pauseAndReset(page) {
+async function pauseAndReset(page, spec) {
   await page.getByRole('button', { name: 'pause' }).click();
   const t0 = await page.evaluate(() => window.lab.sim.time);
   await page.waitForTimeout(300);
@@ -177,10 +174,10 @@ async function pauseAndReset(page) {
   const state = await page.evaluate(() => ({
     time: window.lab.sim.time, qpos: Array.from(window.lab.sim.data('qpos')),
     ctrl: Array.from(window.lab.sim.data('ctrl')),
-    sliders: Array.from(document.querySelectorAll('input[type=range]'), (s) => Number(s.value)),
+    sliders: window.lab.controls.map(({ slider }) => Number(slider.value)),
   }));
   const key = await page.evaluate(() => Array.from(window.lab.sim.model('key_qpos') ?? []).slice(0, 12));
-  check(t1 === t0 && state.time === 0 && state.sliders.join() === '0.12,0,0.04' &&
+  check(t1 === t0 && state.time === 0 && state.sliders.join() === spec.controls.map((c) => c.value).join() &&
         state.ctrl.join() === '0.12,0,0,0.04' && (key.length === 0 || state.qpos.join() === key.join()),
         `pause holds time at ${t0.toFixed(3)} s; reset: time 0, sliders ${state.sliders}, ctrl ${state.ctrl}`);
   await page.getByRole('button', { name: 'play' }).click();
@@ -202,7 +199,7 @@ async function orbit(page) {
         view1.distance < view0.distance,
         `mouse orbit and zoom: elevation ${view0.elevation} -> ${view1.elevation.toFixed(1)}, ` +
         `azimuth ${view0.azimuth} -> ${view1.azimuth.toFixed(1)}, distance ${view0.distance} -> ${view1.distance.toFixed(3)}`);
-  await page.screenshot({ path: path.join(options.shots, 'lab_orbit.png'), fullPage: true });
+  await shoot(page, 'lab_orbit.png');
 }
 
 // The lab driven through its API with pacing off: slider moves at fixed steps. Returns
@@ -277,48 +274,181 @@ function compareWithNative(result) {
   check(worst <= Number(options.tol), `browser readouts equal native within ${options.tol}`);
 }
 
-// Chromium on a page of the lab served from here; close() ends both.
-async function openLabPage(playwright, query = '') {
-  const server = await serve();
-  const browser = await playwright.chromium.launch({
-    executablePath: options.chromium,
-    args: ['--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-      '--disable-quic', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync'],
-  });
-  const page = await browser.newPage({ viewport: { width: 900, height: 900 } });
-  const problems = [];
-  page.on('pageerror', (e) => problems.push(String(e)));
-  page.on('console', (m) => { if (m.type() === 'error') problems.push(m.text()); });
-  await page.goto(`http://127.0.0.1:${server.address().port}/web/lab/index.html${query}`);
-  const close = async () => {
-    await browser.close();
-    server.close();
-  };
-  return { page, problems, close };
+// The lesson's lab block, as the lesson parser reads it in node.
+function lessonLabSpec() {
+  const blocks = parseLesson(fs.readFileSync(options.lesson, 'utf8')).blocks.filter((b) => b.type === 'lab');
+  if (blocks.length !== 1 || blocks[0].error) throw new Error(`expected one good lab block in ${options.lesson}`);
+  return blocks[0].spec;
 }
 
-async function waitForLab(page) {
+// What the mounted lab shows, read from the page's DOM and its plot.
+function shownLab() {
+  const lab = window.lab;
+  const root = lab.root;
+  const texts = (selector) => Array.from(root.querySelectorAll(selector), (e) => e.textContent.trim());
+  const chart = lab.plots[0]?.plot.chart;
+  return {
+    title: root.querySelector('h3')?.textContent ?? '',
+    dock: root.classList.contains('simlab-lab--dock') && getComputedStyle(root).position === 'sticky',
+    controls: lab.controls.map(({ slider, shown }) => ({
+      label: slider.getAttribute('aria-label'), min: Number(slider.min), max: Number(slider.max),
+      step: Number(slider.step), value: Number(slider.value), shown: shown.textContent.trim(),
+    })),
+    readoutLabels: texts('.simlab-lab-readout .label'),
+    readoutTexts: texts('.simlab-lab-readout .value'),
+    note: texts('.simlab-lab-note')[0] ?? '',
+    toggles: Array.from(root.querySelectorAll('input[data-toggle]'), (b) => b.dataset.toggle),
+    plot: chart && {
+      labels: chart.series.slice(1).map((series) => series.label),
+      dashed: chart.series.slice(1).map((series) => Array.isArray(series.dash) && series.dash.length > 0),
+      ylabel: chart.axes[1].label, window: lab.plots[0].plot.window,
+    },
+    view: { ...lab.scene.view },
+    cameraZ: lab.scene.camera.position.z,
+  };
+}
+
+// The lab as its block asks: every field of the spec shows up on the page.
+async function checkAgainstSpec(page, spec) {
+  const shown = await page.evaluate(shownLab);
+  check(shown.title === spec.title && shown.dock === (spec.dock === true),
+        `title "${shown.title}", docked (sticky): ${shown.dock}`);
+  spec.controls.forEach((c, k) => {
+    const s = shown.controls[k];
+    check(s.label === c.label && s.min === c.min && s.max === c.max && s.step === c.step &&
+          s.value === c.value && s.shown === `${c.value} ${c.unit}`,
+          `slider "${s.label}": ${s.min}..${s.max} step ${s.step}, starts at "${s.shown}"`);
+  });
+  check(shown.readoutLabels.join('|') === spec.readouts.map((r) => r.label).join('|'),
+        `readouts in the block's order: ${shown.readoutLabels.join(', ')}`);
+  spec.readouts.forEach((r, k) => {
+    const decimals = (shown.readoutTexts[k].split('.')[1] ?? '').length;
+    check(decimals === (r.digits ?? 3), `readout "${r.label}" shows ${shown.readoutTexts[k]} (${r.digits} digits)`);
+  });
+  const plot = spec.plots[0];
+  check(shown.plot.labels.join('|') === plot.traces.map((t) => t.label).join('|') &&
+        shown.plot.dashed.join() === plot.traces.map((t) => t.dash === true).join() &&
+        shown.plot.ylabel === plot.ylabel && shown.plot.window === plot.window,
+        `plot "${shown.plot.ylabel}": traces ${shown.plot.labels} dashed ${shown.plot.dashed}, window ${shown.plot.window} s`);
+  check(shown.note === spec.note, 'the note is shown');
+  check(shown.toggles.join() === spec.toggles.join(), `toggles: ${shown.toggles}`);
+  const cam = spec.camera;
+  const v = shown.view;
+  check(v.azimuth === cam.azimuth && v.elevation === -cam.elevation && v.distance === cam.distance &&
+        v.target.join() === cam.target.join() && shown.cameraZ > cam.target[2],
+        `camera: azimuth ${v.azimuth}, ${cam.elevation} degrees above the horizon (camera z ` +
+        `${shown.cameraZ.toFixed(3)} m), distance ${v.distance}, target ${v.target}`);
+}
+
+// In the page: the 3D view's pixels, counted (distinct colours at 4 bits per channel,
+// share of pixels unlike the sky in the top-left corner), and the colour under the
+// projection of a world point.
+function pictureStats(point) {
+  const lab = window.lab;
+  lab.scene.render();
+  const canvas = lab.scene.renderer.domElement;
+  const copy = document.createElement('canvas');
+  copy.width = canvas.width;
+  copy.height = canvas.height;
+  const context = copy.getContext('2d');
+  context.drawImage(canvas, 0, 0);
+  const { data } = context.getImageData(0, 0, copy.width, copy.height);
+  const colours = new Set();
+  let unlike = 0;
+  const [br, bg, bb] = [data[0], data[1], data[2]];
+  for (let i = 0; i < data.length; i += 4) {
+    colours.add((data[i] >> 4) << 8 | (data[i + 1] >> 4) << 4 | data[i + 2] >> 4);
+    if (Math.abs(data[i] - br) + Math.abs(data[i + 1] - bg) + Math.abs(data[i + 2] - bb) > 24) unlike++;
+  }
+  const p = lab.scene.camera.position.clone().set(...point).project(lab.scene.camera);
+  const x = Math.round((p.x + 1) / 2 * copy.width), y = Math.round((1 - p.y) / 2 * copy.height);
+  const at = Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3));
+  return { colours: colours.size, unlike: unlike / (data.length / 4), at, x, y };
+}
+
+// The picture is not blank, and the cube (yellow) is where the camera should see it.
+async function checkPicture(page, cubePosition, name) {
+  const stats = await page.evaluate(pictureStats, cubePosition);
+  const [r, g, b] = stats.at;
+  check(stats.colours >= 16 && stats.unlike > 0.2 && r > b + 60 && g > b + 40,
+        `${name}: ${stats.colours} colours, ${(100 * stats.unlike).toFixed(0)}% of it not sky, ` +
+        `the cube at pixel (${stats.x}, ${stats.y}) is yellow (rgb ${stats.at})`);
+}
+
+// In the page: how many overlay objects the view shows (contact points, contact and
+// actuator force arrows, joint axes), and the contacts now.
+function overlayCounts() {
+  const scene = window.lab.scene;
+  const visible = (list) => list.filter((o) => o.visible).length;
+  return {
+    points: visible(scene.contactPoints), contactArrows: visible(scene.arrows.contact.arrows),
+    actuatorArrows: visible(scene.arrows.actuator.arrows), axes: visible(scene.arrows.axis.arrows),
+    ncon: window.lab.sim.counts().ncon,
+  };
+}
+
+// The toggles draw their overlays: one point per contact, force arrows, one axis per
+// slide or hinge joint (5 in the gantry); turned off, nothing.
+async function checkToggles(page) {
+  const boxes = await page.locator('input[data-toggle]').all();
+  for (const box of boxes) await box.check();
+  await page.waitForTimeout(300);
+  const on = await page.evaluate(overlayCounts);
+  check(on.points === on.ncon && on.ncon > 0 && on.contactArrows > 0 && on.actuatorArrows > 0 && on.axes === 5,
+        `toggles on: ${on.points} contact points (ncon ${on.ncon}), ${on.contactArrows} contact force arrows, ` +
+        `${on.actuatorArrows} actuator arrows, ${on.axes} joint axes`);
+  for (const box of boxes) await box.uncheck();
+  await page.waitForTimeout(200);
+  const off = await page.evaluate(overlayCounts);
+  check(off.points + off.contactArrows + off.actuatorArrows + off.axes === 0, 'toggles off: no overlays');
+  for (const box of boxes) await box.check();
+}
+
+// The plot keeps the last `window` seconds, its x axis spanning exactly that.
+async function checkPlotWindow(page, window) {
+  const plot = await page.evaluate(() => {
+    const { plot } = window.lab.plots[0];
+    const t = plot.columns[0];
+    return { first: t[0], last: t[t.length - 1], min: plot.chart.scales.x.min, max: plot.chart.scales.x.max };
+  });
+  check(plot.last > window && Math.abs(plot.max - plot.min - window) < 1e-9 && plot.first >= plot.last - window,
+        `the plot spans ${plot.min.toFixed(2)}..${plot.max.toFixed(2)} s, samples ${plot.first.toFixed(2)}..` +
+        `${plot.last.toFixed(2)} s (window ${window} s)`);
+}
+
+// Lesson 2.3's page, served by `simlab lab`: its lab, found in the lesson.
+async function testLessonLab(session) {
+  const spec = lessonLabSpec();
+  const page = await session.browser.newPage({ viewport: { width: 1000, height: 1000 } });
+  const problems = collectProblems(page);
+  await page.goto(session.url);
+  await page.waitForSelector('section.lab-mount[data-mounted]', { timeout: 60000 });
+  const mounted = await page.getAttribute('section.lab-mount', 'data-mounted');
+  check(mounted === 'true', `the lesson's lab mounted in place (data-mounted="${mounted}")`);
+  // The lab's controller, by the name the rest of this test uses.
+  await page.evaluate(() => { window.lab = document.querySelector('section.lab-mount').simlabLab; });
+  await page.locator('section.lab-mount').scrollIntoViewIfNeeded();
+  await checkAgainstSpec(page, spec);
+  await page.waitForTimeout(500);
+  await checkPicture(page, [0.12, 0, 0.02], 'the first picture');
+  await checkToggles(page);
+  const range = await interactive(page, spec);
+  const apiSession = await deterministic(page);
+  checkSliderSession(apiSession, range);
+  compareWithNative(apiSession);
+  check(problems.length === 0, `no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
+  await page.close();
+}
+
+// web/lab/fixtures/all_geoms.json on the lab's own page: every geom type drawn, bad
+// expressions and a bad control target shown as errors while the rest keeps running.
+async function testAllGeoms(session) {
+  const page = await session.browser.newPage({ viewport: { width: 900, height: 900 } });
+  const problems = collectProblems(page);
+  await page.goto(`${session.url}lab/index.html?spec=fixtures/all_geoms.json&base=fixtures/`);
   await page.waitForFunction(() => window.lab || document.getElementById('error').textContent, null, { timeout: 60000 });
   const error = await page.locator('#error').textContent();
-  check(!error, `the lab mounted${error ? `: ${error}` : ''}`);
-  check(await page.locator('canvas.simlab-lab-canvas').count() === 1, 'the lab has its 3D view');
-}
-
-// Lesson 2.3's lab, verbatim.
-async function testLessonLab({ page, problems }) {
-  await waitForLab(page);
-  const range = await interactive(page);
-  const session = await deterministic(page);
-  checkSliderSession(session, range);
-  compareWithNative(session);
-  check(problems.length === 0, `no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
-}
-
-// web/lab/fixtures/all_geoms.json: every geom type drawn, bad expressions and a bad
-// control target shown as errors while the rest keeps running.
-async function testAllGeoms({ page, problems }) {
-  await waitForLab(page);
+  check(!error, `the fixture's lab mounted${error ? `: ${error}` : ''}`);
   const drawn = await page.evaluate(() => window.lab.scene.geoms.map(({ g }) => g));
   const types = await page.evaluate(() => Array.from(window.lab.sim.model('geom_type')));
   check(drawn.length === types.length && [0, 1, 2, 3, 4, 5, 6, 7].every((t) => types.includes(t)),
@@ -337,20 +467,18 @@ async function testAllGeoms({ page, problems }) {
   check(await bad.isDisabled() && /ctrl\[7\]: index out of range/.test(message), `bad control target: "${message}"`);
   await page.screenshot({ path: path.join(options.shots, 'lab_all_geoms.png'), fullPage: true });
   check(problems.length === 0, `no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
+  await page.close();
 }
 
 async function main() {
   await openBuilds(options);
-  const playwright = await playwrightOrSkip(options);
   fs.mkdirSync(options.shots, { recursive: true });
-  for (const [query, test] of [['', testLessonLab],
-    ['?spec=fixtures/all_geoms.json&base=fixtures/', testAllGeoms]]) {
-    const session = await openLabPage(playwright, query);
-    try {
-      await test(session);
-    } finally {
-      await session.close();
-    }
+  const session = await openLabSession(options);
+  try {
+    await testLessonLab(session);
+    await testAllGeoms(session);
+  } finally {
+    await session.close();
   }
   console.log(`screenshots in ${options.shots}`);
   console.log('PASS');

@@ -8,7 +8,8 @@ import path from 'node:path';
 import {
   ExprError, arrayReader, evaluateExpr, parseExpr, parseTarget,
 } from '../lab/expr.mjs';
-import { extractLabSpecs, parseLabSpec } from '../lab/spec.mjs';
+import { parseLabSpec } from '../lab/spec.mjs';
+import { parseLesson } from '../lesson/parse.mjs';
 import { repoRoot } from './wasm_harness.mjs';
 
 const arrays = {
@@ -76,11 +77,15 @@ const tests = {
     assert.equal(evaluateExpr(parseExpr('data.qpos[0]'), reader), 2);
   },
   "the lesson's lab block, typographic quotes normalised": () => {
-    const lesson = path.join(repoRoot, 'web/lab/fixtures/lesson-2.3-lab.txt');
+    const lesson = path.resolve(repoRoot, '../shared/lesson/lesson-2.3-actuators.txt');
     const text = fs.readFileSync(lesson, 'utf8');
     assert.match(text, /\u201C/);
-    const [block] = extractLabSpecs(text);
-    assert.equal(block.line, 1);
+    const [block] = parseLesson(text).blocks.filter((b) => b.type === 'lab');
+    assert.equal(block.line, 21);
+    assert.equal(block.error, undefined);
+    // The dev page's copy of the block reads the same.
+    const copy = fs.readFileSync(path.join(repoRoot, 'web/lab/fixtures/lesson-2.3-lab.txt'), 'utf8');
+    assert.deepEqual(parseLabSpec(copy), block.spec);
     const spec = block.spec;
     assert.equal(spec.model, 'gantry_gripper');
     assert.deepEqual(spec.camera, { azimuth: -60, elevation: 20, distance: 0.9, target: [0.1, 0, 0.15] });
@@ -90,6 +95,9 @@ const tests = {
     assert.equal(spec.plots[0].traces[1].dash, true);
     assert.throws(() => parseLabSpec('{"model": "../etc/passwd"}'), /needs "model"/);
     assert.throws(() => parseLabSpec('{“model”: 1'), /not valid JSON/);
+    assert.throws(() => parseLabSpec('[1, 2]'), /must be a JSON object/);
+    const bad = parseLesson('```lab simlab {“title”: “no model”}').blocks[0];
+    assert.match(bad.error, /needs "model"/);
   },
 };
 

@@ -1,54 +1,27 @@
 // The lesson page end to end in headless Chromium (Debian's, driven by playwright-core):
 // starts `simlab lab LESSON --port 0`, opens the page it prints, checks that headings,
-// tables, callouts, math, code and the lab mount point are rendered, answers the knowledge
+// tables, callouts, math, code are rendered and the lab is live in place (mounted, with
+// its 3D view, sliders and readouts), answers the knowledge
 // check (13 -> right, 12 -> wrong, option "15" -> right, the open question reveals its
 // reference) and saves screenshots (lesson_page_top.png, lesson_page_model.png,
 // lesson_page_quiz.png, lesson_page_full.png) into --out.
 //
-//   node web/test/lesson_page_e2e.mjs --simlab build/simlab [--lesson PATH] [--out DIR]
+//   node web/test/lesson_page_e2e.mjs --simlab build/simlab [--lesson PATH] [--out DIR] [--require yes]
 //
-// Exits 77 (ctest: skipped) when Chromium or playwright-core is missing.
+// Exits 77 (ctest: skipped) when Chromium or playwright-core is missing (with --require
+// yes: fails).
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
-import fs from 'node:fs';
 import path from 'node:path';
-import { kSkip, parseOptions, repoRoot } from './wasm_harness.mjs';
+import { kDefaultLesson, openLabSession } from './browser_harness.mjs';
+import { parseOptions, repoRoot } from './wasm_harness.mjs';
 
 const options = parseOptions(process.argv.slice(2), {
   simlab: path.join(repoRoot, 'build/simlab'),
-  lesson: path.resolve(repoRoot, '../shared/lesson/lesson-2.3-actuators.txt'),
+  lesson: kDefaultLesson,
   chromium: '/usr/bin/chromium',
   out: '',
 });
 const outDir = options.out || path.dirname(path.resolve(options.simlab));
-
-// Starts the server; resolves with {child, url} once it prints its address.
-function startServer() {
-  const child = spawn(options.simlab, ['lab', options.lesson, '--port', '0'], { cwd: repoRoot });
-  return new Promise((resolve, reject) => {
-    let output = '';
-    const timer = setTimeout(() => reject(new Error(`no URL from simlab lab: ${output}`)), 15000);
-    const read = (chunk) => {
-      output += chunk;
-      const m = /http:\/\/127\.0\.0\.1:\d+\//.exec(output);
-      if (m) {
-        clearTimeout(timer);
-        resolve({ child, url: m[0] });
-      }
-    };
-    child.stdout.on('data', read);
-    child.stderr.on('data', read);
-    child.on('exit', (code) => reject(new Error(`simlab lab exited (${code}): ${output}`)));
-  });
-}
-
-async function loadPlaywright() {
-  try {
-    return await import(path.join(repoRoot, 'web/node_modules/playwright-core/index.mjs'));
-  } catch {
-    return null;
-  }
-}
 
 // What the page shows, counted in the page.
 function inventory() {
@@ -75,6 +48,9 @@ function inventory() {
     ioTerms: texts('dl.io dt'),
     labs: [...document.querySelectorAll('section.lab-mount')].map((s) => ({
       model: s.dataset.model, mounted: s.dataset.mounted ?? '',
+      canvases: s.querySelectorAll('canvas.simlab-lab-canvas').length,
+      sliders: s.querySelectorAll('input[type=range]').length,
+      readouts: s.querySelectorAll('.simlab-lab-readout').length,
     })),
     questions: document.querySelectorAll('.quiz .question').length,
   };
@@ -108,7 +84,7 @@ async function checkPage(page) {
   assert.deepEqual(seen.mathLeftAsDollars, []);
   assert.deepEqual(seen.codeCaptions, ['examples/l2_3_actuators.py', 'output']);
   assert.deepEqual(seen.ioTerms, ['INPUT', 'PROCESS', 'OUTPUT']);
-  assert.deepEqual(seen.labs.map((l) => l.model), ['gantry_gripper']);
+  assert.deepEqual(seen.labs, [{ model: 'gantry_gripper', mounted: 'true', canvases: 1, sliders: 3, readouts: 6 }]);
   assert.equal(seen.questions, 4);
 }
 
@@ -140,18 +116,7 @@ async function checkPlaceholder(browser, url) {
 }
 
 async function main() {
-  const playwright = await loadPlaywright();
-  if (!playwright || !fs.existsSync(options.chromium)) {
-    console.log(`SKIPPED: needs ${options.chromium} and web/node_modules (bash tools/install_deps.sh)`);
-    process.exit(kSkip);
-  }
-  const { child, url } = await startServer();
-  const browser = await playwright.chromium.launch({
-    executablePath: options.chromium,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync',
-      '--use-gl=swiftshader', '--enable-unsafe-swiftshader'],
-  });
+  const { browser, url, close } = await openLabSession(options);
   try {
     const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
     const lessonErrors = [];
@@ -159,8 +124,8 @@ async function main() {
     await page.goto(url);
     await page.waitForSelector('body[data-ready]', { timeout: 15000 });
     assert.equal(await page.getAttribute('body', 'data-ready'), 'true');
-    await page.waitForSelector('section.lab-mount[data-mounted]', { timeout: 30000 })
-      .catch(() => console.log('note: the lab section had not finished mounting after 30 s'));
+    // The lab mounts live (its engine and model load) or the page says why not.
+    await page.waitForSelector('section.lab-mount[data-mounted]', { timeout: 60000 });
     await checkPage(page);
     await page.screenshot({ path: path.join(outDir, 'lesson_page_top.png') });
     await page.screenshot({ path: path.join(outDir, 'lesson_page_full.png'), fullPage: true });
@@ -173,8 +138,7 @@ async function main() {
     console.log(`screenshots in ${outDir}: lesson_page_top.png lesson_page_model.png lesson_page_full.png lesson_page_quiz.png`);
     console.log('PASS');
   } finally {
-    await browser.close();
-    child.kill();
+    await close();
   }
 }
 

@@ -7,9 +7,8 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseTex, mathToText } from '../lesson/math.mjs';
-import {
-  normalizeQuotes, parseHtmlSubset, parseInline, parseLenientJson, parseLesson,
-} from '../lesson/parse.mjs';
+import { normalizeQuotes, parseLenientJson } from '../lab/spec.mjs';
+import { parseHtmlSubset, parseInline, parseLesson } from '../lesson/parse.mjs';
 import { grade, readNumber } from '../lesson/quiz.mjs';
 
 const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');

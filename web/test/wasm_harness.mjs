@@ -11,6 +11,17 @@ export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)
 // Exit code ctest reads as "skipped" (SKIP_RETURN_CODE).
 export const kSkip = 77;
 
+// Ends the test as skipped, saying why; with `--require yes` (CI, where everything is
+// installed and built fresh) a skip is a failure instead.
+export function skipOrFail(reason, options = {}) {
+  if (options.require === 'yes') {
+    console.error(`FAIL: required, but ${reason}`);
+    process.exit(1);
+  }
+  console.log(`SKIPPED: ${reason}`);
+  process.exit(kSkip);
+}
+
 // Command-line options as {name: value} from "--name value" pairs.
 export function parseOptions(argv, defaults) {
   const options = { ...defaults };
@@ -110,35 +121,15 @@ export function wasmRollout(sim, { key = -1, controls, steps, fields, record = t
 
 // The WASM module and the native simlab to compare it with; exits 77 (skipped) with the
 // reason when the WASM build cannot be tested (`--stale ok`: test it even if older than
-// the sources, e.g. while others edit them).
+// the sources, e.g. while others edit them; `--require yes`: fail instead of skipping).
 export async function openBuilds(options) {
   const reason = whyNotTestable(options.dist, options.stale === 'ok');
-  if (reason) {
-    console.log(`SKIPPED: ${reason}`);
-    process.exit(kSkip);
-  }
+  if (reason) skipOrFail(reason, options);
   if (!fs.existsSync(options.simlab)) throw new Error(`no native simlab at ${options.simlab}`);
   // Both builds must come from the same sources (others may edit them meanwhile).
   const newest = newestSource();
   if (options.stale !== 'ok' && newest.mtime > fs.statSync(options.simlab).mtimeMs) {
-    console.log(`SKIPPED: ${options.simlab} is older than ${path.relative(repoRoot, newest.file)}`);
-    process.exit(kSkip);
+    skipOrFail(`${options.simlab} is older than ${path.relative(repoRoot, newest.file)}`, options);
   }
   return loadSimlab(options.dist);
-}
-
-// playwright-core from web/node_modules, or exits 77 (skipped) saying what is missing
-// when it or Chromium (options.chromium) is not there.
-export async function playwrightOrSkip(options) {
-  let playwright = null;
-  try {
-    playwright = await import(path.join(repoRoot, 'web/node_modules/playwright-core/index.mjs'));
-  } catch {
-    playwright = null;
-  }
-  if (!playwright || !fs.existsSync(options.chromium)) {
-    console.log(`SKIPPED: needs ${options.chromium} and web/node_modules (bash tools/install_deps.sh)`);
-    process.exit(kSkip);
-  }
-  return playwright;
 }

@@ -1,0 +1,74 @@
+// Shared by the browser tests: `simlab lab` as the web server (the same server a student
+// runs), Debian's Chromium driven by playwright-core, and the page's errors collected.
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { repoRoot, skipOrFail } from './wasm_harness.mjs';
+
+// Headless Chromium with software WebGL (SwiftShader) and no background traffic.
+const kChromiumFlags = ['--headless', '--no-sandbox', '--use-angle=swiftshader',
+  '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+
+// playwright-core from web/node_modules; skipped (or failed, with --require yes) when it
+// or Chromium (options.chromium) is missing.
+export async function loadPlaywright(options) {
+  let playwright = null;
+  try {
+    playwright = await import(path.join(repoRoot, 'web/node_modules/playwright-core/index.mjs'));
+  } catch {
+    playwright = null;
+  }
+  if (!playwright || !fs.existsSync(options.chromium)) {
+    skipOrFail(`needs ${options.chromium} and web/node_modules (bash tools/install_deps.sh)`, options);
+  }
+  return playwright;
+}
+
+export function launchChromium(playwright, options) {
+  return playwright.chromium.launch({ executablePath: options.chromium, args: kChromiumFlags });
+}
+
+// Starts `simlab lab LESSON --port 0`; resolves with {url, stop} once it prints its address.
+export function startLabServer(simlabExe, lesson) {
+  const child = spawn(simlabExe, ['lab', lesson, '--port', '0'], { cwd: repoRoot });
+  return new Promise((resolve, reject) => {
+    let output = '';
+    const timer = setTimeout(() => reject(new Error(`no URL from simlab lab: ${output}`)), 15000);
+    const read = (chunk) => {
+      output += chunk;
+      const m = /http:\/\/127\.0\.0\.1:\d+\//.exec(output);
+      if (!m) return;
+      clearTimeout(timer);
+      resolve({ url: m[0], stop: () => child.kill() });
+    };
+    child.stdout.on('data', read);
+    child.stderr.on('data', read);
+    child.on('exit', (code) => reject(new Error(`simlab lab exited (${code}): ${output}`)));
+  });
+}
+
+// The page's uncaught errors and console errors, as they come.
+export function collectProblems(page) {
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(String(e.stack ?? e)));
+  page.on('console', (m) => {
+    if (m.type() === 'error') problems.push(`${m.text()} (${m.location().url})`);
+  });
+  return problems;
+}
+
+// Chromium on `simlab lab`'s server: {browser, url, close()} (close ends both).
+export async function openLabSession(options) {
+  const playwright = await loadPlaywright(options);
+  const server = await startLabServer(options.simlab, options.lesson);
+  const browser = await launchChromium(playwright, options);
+  const close = async () => {
+    await browser.close();
+    server.stop();
+  };
+  return { browser, url: server.url, close };
+}
+
+// The lesson beside the repository (../shared/lesson), the default of every browser test.
+export const kDefaultLesson = path.resolve(repoRoot, '../shared/lesson/lesson-2.3-actuators.txt');
