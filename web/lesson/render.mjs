@@ -99,6 +99,11 @@ function labPlaceholder(doc, element, block, reason) {
 function renderLab(doc, block, options) {
   const section = make(doc, 'section', 'lab-mount');
   section.dataset.model = block.spec?.model ?? '';
+  // "dock": true keeps the lab in view beside the text on wide screens (lesson.css).
+  if (block.spec?.dock === true) {
+    section.classList.add('lab-docked');
+    doc.body?.classList.add('has-docked-lab');
+  }
   if (block.error) {
     labPlaceholder(doc, section, block, `The lab block's JSON could not be read: ${block.error}`);
     return section;

@@ -289,7 +289,7 @@ function shownLab() {
   const chart = lab.plots[0]?.plot.chart;
   return {
     title: root.querySelector('h3')?.textContent ?? '',
-    dock: root.classList.contains('simlab-lab--dock') && getComputedStyle(root).position === 'sticky',
+    dock: root.closest('section.lab-mount').classList.contains('lab-docked'),
     controls: lab.controls.map(({ slider, shown }) => ({
       label: slider.getAttribute('aria-label'), min: Number(slider.min), max: Number(slider.max),
       step: Number(slider.step), value: Number(slider.value), shown: shown.textContent.trim(),
@@ -312,7 +312,7 @@ function shownLab() {
 async function checkAgainstSpec(page, spec) {
   const shown = await page.evaluate(shownLab);
   check(shown.title === spec.title && shown.dock === (spec.dock === true),
-        `title "${shown.title}", docked (sticky): ${shown.dock}`);
+        `title "${shown.title}", docked: ${shown.dock}`);
   spec.controls.forEach((c, k) => {
     const s = shown.controls[k];
     check(s.label === c.label && s.min === c.min && s.max === c.max && s.step === c.step &&

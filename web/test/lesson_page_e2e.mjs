@@ -101,6 +101,28 @@ async function checkQuiz(page) {
   console.log('knowledge check: 12 wrong, 13 right, "1.5" wrong, "15" right, "3" right, open reference shown');
 }
 
+// On a wide screen the docked lab stays in view at the right of the text while the page
+// scrolls to the knowledge check; screenshot lesson_page_docked.png.
+async function checkDocked(browser, url) {
+  const page = await browser.newPage({ viewport: { width: 1600, height: 900 } });
+  await page.goto(url);
+  await page.waitForSelector('section.lab-mount[data-mounted="true"]', { timeout: 60000 });
+  await page.evaluate(() => document.querySelector('.quiz').scrollIntoView());
+  await page.waitForTimeout(300);
+  const boxes = await page.evaluate(() => {
+    const box = (e) => e.getBoundingClientRect().toJSON();
+    return { lab: box(document.querySelector('section.lab-mount')), main: box(document.querySelector('main')),
+             quiz: box(document.querySelector('.quiz')), scrolled: window.scrollY };
+  });
+  const { lab, main, quiz } = boxes;
+  assert.ok(boxes.scrolled > 2000 && quiz.top < 900, `scrolled to the quiz: ${JSON.stringify(boxes)}`);
+  assert.ok(lab.top >= 0 && lab.top < 50 && lab.left >= main.right && lab.width > 400 && lab.right <= 1600,
+            `the docked lab stays in view beside the text: ${JSON.stringify(boxes)}`);
+  await page.screenshot({ path: path.join(outDir, 'lesson_page_docked.png') });
+  await page.close();
+  console.log(`docked: the lab stays at x ${lab.left.toFixed(0)}..${lab.right.toFixed(0)}, text ends at ${main.right.toFixed(0)}`);
+}
+
 // Without web/lab/lab.mjs (the request refused here), the lab section shows the parsed spec.
 async function checkPlaceholder(browser, url) {
   const page = await browser.newPage();
@@ -134,8 +156,9 @@ async function main() {
     await checkQuiz(page);
     await page.locator('.quiz').screenshot({ path: path.join(outDir, 'lesson_page_quiz.png') });
     assert.deepEqual(lessonErrors, []);
+    await checkDocked(browser, url);
     await checkPlaceholder(browser, url);
-    console.log(`screenshots in ${outDir}: lesson_page_top.png lesson_page_model.png lesson_page_full.png lesson_page_quiz.png`);
+    console.log(`screenshots in ${outDir}: lesson_page_top.png lesson_page_model.png lesson_page_full.png lesson_page_quiz.png lesson_page_docked.png`);
     console.log('PASS');
   } finally {
     await close();
