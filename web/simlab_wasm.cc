@@ -8,6 +8,8 @@
 //   sim.setData('ctrl', [0.12, 0, 0, 0.04]);
 //   sim.step(10);
 //   sim.data('qpos');                              // Float64Array copy, MuJoCo's names
+//   const id = sim.dataId('xpos');                 // once; then, allocation-free:
+//   sim.dataViewAt(id);                            // a view into wasm memory
 //   sim.delete();                                  // embind objects are freed by hand
 //
 // Every failure (bad MJCF, unknown name, index out of range) is thrown as a JavaScript
@@ -116,13 +118,20 @@ val ViewOf(const FieldView& f) {
   return val(emscripten::typed_memory_view(n, f.doubles));
 }
 
-// The field named `name` (a copy: the list is usually a temporary).
-FieldView FindField(const std::vector<FieldView>& fields, const std::string& name,
-                    const char* owner) {
-  for (const FieldView& f : fields) {
-    if (name == f.name) return f;
+// Index of the field named `name` in `fields`, or -1 (compares in place, allocates nothing).
+int IndexOfField(const std::vector<FieldView>& fields, const std::string& name) {
+  for (size_t i = 0; i < fields.size(); i++) {
+    if (name == fields[i].name) return static_cast<int>(i);
   }
-  throw Error(std::string("no ") + owner + " array named '" + name + "'");
+  return -1;
+}
+
+// The field named `name`; the error names the owner (Model or Data).
+const FieldView& FindField(const std::vector<FieldView>& fields, const std::string& name,
+                           const char* owner) {
+  const int index = IndexOfField(fields, name);
+  if (index < 0) throw Error(std::string("no ") + owner + " array named '" + name + "'");
+  return fields[index];
 }
 
 val NamesOf(const std::vector<FieldView>& fields) {
@@ -149,6 +158,25 @@ val NumbersObject(std::initializer_list<std::pair<const char*, double>> entries)
 
 val VectorToJs(const double* values, int n) {
   return val::global("Float64Array").new_(emscripten::typed_memory_view(n, values));
+}
+
+// ---------------------------------------------------------------- contacts as one array
+
+// Numbers per contact in contactData(): pos(3) frame(9) force(6) geom1 geom2 dist dim.
+constexpr int kContactStride = 22;
+constexpr int kContactPos = 0, kContactFrame = 3, kContactForce = 12, kContactGeom1 = 18,
+              kContactGeom2 = 19, kContactDist = 20, kContactDim = 21;
+
+// Writes contact i of `d` into row `out` (kContactStride numbers).
+void WriteContactRow(const Model& m, const Data& d, int i, double* out) {
+  const Contact& c = d.contact[i];
+  for (int k = 0; k < 3; k++) out[kContactPos + k] = c.pos[k];
+  for (int k = 0; k < 9; k++) out[kContactFrame + k] = c.frame[k];
+  ContactForce(m, d, i, out + kContactForce);
+  out[kContactGeom1] = c.geom[0];
+  out[kContactGeom2] = c.geom[1];
+  out[kContactDist] = c.dist;
+  out[kContactDim] = c.dim;
 }
 
 // ---------------------------------------------------------------- names of objects
@@ -206,32 +234,45 @@ class Simulation {
   double Time() const { return d_.time; }
   void SetTime(double t) { d_.time = t; }
 
-  // ---- arrays by name
+  // ---- arrays by name (looked up in tables built once: no allocation in wasm memory)
   val Data(const std::string& name) {
-    return Guarded([&] { return CopyOf(FindField(AllDataFields(), name, "Data")); });
+    return Guarded([&] { return CopyOf(DataField(name)); });
   }
   val DataView(const std::string& name) {
-    return Guarded([&] { return ViewOf(FindField(AllDataFields(), name, "Data")); });
+    return Guarded([&] { return ViewOf(DataField(name)); });
   }
   val ModelArray(const std::string& name) {
-    return Guarded([&] { return CopyOf(FindField(m_.Fields(), name, "Model")); });
+    return Guarded([&] { return CopyOf(FindField(model_fields_, name, "Model")); });
   }
   val ModelView(const std::string& name) {
-    return Guarded([&] { return ViewOf(FindField(m_.Fields(), name, "Model")); });
+    return Guarded([&] { return ViewOf(FindField(model_fields_, name, "Model")); });
   }
   val DataShape(const std::string& name) {
-    return Guarded([&] { return ShapeOf(FindField(AllDataFields(), name, "Data")); });
+    return Guarded([&] { return ShapeOf(DataField(name)); });
   }
   val ModelShape(const std::string& name) {
-    return Guarded([&] { return ShapeOf(FindField(m_.Fields(), name, "Model")); });
+    return Guarded([&] { return ShapeOf(FindField(model_fields_, name, "Model")); });
   }
-  val DataNames() { return NamesOf(AllDataFields()); }
-  val ModelNames() { return NamesOf(m_.Fields()); }
+  val DataNames() { return NamesOf(data_fields_); }
+  val ModelNames() { return NamesOf(model_fields_); }
+
+  // A Data array's number (-1 if there is none), for dataViewAt: a number crosses into
+  // wasm without the name string embind would copy into wasm memory on every call.
+  int DataId(const std::string& name) const { return IndexOfField(data_fields_, name); }
+  val DataViewAt(int id) {
+    return Guarded([&] {
+      if (id < 0 || id >= static_cast<int>(data_fields_.size())) {
+        throw Error("Data array id " + std::to_string(id) + " out of range");
+      }
+      RefreshRowFields();
+      return ViewOf(data_fields_[id]);
+    });
+  }
 
   // Overwrites a Data array with `values` (an Array or typed array of its full size).
   void SetData(const std::string& name, const val& values) {
     Guarded([&] {
-      WriteAll(FindField(AllDataFields(), name, "Data"),
+      WriteAll(DataField(name),
                emscripten::convertJSArrayToNumberVector<double>(values));
       return 0;
     });
@@ -239,7 +280,7 @@ class Simulation {
   // Writes one number: data.NAME[index] = value.
   void SetDataAt(const std::string& name, int index, double value) {
     Guarded([&] {
-      const FieldView f = FindField(AllDataFields(), name, "Data");
+      const FieldView& f = DataField(name);
       CheckIndex(f, index);
       if (f.is_int) {
         f.ints[index] = static_cast<int>(value);
@@ -284,18 +325,44 @@ class Simulation {
   // The active contacts: [{geom1, geom2, dist, pos, frame, dim, efc_address, force}],
   // force being the 6 numbers of MuJoCo's mj_contactForce (contact frame).
   val Contacts() const;
+  // The same as one view of ncon x kContactStride numbers (a buffer kept by the
+  // simulation; it grows wasm memory only when more contacts than ever before exist).
+  val ContactData();
 
  private:
-  explicit Simulation(simlab::Model&& m) : m_(std::move(m)), d_(MakeData(m_)) {}
+  explicit Simulation(simlab::Model&& m)
+      : m_(std::move(m)), d_(MakeData(m_)), model_fields_(m_.Fields()),
+        data_fields_(DataFields(m_, d_)), first_row_field_(data_fields_.size()) {
+    data_fields_.resize(first_row_field_ + kRowFieldCount);
+    RefreshRowFields();
+  }
   static simlab::Model Load(const std::string& filename, const std::string& xml,
                             const val& files);
   int KeyIndex(const val& key) const;
-  std::vector<FieldView> AllDataFields();
+  void RefreshRowFields();
+  const FieldView& DataField(const std::string& name) {
+    RefreshRowFields();
+    return FindField(data_fields_, name, "Data");
+  }
   static void CheckIndex(const FieldView& f, int index);
   static void WriteAll(const FieldView& f, const std::vector<double>& values);
 
+  // The constraint-row arrays (efc_*), counted from the table.
+  static constexpr size_t kRowFieldCount = 0
+#define SIMLAB_X(type, name, cols) +1
+      SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
+#undef SIMLAB_X
+      ;
+
   simlab::Model m_;
   simlab::Data d_;
+  // Name -> array tables, built once. Model arrays never move and Data's own arrays are
+  // allocated once by MakeData; the efc_* arrays (after first_row_field_) are resized by
+  // every step, so their pointers and row counts are read again before each lookup.
+  std::vector<FieldView> model_fields_;
+  std::vector<FieldView> data_fields_;
+  size_t first_row_field_;
+  std::vector<double> contact_rows_;  // contactData()'s buffer (capacity only grows)
 };
 
 simlab::Model Simulation::Load(const std::string& filename, const std::string& xml,
@@ -330,13 +397,14 @@ int Simulation::KeyIndex(const val& key) const {
   throw Error("no keyframe named '" + name + "'");
 }
 
-// Data's arrays, then its constraint rows (efc_*, nefc rows each).
-std::vector<FieldView> Simulation::AllDataFields() {
-  std::vector<FieldView> fields = DataFields(m_, d_);
-#define SIMLAB_X(type, name, cols) fields.push_back(MakeFieldView(#name, d_.name, d_.nefc, cols));
+// Points the efc_* entries of the Data table at the current rows (nefc of them; efc_J
+// has nv columns). Plain stores: nothing is allocated.
+void Simulation::RefreshRowFields() {
+  size_t at = first_row_field_;
+#define SIMLAB_X(type, name, cols) \
+  data_fields_[at++] = MakeFieldView(#name, d_.name, d_.nefc, (cols) == 0 ? m_.nv : (cols));
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
-  return fields;
 }
 
 void Simulation::CheckIndex(const FieldView& f, int index) {
@@ -389,22 +457,30 @@ val Simulation::Counts() const {
 
 val Simulation::Contacts() const {
   val contacts = val::array();
+  double row[kContactStride];
   for (int i = 0; i < d_.ncon; i++) {
-    const Contact& c = d_.contact[i];
-    double force[6] = {0, 0, 0, 0, 0, 0};
-    ContactForce(m_, d_, i, force);
+    WriteContactRow(m_, d_, i, row);
     val one = val::object();
-    one.set("geom1", c.geom[0]);
-    one.set("geom2", c.geom[1]);
-    one.set("dist", c.dist);
-    one.set("pos", VectorToJs(c.pos, 3));
-    one.set("frame", VectorToJs(c.frame, 9));
-    one.set("dim", c.dim);
-    one.set("efc_address", c.efc_address);
-    one.set("force", VectorToJs(force, 6));
+    one.set("geom1", d_.contact[i].geom[0]);
+    one.set("geom2", d_.contact[i].geom[1]);
+    one.set("dist", row[kContactDist]);
+    one.set("pos", VectorToJs(row + kContactPos, 3));
+    one.set("frame", VectorToJs(row + kContactFrame, 9));
+    one.set("dim", d_.contact[i].dim);
+    one.set("efc_address", d_.contact[i].efc_address);
+    one.set("force", VectorToJs(row + kContactForce, 6));
     contacts.call<void>("push", one);
   }
   return contacts;
+}
+
+val Simulation::ContactData() {
+  const size_t n = static_cast<size_t>(d_.ncon) * kContactStride;
+  if (contact_rows_.size() < n) contact_rows_.resize(n);
+  for (int i = 0; i < d_.ncon; i++) {
+    WriteContactRow(m_, d_, i, contact_rows_.data() + static_cast<size_t>(i) * kContactStride);
+  }
+  return val(emscripten::typed_memory_view(n, contact_rows_.data()));
 }
 
 }  // namespace
@@ -440,7 +516,11 @@ EMSCRIPTEN_BINDINGS(simlab) {
       .function("counts", &Simulation::Counts)
       .function("nameToId", &Simulation::NameToId)
       .function("idToName", &Simulation::IdToName)
-      .function("contacts", &Simulation::Contacts);
+      .function("contacts", &Simulation::Contacts)
+      .function("contactData", &Simulation::ContactData)
+      .function("dataId", &Simulation::DataId)
+      .function("dataViewAt", &Simulation::DataViewAt);
+  emscripten::constant("contactStride", kContactStride);
 }
 
 }  // namespace simlab::web

@@ -1,15 +1,23 @@
 // The live lab of a lesson's lab block: mountLab(element, spec, {baseUrl}) loads the
-// engine (web/dist, WebAssembly) and models/<model>.xml with the files it attaches or
-// includes, resets to the block's keyframe and shows the 3D view, sliders, readouts,
-// plots and note, simulating in real time. See web/README.md, "The lab".
+// engine (web/dist, WebAssembly) and models/<model>.xml with every file it refers to
+// (attached models, includes, meshes, textures...), resets to the block's keyframe and
+// shows the 3D view, sliders, readouts, plots and note, simulating in real time. See
+// web/README.md, "The lab".
 import { arrayReader, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
+import { gatherModelFiles } from './model_files.mjs';
 import { LivePlot } from './plot.mjs';
 import { LabScene } from './scene.mjs';
 import { parseLabSpec } from './spec.mjs';
 
-// At most this many steps per animation frame (a slow machine falls behind real time
-// rather than freezing); wall-clock gaps longer than kMaxGap (a hidden tab) are skipped.
-const kMaxStepsPerFrame = 2000;
+// Pacing: each frame steps in chunks until simulation time has caught up with the wall
+// clock or kBudgetShare of the mean frame interval (10 ms at 60 Hz; at most kMaxBudgetMs
+// when drawing itself is slow) is spent; time still owed then is dropped, so a slow
+// machine shows a real-time factor below 1 rather than freezing. Wall-clock gaps longer
+// than kMaxGap (a hidden tab) are skipped. A chunk is about kChunkMs of stepping, from the
+// measured cost of a step.
+const kBudgetShare = 0.6;
+const kMaxBudgetMs = 50;
+const kChunkMs = 1;
 const kMaxGap = 0.25;
 
 let enginePromise = null;
@@ -22,36 +30,57 @@ function loadEngine(distUrl) {
   return enginePromise;
 }
 
-// The files an MJCF text refers to by <model file=...> and <include file=...>.
-function referencedFiles(xml) {
-  const files = [];
-  const tag = /<\s*(model|include)\b[^>]*?\bfile\s*=\s*("([^"]*)"|'([^']*)')/g;
-  let match;
-  while ((match = tag.exec(xml))) files.push(match[3] ?? match[4]);
-  return files;
-}
-
-async function fetchText(url) {
+async function fetchOk(url) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
-  return response.text();
+  return response;
 }
 
-// models/<name>.xml and, recursively, the models and includes it refers to (paths
-// relative to its folder, as the loader resolves them).
+// models/<name>.xml and every file it refers to (see model_files.mjs): XML as text, other
+// files as bytes, keyed by their path relative to the model's folder.
 async function fetchModel(baseUrl, name) {
   const folder = new URL('models/', baseUrl);
   const filename = `${name}.xml`;
-  const xml = await fetchText(new URL(filename, folder));
-  const files = {};
-  const pending = referencedFiles(xml);
-  while (pending.length) {
-    const rel = pending.shift();
-    if (rel in files) continue;
-    files[rel] = await fetchText(new URL(rel, folder));
-    pending.push(...referencedFiles(files[rel]));
-  }
+  const xml = await (await fetchOk(new URL(filename, folder))).text();
+  const readText = async (path) => (await fetchOk(new URL(path, folder))).text();
+  const readBytes = async (path) => new Uint8Array(await (await fetchOk(new URL(path, folder))).arrayBuffer());
+  const files = await gatherModelFiles(filename, xml, readText, readBytes);
   return { filename, xml, files };
+}
+
+// Data arrays as views into wasm memory, looked up by id (no name string crosses into
+// wasm). The rule: a view is valid until wasm memory grows, which only a call that
+// allocates can do (step, contactData, any call passing a string, a model load); so
+// each part of a draw makes those calls first and takes its views after them. A view of
+// an array that never moves is kept from frame to frame and taken again only once its
+// buffer is detached (memory grew); efc_* arrays change size with every step, so theirs
+// are taken again every frame.
+class DataViews {
+  constructor(sim) {
+    this.sim = sim;
+    this.entries = new Map();  // name -> {id, view, perFrame}
+    this.frame = 0;
+  }
+
+  // Called once per draw (efc_* views are taken again after it).
+  nextFrame() { this.frame++; }
+
+  // The view of Data array `name`, or null if there is none.
+  get(name) {
+    let entry = this.entries.get(name);
+    if (!entry) {
+      entry = { id: this.sim.dataId(name), view: null, frame: -1, perFrame: name.startsWith('efc_') };
+      this.entries.set(name, entry);
+    }
+    if (entry.id < 0) return null;
+    const stale = !entry.view || entry.view.buffer.byteLength === 0 ||
+      (entry.perFrame && entry.frame !== this.frame);
+    if (stale) {
+      entry.view = this.sim.dataViewAt(entry.id);
+      entry.frame = this.frame;
+    }
+    return entry.view;
+  }
 }
 
 // A DOM element with a class and optional text.
@@ -109,7 +138,7 @@ export async function mountLab(element, spec, options = {}) {
     const [simlab, files] = await Promise.all([loadEngine(distUrl), fetchModel(baseUrl, labSpec.model)]);
     const sim = new simlab.Simulation(files.filename, files.xml, files.files);
     status.remove();
-    const lab = new Lab(root, labSpec, sim);
+    const lab = new Lab(root, labSpec, sim, simlab.contactStride);
     element.simlabLab = lab;
     return lab;
   } catch (error) {
@@ -121,7 +150,7 @@ export async function mountLab(element, spec, options = {}) {
 
 // One mounted lab: the simulation, its widgets and the animation loop.
 class Lab {
-  constructor(root, spec, sim) {
+  constructor(root, spec, sim, contactStride) {
     this.root = root;
     this.spec = spec;
     this.sim = sim;
@@ -129,11 +158,20 @@ class Lab {
     this.toggles = { contacts: false, forces: false, joints: false };
     this.playing = spec.autoplay !== false;
     this.modelArrays = new Map();
+    this.dataViews = new DataViews(sim);
     this.read = arrayReader((source, name) => this.array(source, name));
     // Frame rate and real-time factor over the last half second; engineFactor is simulated
     // time per second spent stepping (how much faster than real time it could run).
+    // dropped: wall-clock seconds the simulation gave up catching (budget spent, or gaps
+    // over kMaxGap), in total since the lab was mounted.
     this.stats = { fps: 0, realTimeFactor: 0, engineFactor: 0, frames: 0, busy: 0,
-                   windowStart: performance.now(), simStart: 0 };
+                   windowStart: performance.now(), simStart: 0, dropped: 0 };
+    // Pacing (see kBudgetShare): the mean frame interval and cost of a step, in ms.
+    this.frameInterval = 1000 / 60;
+    this.msPerStep = 0.05;
+    // Reused every frame: the scene's state, the plots' sample rows.
+    this.state = { model: null, contacts: null, contactStride: 0, geom_xpos: null, geom_xmat: null,
+                   xanchor: null, xaxis: null, qfrc_actuator: null };
 
     this.view = root.appendChild(make('div', 'simlab-lab-view'));
     this.scene = new LabScene(this.view, Number(spec.height) > 0 ? Number(spec.height) : 300, spec.camera);
@@ -143,6 +181,7 @@ class Lab {
     this.plots = (spec.plots ?? []).map((p) => this.buildPlot(p));
     if (spec.note) root.appendChild(make('p', 'simlab-lab-note', spec.note));
     this.sceneModel = this.modelObject();
+    this.contactStride = contactStride;
     this.scene.build(this.sceneModel, sim.statistic().extent || 1);
     new ResizeObserver(() => this.resize()).observe(root);
 
@@ -153,11 +192,15 @@ class Lab {
   }
 
   // A Model or Data array by name, or null if there is none (Model arrays are copied
-  // once; Data arrays are views, taken again every frame).
+  // once; Data arrays are views, see DataViews). Copying a Model array passes its name
+  // into wasm memory, which may grow it: the reader then forgets the views it holds.
   array(source, name) {
     try {
-      if (source === 'data') return this.sim.dataView(name);
-      if (!this.modelArrays.has(name)) this.modelArrays.set(name, this.sim.model(name));
+      if (source === 'data') return this.dataViews.get(name);
+      if (!this.modelArrays.has(name)) {
+        this.modelArrays.set(name, this.sim.model(name));
+        this.read.clear();
+      }
       return this.modelArrays.get(name);
     } catch {
       return null;
@@ -250,7 +293,8 @@ class Lab {
         return null;
       }
     });
-    return { traces, plot: new LivePlot(box, { ...spec, traces: spec.traces ?? [] }, this.width()) };
+    return { traces, values: traces.map(() => NaN),
+             plot: new LivePlot(box, { ...spec, traces: spec.traces ?? [] }, this.width()) };
   }
 
   width() {
@@ -262,63 +306,94 @@ class Lab {
     for (const { plot } of this.plots) plot.setWidth(this.width());
   }
 
-  // The value of a parsed expression now, or NaN with the error.
+  // The value of a parsed expression now, or NaN (the error is kept in this.lastError).
   evaluate(tree) {
     try {
-      return { value: evaluateExpr(tree, this.read), error: '' };
+      this.lastError = '';
+      return evaluateExpr(tree, this.read);
     } catch (error) {
-      return { value: NaN, error: error.message };
+      this.lastError = error.message;
+      return NaN;
     }
   }
 
-  // Readouts, plot samples and the 3D view from the current state.
+  // Readouts, plot samples and the 3D view from the current state. Each part takes its
+  // views after its own calls that may grow wasm memory (see DataViews): the readouts and
+  // plots first, then the scene (contactData(), then the poses).
   draw() {
     this.changed = false;
+    this.dataViews.nextFrame();
     this.read.clear();
     for (const r of this.readouts) {
-      const result = r.tree ? this.evaluate(r.tree) : { value: NaN, error: r.error };
-      r.current = result.value;
-      r.error = result.error;
-      r.value.className = result.error ? 'value simlab-lab-error' : 'value';
-      r.value.textContent = result.error ? result.error : result.value.toFixed(r.spec.digits ?? 3);
+      const value = r.tree ? this.evaluate(r.tree) : NaN;
+      const error = r.tree ? this.lastError : r.error;
+      r.current = value;
+      r.error = error;
+      r.value.className = error ? 'value simlab-lab-error' : 'value';
+      r.value.textContent = error ? error : value.toFixed(r.spec.digits ?? 3);
     }
     const time = this.sim.time;
-    for (const { traces, plot } of this.plots) {
-      plot.push(time, traces.map((tree) => (tree ? this.evaluate(tree).value : NaN)));
+    for (const { traces, values, plot } of this.plots) {
+      for (let i = 0; i < traces.length; i++) values[i] = traces[i] ? this.evaluate(traces[i]) : NaN;
+      plot.push(time, values);
       plot.draw();
     }
     this.scene.update(this.sceneState(), this.toggles);
     this.scene.render();
   }
 
-  // What the view draws; contacts first, since views taken before a call that grows wasm
-  // memory would go stale.
+  // What the view draws (one object, refilled every frame): contacts as ncon rows of
+  // contactStride numbers (see web/README.md), then views of the poses and forces.
   sceneState() {
+    const state = this.state;
     const wantsContacts = this.toggles.contacts || this.toggles.forces;
-    const contacts = wantsContacts ? this.sim.contacts() : [];
-    return {
-      model: this.sceneModel, contacts,
-      geom_xpos: this.sim.dataView('geom_xpos'), geom_xmat: this.sim.dataView('geom_xmat'),
-      xanchor: this.sim.dataView('xanchor'), xaxis: this.sim.dataView('xaxis'),
-      qfrc_actuator: this.sim.dataView('qfrc_actuator'),
-    };
+    state.contacts = wantsContacts ? this.sim.contactData() : null;
+    state.contactStride = this.contactStride;
+    state.model = this.sceneModel;
+    state.geom_xpos = this.dataViews.get('geom_xpos');
+    state.geom_xmat = this.dataViews.get('geom_xmat');
+    state.xanchor = this.dataViews.get('xanchor');
+    state.xaxis = this.dataViews.get('xaxis');
+    state.qfrc_actuator = this.dataViews.get('qfrc_actuator');
+    return state;
+  }
+
+  // Steps until simulation time has caught up with the wall clock or the frame's budget
+  // is spent; drops what is still owed then. Chunks of about kChunkMs keep the checks of
+  // the clock cheap.
+  advance(gap) {
+    this.debt += gap;
+    const start = performance.now();
+    const budget = Math.min(kMaxBudgetMs, kBudgetShare * this.frameInterval);
+    let owed = Math.floor(this.debt / this.timestep + 1e-9);
+    let spent = 0;
+    while (owed > 0 && spent < budget) {
+      const chunk = Math.min(owed, Math.max(1, Math.floor(kChunkMs / this.msPerStep)));
+      this.sim.step(chunk);
+      const now = performance.now();
+      this.msPerStep = 0.8 * this.msPerStep + 0.2 * Math.max(1e-4, (now - start - spent) / chunk);
+      spent = now - start;
+      this.debt -= chunk * this.timestep;
+      owed -= chunk;
+    }
+    if (owed > 0) {
+      this.stats.dropped += this.debt;
+      this.debt = 0;
+    }
+    this.stats.busy += spent;
   }
 
   // The animation loop: while playing, steps to keep simulation time with the wall clock
-  // (several steps per frame), then draws and updates the frame rate and real-time factor.
+  // (see advance), then draws and updates the frame rate and real-time factor.
   frame(now) {
     if (this.disposed) return;
-    const gap = this.lastFrame === null ? 0 : Math.min(kMaxGap, (now - this.lastFrame) / 1000);
+    const wall = this.lastFrame === null ? 0 : (now - this.lastFrame) / 1000;
+    const gap = Math.min(kMaxGap, wall);
+    if (this.playing) this.stats.dropped += wall - gap;
+    if (gap > 0) this.frameInterval = 0.9 * this.frameInterval + 0.1 * 1000 * gap;
     this.lastFrame = now;
     const timeBefore = this.sim.time;
-    if (this.playing) {
-      this.debt += gap;
-      const steps = Math.min(kMaxStepsPerFrame, Math.floor(this.debt / this.timestep));
-      const start = performance.now();
-      if (steps > 0) this.sim.step(steps);
-      this.stats.busy += performance.now() - start;
-      this.debt = steps === kMaxStepsPerFrame ? 0 : this.debt - steps * this.timestep;
-    }
+    if (this.playing) this.advance(gap);
     // Readouts and plots only when time moved or something asked for it; the 3D view
     // always (the camera may have moved).
     if (this.changed || this.sim.time !== timeBefore) this.draw();

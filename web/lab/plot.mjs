@@ -10,6 +10,11 @@ export class LivePlot {
   constructor(container, spec, width) {
     this.window = Number(spec.window) > 0 ? Number(spec.window) : 5;
     this.columns = [[], ...spec.traces.map(() => [])];
+    this.xScale = { min: 0, max: this.window };
+    this.redraw = () => {
+      this.chart.setData(this.columns, false);
+      this.chart.setScale('x', this.xScale);
+    };
     const series = [{ label: 't (s)' }, ...spec.traces.map((trace, i) => ({
       label: trace.label ?? `trace ${i}`,
       stroke: kColors[i % kColors.length],
@@ -33,20 +38,20 @@ export class LivePlot {
     if (time === last) return;
     if (time < last) this.clear();
     this.columns[0].push(time);
-    values.forEach((v, i) => this.columns[i + 1].push(Number.isFinite(v) ? v : null));
+    for (let i = 0; i < values.length; i++) this.columns[i + 1].push(Number.isFinite(values[i]) ? values[i] : null);
     let drop = 0;
     while (drop < this.columns[0].length && this.columns[0][drop] < time - this.window) drop++;
     if (drop) for (const column of this.columns) column.splice(0, drop);
   }
 
-  // Redraws with the x axis spanning the window that ends now.
+  // Redraws with the x axis spanning the window that ends now (the scale object is
+  // reused from frame to frame).
   draw() {
     const t = this.columns[0];
     const end = t.length ? t[t.length - 1] : 0;
-    this.chart.batch(() => {
-      this.chart.setData(this.columns, false);
-      this.chart.setScale('x', { min: Math.max(0, end - this.window), max: Math.max(this.window, end) });
-    });
+    this.xScale.min = Math.max(0, end - this.window);
+    this.xScale.max = Math.max(this.window, end);
+    this.chart.batch(this.redraw);
   }
 
   clear() {

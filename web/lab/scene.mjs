@@ -84,29 +84,34 @@ function geomMaterial(model, g) {
   });
 }
 
-// Sets a three.js object's matrix from a position and a row-major 3x3 rotation.
-function setPose(object, pos, mat) {
-  object.matrix.set(mat[0], mat[1], mat[2], pos[0],
-                    mat[3], mat[4], mat[5], pos[1],
-                    mat[6], mat[7], mat[8], pos[2],
+// Sets a three.js object's matrix from row `g` of geom_xpos (3 numbers) and geom_xmat
+// (a row-major 3x3 rotation), read in place.
+function setPose(object, xpos, xmat, g) {
+  const p = 3 * g, r = 9 * g;
+  object.matrix.set(xmat[r], xmat[r + 1], xmat[r + 2], xpos[p],
+                    xmat[r + 3], xmat[r + 4], xmat[r + 5], xpos[p + 1],
+                    xmat[r + 6], xmat[r + 7], xmat[r + 8], xpos[p + 2],
                     0, 0, 0, 1);
   object.matrixWorldNeedsUpdate = true;
 }
 
-// A pool of arrows of one colour, reused frame to frame; unused ones are hidden.
+// A pool of arrows of one colour, reused frame to frame; unused ones are hidden. Drawing
+// allocates nothing once the pool is as large as the frame needs.
 class ArrowPool {
   constructor(scene, color) {
     this.scene = scene;
     this.color = color;
     this.arrows = [];
     this.used = 0;
+    this.direction = new THREE.Vector3();
   }
 
   begin() { this.used = 0; }
 
-  // An arrow from `origin` along `vector` (length capped), skipped when tiny.
+  // An arrow from `origin` along `vector` (Vector3s, read only; length capped), skipped
+  // when tiny.
   add(origin, vector) {
-    const v = new THREE.Vector3(...vector);
+    const v = this.direction.copy(vector);
     const length = Math.min(v.length(), kMaxArrow);
     if (length < 1e-4) return;
     if (this.used === this.arrows.length) {
@@ -115,7 +120,7 @@ class ArrowPool {
       this.arrows.push(arrow);
     }
     const arrow = this.arrows[this.used++];
-    arrow.position.set(...origin);
+    arrow.position.copy(origin);
     arrow.setDirection(v.normalize());
     arrow.setLength(length, Math.min(0.3 * length, 0.02), Math.min(0.15 * length, 0.01));
     arrow.visible = true;
@@ -127,12 +132,19 @@ class ArrowPool {
 }
 
 // The camera's pose from MuJoCo's free-camera numbers: it looks along
-// (cos el cos az, cos el sin az, sin el) at `target` from `distance` away, z up.
-export function cameraPosition({ azimuth, elevation, distance, target }) {
+// (cos el cos az, cos el sin az, sin el) at `target` from `distance` away, z up. Written
+// into `out` (an array or Vector3-like with set) when given.
+export function cameraPosition({ azimuth, elevation, distance, target }, out = null) {
   const az = azimuth * Math.PI / 180, el = elevation * Math.PI / 180;
-  const forward = [Math.cos(el) * Math.cos(az), Math.cos(el) * Math.sin(az), Math.sin(el)];
-  return forward.map((f, k) => target[k] - distance * f);
+  const x = target[0] - distance * Math.cos(el) * Math.cos(az);
+  const y = target[1] - distance * Math.cos(el) * Math.sin(az);
+  const z = target[2] - distance * Math.sin(el);
+  if (out) return out.set(x, y, z);
+  return [x, y, z];
 }
+
+// Contact rows of contactData() (web/README.md): offsets within a row.
+const kContactPos = 0, kContactFrame = 3, kContactForce = 12;
 
 export class LabScene {
   constructor(container, height, cameraSpec) {
@@ -159,6 +171,9 @@ export class LabScene {
     this.view = { azimuth: 90, elevation: -45, distance: 2, target: [0, 0, 0], ...spec };
     this.view.target = [...this.view.target];
     this.contactPoints = [];
+    // Scratch vectors the overlays reuse every frame.
+    this.scratch = { origin: new THREE.Vector3(), vector: new THREE.Vector3(),
+                     anchor: new THREE.Vector3(), axis: new THREE.Vector3() };
     this.arrows = {
       contact: new ArrowPool(this.scene, 0xd62728),
       actuator: new ArrowPool(this.scene, 0x2ca02c),
@@ -190,43 +205,56 @@ export class LabScene {
     }
   }
 
-  // Poses every geom from the state; `overlays` draws the toggled extras.
+  // Poses every geom from the state, then draws the toggled overlays. state.contacts
+  // holds contactData()'s rows (contactStride numbers each), or null.
   update(state, toggles) {
-    for (const { g, mesh } of this.geoms) {
-      setPose(mesh, state.geom_xpos.subarray(3 * g, 3 * g + 3), state.geom_xmat.subarray(9 * g, 9 * g + 9));
-    }
-    this.drawContacts(toggles.contacts ? state.contacts : []);
-    this.drawForces(toggles.forces ? state : null);
+    for (const { g, mesh } of this.geoms) setPose(mesh, state.geom_xpos, state.geom_xmat, g);
+    const ncon = state.contacts ? state.contacts.length / state.contactStride : 0;
+    this.drawContacts(toggles.contacts ? state : null, ncon);
+    this.drawForces(toggles.forces ? state : null, ncon);
     this.drawAxes(toggles.joints ? state : null);
   }
 
-  drawContacts(contacts) {
-    while (this.contactPoints.length < contacts.length) {
+  // A dot at each contact point.
+  drawContacts(state, ncon) {
+    const shown = state ? ncon : 0;
+    while (this.contactPoints.length < shown) {
       const dot = new THREE.Mesh(new THREE.SphereGeometry(0.004, 8, 6),
                                  new THREE.MeshBasicMaterial({ color: 0xff7f0e }));
       this.scene.add(dot);
       this.contactPoints.push(dot);
     }
-    this.contactPoints.forEach((dot, i) => {
-      dot.visible = i < contacts.length;
-      if (dot.visible) dot.position.set(contacts[i].pos[0], contacts[i].pos[1], contacts[i].pos[2]);
-    });
+    for (let i = 0; i < this.contactPoints.length; i++) {
+      const dot = this.contactPoints[i];
+      dot.visible = i < shown;
+      if (!dot.visible) continue;
+      const at = i * state.contactStride + kContactPos;
+      dot.position.set(state.contacts[at], state.contacts[at + 1], state.contacts[at + 2]);
+    }
   }
 
   // Contact forces (world frame, from the contact frame's rows) and the actuators'
   // generalized forces on each slide and hinge joint, along its axis.
-  drawForces(state) {
+  drawForces(state, ncon) {
     const { contact, actuator } = this.arrows;
+    const { origin, vector } = this.scratch;
     contact.begin();
     actuator.begin();
     if (state) {
-      for (const c of state.contacts) {
-        const world = [0, 1, 2].map((k) => [0, 1, 2].reduce((sum, row) => sum + c.force[row] * c.frame[3 * row + k], 0));
-        contact.add([c.pos[0], c.pos[1], c.pos[2]], world.map((x) => x * kForceScale));
+      const rows = state.contacts, stride = state.contactStride;
+      for (let i = 0; i < ncon; i++) {
+        const pos = i * stride + kContactPos, frame = i * stride + kContactFrame, force = i * stride + kContactForce;
+        // world = frame^T force (the frame's rows are the contact axes).
+        for (let k = 0; k < 3; k++) {
+          let sum = 0;
+          for (let row = 0; row < 3; row++) sum += rows[force + row] * rows[frame + 3 * row + k];
+          vector.setComponent(k, sum * kForceScale);
+        }
+        contact.add(origin.set(rows[pos], rows[pos + 1], rows[pos + 2]), vector);
       }
       this.forEachAxis(state, (j, anchor, axis) => {
         const f = state.qfrc_actuator[state.model.jnt_dofadr[j]] * kForceScale;
-        actuator.add(anchor, axis.map((x) => x * f));
+        actuator.add(anchor, vector.copy(axis).multiplyScalar(f));
       });
     }
     contact.end();
@@ -235,22 +263,29 @@ export class LabScene {
 
   drawAxes(state) {
     const { axis: pool } = this.arrows;
+    const { vector } = this.scratch;
     pool.begin();
-    if (state) this.forEachAxis(state, (j, anchor, axis) => pool.add(anchor, axis.map((x) => x * kAxisLength)));
+    if (state) this.forEachAxis(state, (j, anchor, axis) => pool.add(anchor, vector.copy(axis).multiplyScalar(kAxisLength)));
     pool.end();
   }
 
+  // visit(j, anchor, axis) for each slide and hinge joint; anchor and axis are scratch
+  // Vector3s, valid during the call only.
   forEachAxis(state, visit) {
     const type = state.model.jnt_type;
+    const { anchor, axis } = this.scratch;
     for (let j = 0; j < type.length; j++) {
       if (type[j] !== kSlide && type[j] !== kHinge) continue;
-      visit(j, Array.from(state.xanchor.subarray(3 * j, 3 * j + 3)), Array.from(state.xaxis.subarray(3 * j, 3 * j + 3)));
+      anchor.fromArray(state.xanchor, 3 * j);
+      axis.fromArray(state.xaxis, 3 * j);
+      visit(j, anchor, axis);
     }
   }
 
   render() {
-    this.camera.position.set(...cameraPosition(this.view));
-    this.camera.lookAt(...this.view.target);
+    const target = this.view.target;
+    cameraPosition(this.view, this.camera.position);
+    this.camera.lookAt(target[0], target[1], target[2]);
     this.renderer.render(this.scene, this.camera);
   }
 

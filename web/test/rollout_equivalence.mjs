@@ -87,6 +87,34 @@ function benchControls(nu, steps) {
   return file;
 }
 
+// Views by id (no name string crosses into wasm), efc_* views sized by the current rows
+// (efc_J nefc x nv), and contactData() holding the same numbers as contacts().
+function checkViewsAndContacts(simlab, sim) {
+  const id = sim.dataId('qpos');
+  assert.equal(sim.dataId('no_such_field'), -1);
+  assert.deepEqual(Array.from(sim.dataViewAt(id)), Array.from(sim.data('qpos')));
+  assert.throws(() => sim.dataViewAt(-1), /Data array id -1 out of range/);
+  sim.setData('ctrl', [0.12, -0.1, -0.33, 0]);
+  let { ncon, nefc } = sim.counts();
+  for (let k = 0; k < 2000 && ncon === 0; k++) {
+    sim.step(10);
+    ({ ncon, nefc } = sim.counts());
+  }
+  assert.ok(ncon > 0, 'the gripper touches something');
+  assert.equal(sim.dataView('efc_J').length, nefc * sim.sizes().nv, 'efc_J is nefc x nv');
+  assert.equal(sim.dataViewAt(sim.dataId('efc_force')).length, nefc);
+  const stride = simlab.contactStride;
+  assert.equal(stride, 22);
+  const flat = sim.contactData();
+  const objects = sim.contacts();
+  assert.equal(flat.length, ncon * stride);
+  objects.forEach((c, i) => {
+    const row = Array.from(flat.subarray(i * stride, (i + 1) * stride));
+    assert.deepEqual(row, [...c.pos, ...c.frame, ...c.force, c.geom1, c.geom2, c.dist, c.dim]);
+  });
+  console.log(`  views by id; efc_J ${nefc} x ${sim.sizes().nv}; contactData ${ncon} x ${stride} = contacts()`);
+}
+
 // The API beyond stepping: names, shapes, keyframes by name, views, errors.
 function checkApi(simlab) {
   const models = path.join(repoRoot, 'models');
@@ -112,6 +140,7 @@ function checkApi(simlab) {
     assert.throws(() => sim.setData('ctrl', [1, 2]), /ctrl needs \d+ numbers, got 2/);
     sim.step(5);
     assert.ok(Math.abs(sim.time - 5 * sim.option().timestep) < 1e-15);
+    checkViewsAndContacts(simlab, sim);
   } finally {
     sim.delete();
   }
