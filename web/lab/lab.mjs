@@ -94,7 +94,6 @@ function make(tag, className, text) {
 const kStyle = `
 .simlab-lab { font: 14px system-ui, sans-serif; border: 1px solid #c8ccd4; border-radius: 6px;
   padding: 8px; background: #fff; max-width: 900px; }
-.simlab-lab--dock { position: sticky; top: 0; z-index: 5; }
 .simlab-lab h3 { margin: 0 0 6px; font-size: 15px; }
 .simlab-lab-view { width: 100%; position: relative; }
 .simlab-lab-canvas { display: block; width: 100%; border-radius: 4px; cursor: grab; }

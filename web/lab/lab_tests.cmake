@@ -14,7 +14,7 @@ if(SIMLAB_NODE)
   # STL mesh compiled by the WebAssembly build when web/dist exists.
   add_test(NAME lab_model_files
            COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/model_files.mjs
-                   --dist ${CMAKE_SOURCE_DIR}/web/dist
+                   --dist ${CMAKE_SOURCE_DIR}/web/dist ${SIMLAB_BROWSER_REQUIRE}
            WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   add_test(NAME lab_e2e
            COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/lab_e2e.mjs

@@ -446,7 +446,8 @@ async function testAllGeoms(session) {
   const page = await session.browser.newPage({ viewport: { width: 900, height: 900 } });
   const problems = collectProblems(page);
   await page.goto(`${session.url}lab/index.html?spec=fixtures/all_geoms.json&base=fixtures/`);
-  await page.waitForFunction(() => window.lab || document.getElementById('error').textContent, null, { timeout: 60000 });
+  await page.waitForFunction(() => window.lab?.sim || document.getElementById('error').textContent, null,
+                             { timeout: 60000 });
   const error = await page.locator('#error').textContent();
   check(!error, `the fixture's lab mounted${error ? `: ${error}` : ''}`);
   const drawn = await page.evaluate(() => window.lab.scene.geoms.map(({ g }) => g));

@@ -5,7 +5,7 @@
 // compiled by the WebAssembly engine with its mesh file (and a colliding mesh refused,
 // since the browser build has no qhull).
 //
-//   node web/test/model_files.mjs [--dist web/dist]
+//   node web/test/model_files.mjs [--dist web/dist] [--require yes]
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -109,6 +109,8 @@ async function checkFixtures() {
 // The fixture compiled by the WebAssembly engine with the gathered files.
 async function checkWasm({ allGeoms, files }) {
   if (!fs.existsSync(path.join(dist, 'simlab.mjs'))) {
+    // With --require yes (CI) the WebAssembly build must be there.
+    if (process.argv.includes('--require')) throw new Error(`no WebAssembly build in ${dist}`);
     console.log(`skipped the WebAssembly check: no build in ${dist}`);
     return;
   }
