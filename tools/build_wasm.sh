@@ -4,9 +4,11 @@
 #
 #   bash tools/build_wasm.sh            # build dir build-wasm (SIMLAB_WASM_BUILD=... to change)
 #
-# pugixml has no WebAssembly build in Debian: its Debian source package (the same 1.13
-# the native build links) is fetched once with apt-get source, through private package
-# lists under the build folder, and compiled with emscripten beside the engine.
+# pugixml and qhull have no WebAssembly build in Debian: their Debian source packages (the
+# same pugixml 1.13 and qhull 2020.2 the native build links) are fetched once with
+# apt-get source, through private package lists under the build folder, and compiled with
+# emscripten: pugixml installed under build-wasm/_deps, qhull's reentrant C library
+# (src/libqhull_r) compiled by the engine's CMake (SIMLAB_QHULL_SOURCE).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -19,30 +21,41 @@ export NODE_PATH=/usr/share/nodejs
 unset EM_CACHE
 command -v emcmake >/dev/null || { echo "build_wasm: emscripten is missing (bash tools/install_deps.sh)"; exit 1; }
 
-# ---------------------------------------------------------------- pugixml for wasm
-fetch_pugixml_source() {
+# ---------------------------------------------------------------- Debian sources
+# Downloads and unpacks the source package $1 (its upstream tarball) into _deps/src.
+fetch_debian_source() {
   local apt="$deps/apt"
   mkdir -p "$apt/lists/partial" "$deps/src"
   echo "deb-src http://deb.debian.org/debian bookworm main" > "$apt/sources.list"
   local opts=(-o Dir::Etc::SourceList="$apt/sources.list" -o Dir::Etc::SourceParts=/dev/null
               -o Dir::State::Lists="$apt/lists" -o APT::Sandbox::User=root)
   apt-get "${opts[@]}" -qq update
-  (cd "$deps/src" && apt-get "${opts[@]}" -qq source --download-only pugixml)
-  tar -xzf "$deps"/src/pugixml_*.orig.tar.gz -C "$deps/src"
+  (cd "$deps/src" && apt-get "${opts[@]}" -qq source --download-only "$1")
+  tar -xzf "$deps/src/$1"_*.orig.tar.gz -C "$deps/src"
 }
 
+# The unpacked source folder of package $1, fetched first if missing.
+debian_source_dir() {
+  ls -d "$deps/src/$1"-*/ >/dev/null 2>&1 || fetch_debian_source "$1" >&2
+  ls -d "$deps/src/$1"-*/ | head -1
+}
+
+# ---------------------------------------------------------------- pugixml for wasm
 pugixml_config="$deps/pugixml/lib/cmake/pugixml/pugixml-config.cmake"
 if [ ! -f "$pugixml_config" ]; then
-  [ -d "$deps/src" ] && ls -d "$deps"/src/pugixml-*/ >/dev/null 2>&1 || fetch_pugixml_source
-  pugixml_src=$(ls -d "$deps"/src/pugixml-*/ | head -1)
+  pugixml_src=$(debian_source_dir pugixml)
   emcmake cmake -S "$pugixml_src" -B "$deps/pugixml-build" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_INSTALL_PREFIX="$deps/pugixml" -DBUILD_SHARED_LIBS=OFF -DPUGIXML_BUILD_TESTS=OFF \
     -DCMAKE_CXX_FLAGS=-fwasm-exceptions >/dev/null
   cmake --build "$deps/pugixml-build" -j2 --target install >/dev/null
 fi
 
+# ---------------------------------------------------------------- qhull for wasm
+qhull_src=$(debian_source_dir qhull)
+
 # ---------------------------------------------------------------- the engine and binding
 emcmake cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSIMLAB_TESTS=OFF -DSIMLAB_BENCH=OFF \
-  -DEigen3_DIR=/usr/share/eigen3/cmake -Dpugixml_DIR="$(dirname "$pugixml_config")" >/dev/null
+  -DEigen3_DIR=/usr/share/eigen3/cmake -Dpugixml_DIR="$(dirname "$pugixml_config")" \
+  -DSIMLAB_QHULL_SOURCE="${qhull_src%/}" >/dev/null
 cmake --build "$build" -j2 --target simlab_wasm
 ls -l web/dist/simlab.mjs web/dist/simlab.wasm

@@ -101,6 +101,21 @@ std::string FirstLine(FILE* log) {
   return text;
 }
 
+// qhull's steps up to a triangulated hull whose vertices know their facets. qhull
+// reports errors by longjmp back to the setjmp here, so this frame holds no C++ objects
+// and is never inlined: emscripten forbids setjmp and exception handling in one function.
+[[gnu::noinline]] bool TriangulatedHull(qhT* qh, char* options, coordT* points, int nvert) {
+  if (setjmp(qh->errexit) != 0) return false;
+  qh->NOerrexit = false;
+  qh_initflags(qh, options);
+  qh_init_B(qh, points, nvert, 3, False);
+  qh_qhull(qh);
+  qh_triangulate(qh);
+  qh_vertexneighbors(qh);
+  qh->NOerrexit = true;
+  return true;
+}
+
 }  // namespace
 
 HullResult ConvexHullGraph(const std::vector<double>& vert, int maxhullvert,
@@ -122,17 +137,10 @@ HullResult ConvexHullGraph(const std::vector<double>& vert, int maxhullvert,
   qhT* qh = &qh_storage;
   qh_zero(qh, errfile);
   qh_init_A(qh, stdin, stdout, errfile, 0, nullptr);
-  volatile HullResult result = HullResult::kOk;  // survives a longjmp
-  int curlong = 0, totlong = 0;
+  HullResult result = HullResult::kOk;
 
-  // qhull reports errors by longjmp back to here.
-  if (setjmp(qh->errexit) == 0) {
-    qh->NOerrexit = false;
-    qh_initflags(qh, options.data());
-    qh_init_B(qh, points.data(), nvert, 3, False);
-    qh_qhull(qh);
-    qh_triangulate(qh);
-    qh_vertexneighbors(qh);
+  // The hull in mesh_graph's layout, or qhull's error line.
+  if (TriangulatedHull(qh, options.data(), points.data(), nvert)) {
     int numvert = qh->num_vertices, numface = qh->num_facets;
     graph->assign(2 + 3 * numvert + 6 * numface, 0);
     (*graph)[0] = numvert;
@@ -145,18 +153,18 @@ HullResult ConvexHullGraph(const std::vector<double>& vert, int maxhullvert,
       result = HullResult::kBadGraph;
     }
   } else {
-    graph->clear();
     result = HullResult::kQhullError;
     *message = FirstLine(log);
   }
   qh->NOerrexit = true;
+  int curlong = 0, totlong = 0;
   qh_freeqhull(qh, !qh_ALL);
   qh_memfreeshort(qh, &curlong, &totlong);
   if (log) std::fclose(log);
   return result;
 }
 
-#else  // no qhull in this build (the browser build)
+#else  // a build without qhull
 
 HullResult ConvexHullGraph(const std::vector<double>&, int, std::vector<int>* graph,
                            std::string*) {

@@ -11,10 +11,12 @@ if(SIMLAB_NODE)
            COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/lab_expr.mjs
            WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   # The lab's model file finder in node (web/lab/model_files.mjs), and the fixture with its
-  # STL mesh compiled by the WebAssembly build when web/dist exists.
+  # STL mesh compiled by the WebAssembly build when web/dist exists; its convex hulls
+  # against MuJoCo's goldens and a colliding-mesh rollout against the native simlab.
   add_test(NAME lab_model_files
            COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/model_files.mjs
-                   --dist ${CMAKE_SOURCE_DIR}/web/dist ${SIMLAB_BROWSER_REQUIRE}
+                   --dist ${CMAKE_SOURCE_DIR}/web/dist --simlab $<TARGET_FILE:simlab>
+                   ${SIMLAB_BROWSER_REQUIRE}
            WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   add_test(NAME lab_e2e
            COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/lab_e2e.mjs

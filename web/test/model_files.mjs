@@ -2,19 +2,27 @@
 // pulls in, where (includes, attached models, <compiler meshdir/texturedir/assetdir>,
 // strippath), text for XML and bytes for the rest; then the fixture
 // web/lab/fixtures/models/all_geoms.xml gathered from disk and, when web/dist is built,
-// compiled by the WebAssembly engine with its mesh file (and a colliding mesh refused,
-// since the browser build has no qhull).
+// compiled by the WebAssembly engine with its mesh file. Convex hulls (qhull, compiled
+// for the browser by tools/build_wasm.sh): the mesh models of tests/meshes give the same
+// mesh arrays as MuJoCo's goldens (which the native build matches too), and the fixture
+// mesh_drop.xml (colliding meshes falling on a plane) rolls out as natively
+// (`--simlab`; skipped when a build is older than the sources unless `--stale ok`).
 //
-//   node web/test/model_files.mjs [--dist web/dist] [--require yes]
+//   node web/test/model_files.mjs [--dist web/dist] [--simlab build/simlab] [--stale ok]
+//        [--require yes]
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { gatherModelFiles, normalizePath, startTags } from '../lab/model_files.mjs';
+import { nativeRollout, parseOptions, wasmRollout, whyNotTestable } from './wasm_harness.mjs';
 
 const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const distArg = process.argv.indexOf('--dist');
-const dist = distArg > 0 ? path.resolve(process.argv[distArg + 1]) : path.join(repoRoot, 'web/dist');
+const options = parseOptions(process.argv.slice(2), {
+  dist: path.join(repoRoot, 'web/dist'), simlab: '', stale: 'no', require: 'no',
+});
+const dist = path.resolve(options.dist);
+const fixtures = path.join(repoRoot, 'web/lab/fixtures/models');
 
 // Readers over a {path: content} object; every read is logged.
 function memoryReaders(tree, log) {
@@ -93,7 +101,6 @@ async function checkReferences() {
 
 // The lab's fixture and the lesson model, gathered from disk.
 async function checkFixtures() {
-  const fixtures = path.join(repoRoot, 'web/lab/fixtures/models');
   const allGeoms = fs.readFileSync(path.join(fixtures, 'all_geoms.xml'), 'utf8');
   const files = await gatherModelFiles('all_geoms.xml', allGeoms, ...diskReaders(fixtures));
   assert.deepEqual(Object.keys(files), ['meshes/wedge.stl']);
@@ -107,37 +114,143 @@ async function checkFixtures() {
 }
 
 // The fixture compiled by the WebAssembly engine with the gathered files.
-async function checkWasm({ allGeoms, files }) {
-  if (!fs.existsSync(path.join(dist, 'simlab.mjs'))) {
-    // With --require yes (CI) the WebAssembly build must be there.
-    if (process.argv.includes('--require')) throw new Error(`no WebAssembly build in ${dist}`);
-    console.log(`skipped the WebAssembly check: no build in ${dist}`);
-    return;
-  }
-  const createSimlab = (await import(path.join(dist, 'simlab.mjs'))).default;
-  const simlab = await createSimlab({ wasmBinary: fs.readFileSync(path.join(dist, 'simlab.wasm')) });
+async function checkWasm(simlab, { allGeoms, files }) {
   const sim = new simlab.Simulation('all_geoms.xml', allGeoms, files);
   try {
     assert.deepEqual(Array.from(sim.model('mesh_vertnum')), [6, 4], 'the STL wedge (6 vertices merged) and the inline tetrahedron');
     assert.deepEqual(Array.from(sim.model('mesh_facenum')), [8, 4]);
+    assert.deepEqual(Array.from(sim.model('mesh_graphadr')), [-1, -1], 'visual meshes need no hull');
     const wedge = sim.nameToId('geom', 'wedge');
     assert.equal(sim.model('geom_type')[wedge], 7);
     assert.equal(sim.model('geom_dataid')[wedge], 0);
   } finally {
     sim.delete();
   }
+  // The same wedge colliding: its convex hull, 6 vertices and 8 triangles.
   const colliding = allGeoms.replace(/(name="wedge" type="mesh"[^>]*?) contype="0" conaffinity="0"/, '$1');
   assert.notEqual(colliding, allGeoms);
-  assert.throws(() => new simlab.Simulation('all_geoms.xml', colliding, files),
-    /^Error: all_geoms\.xml:\d+: <mesh name="wedge">: convex hulls are not supported yet in this build$/);
-  console.log('ok: the engine compiles the fixture with its STL mesh; a colliding mesh needs a convex hull, ' +
-              'which the WebAssembly build refuses with the mesh\'s file:line');
+  const hulled = new simlab.Simulation('all_geoms.xml', colliding, files);
+  try {
+    assert.equal(hulled.model('mesh_graphadr')[0], 0);
+    assert.deepEqual(Array.from(hulled.model('mesh_graph').slice(0, 2)), [6, 8]);
+  } finally {
+    hulled.delete();
+  }
+  // qhull's errors reach the model's place (a flat mesh: qhull's longjmp in WebAssembly).
+  const flat = '<mujoco>\n<asset><mesh name="flat" vertex="0 0 0  1 0 0  0 1 0  1 1 0"/></asset>\n' +
+               '<worldbody><geom type="mesh" mesh="flat"/></worldbody></mujoco>';
+  assert.throws(() => new simlab.Simulation('flat.xml', flat),
+    /^Error: flat\.xml:2: <mesh name="flat">: qhull error while making the convex hull: QH6154 /);
+  console.log('ok: the engine compiles the fixture with its STL mesh, and the same mesh colliding ' +
+              'with its convex hull; a flat mesh gets qhull\'s error at the mesh\'s file:line');
+}
+
+// The model arrays of tests/meshes/NAME.xml (WebAssembly) against MuJoCo's golden, as
+// tests/compiler_conformance_test.cc checks the native build: integers (hull graphs,
+// faces) exactly, numbers to 1e-12.
+async function checkMeshGolden(simlab, name, fields) {
+  const folder = path.join(repoRoot, 'tests/meshes');
+  const xml = fs.readFileSync(path.join(folder, `${name}.xml`), 'utf8');
+  const files = await gatherModelFiles(`${name}.xml`, xml, ...diskReaders(folder));
+  const golden = JSON.parse(fs.readFileSync(path.join(repoRoot, `tests/compiler_goldens/${name}.json`), 'utf8')).arrays;
+  const sim = new simlab.Simulation(`${name}.xml`, xml, files);
+  try {
+    for (const field of fields) {
+      const got = Array.from(sim.model(field));
+      const want = golden[field];
+      assert.equal(got.length, want.length, `${name}: ${field} size`);
+      const integers = sim.modelShape(field).type === 'int';
+      got.forEach((x, i) => {
+        const ok = integers ? x === want[i] : Math.abs(x - want[i]) <= 1e-12 * Math.max(1, Math.abs(want[i]));
+        assert.ok(ok, `${name}: ${field}[${i}] = ${x}, MuJoCo ${want[i]}`);
+      });
+    }
+    return { nmesh: sim.sizes().nmesh, ngraph: golden.mesh_graph.length };
+  } finally {
+    sim.delete();
+  }
+}
+
+// Hull-made arrays of the mesh test models equal MuJoCo's (and so the native build's).
+async function checkHullArrays(simlab) {
+  const fields = ['mesh_vertadr', 'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_graphadr',
+    'mesh_graph', 'mesh_face', 'mesh_vert', 'mesh_pos', 'mesh_quat', 'geom_size', 'geom_rbound',
+    'body_mass'];
+  for (const name of ['mesh_assets', 'mesh_cloud']) {
+    const { nmesh, ngraph } = await checkMeshGolden(simlab, name, fields);
+    console.log(`ok: tests/meshes/${name}.xml in WebAssembly: ${nmesh} meshes, mesh_graph (${ngraph} ints), ` +
+                'faces, vertices, geom sizes and masses as MuJoCo\'s golden');
+  }
+}
+
+// The colliding meshes of mesh_drop.xml falling on a plane: WebAssembly against the
+// native `simlab rollout`, every recorded number.
+async function checkHullRollout(simlab) {
+  const reason = !options.simlab ? 'no native simlab given (--simlab)'
+    : !fs.existsSync(options.simlab) ? `no native simlab at ${options.simlab}`
+      : whyNotTestable(dist, options.stale === 'ok');
+  if (reason) {
+    if (options.require === 'yes') throw new Error(`required, but ${reason}`);
+    console.log(`skipped the native comparison of mesh_drop.xml: ${reason}`);
+    return;
+  }
+  const modelPath = path.join(fixtures, 'mesh_drop.xml');
+  const xml = fs.readFileSync(modelPath, 'utf8');
+  const files = await gatherModelFiles('mesh_drop.xml', xml, ...diskReaders(fixtures));
+  const fieldNames = ['qpos', 'qvel', 'qacc', 'qfrc_constraint'];
+  const steps = 600;
+  const sim = new simlab.Simulation('mesh_drop.xml', xml, files);
+  let wasm;
+  try {
+    wasm = wasmRollout(sim, { steps, fields: fieldNames });
+  } finally {
+    sim.delete();
+  }
+  const native = nativeRollout(options.simlab, modelPath, { steps });
+  assert.equal(wasm.length, native.length);
+  let count = 0, differ = 0, worst = 0;
+  native.forEach((record, s) => {
+    assert.equal(wasm[s].ncon, record.ncon, `ncon at step ${s}`);
+    for (const field of fieldNames) {
+      Array.from(wasm[s][field]).forEach((x, i) => {
+        const want = record[field][i];
+        count++;
+        if (x === want) return;
+        differ++;
+        worst = Math.max(worst, Math.abs(x - want) / Math.max(1, Math.abs(want)));
+      });
+    }
+  });
+  assert.ok(native.at(-1).ncon > 0, 'the meshes rest on the plane');
+  assert.ok(worst <= 1e-12, `mesh_drop.xml: ${differ} of ${count} numbers differ, worst ${worst}`);
+  console.log(`ok: mesh_drop.xml (colliding STL wedge and vertex-only box) ${steps} steps, ` +
+              `${native.at(-1).ncon} contacts at the end: ` +
+              (differ ? `${differ} of ${count} numbers differ, worst ${worst.toExponential(2)}`
+                : `bit-identical to native (${count} numbers)`));
+}
+
+// The WebAssembly module, or null (skipped) when web/dist has none.
+async function loadWasm() {
+  if (!fs.existsSync(path.join(dist, 'simlab.mjs'))) {
+    // With --require yes (CI) the WebAssembly build must be there.
+    if (options.require === 'yes') throw new Error(`no WebAssembly build in ${dist}`);
+    console.log(`skipped the WebAssembly checks: no build in ${dist}`);
+    return null;
+  }
+  const createSimlab = (await import(path.join(dist, 'simlab.mjs'))).default;
+  return createSimlab({ wasmBinary: fs.readFileSync(path.join(dist, 'simlab.wasm')) });
 }
 
 async function main() {
   checkTags();
   await checkReferences();
-  await checkWasm(await checkFixtures());
+  const fixtureFiles = await checkFixtures();
+  const simlab = await loadWasm();
+  if (simlab) {
+    await checkWasm(simlab, fixtureFiles);
+    await checkHullArrays(simlab);
+    await checkHullRollout(simlab);
+  }
   console.log('PASS');
 }
 
