@@ -15,7 +15,7 @@
 #      also from each of its four keyframes.
 #   4. The lab scenario on models/gantry_gripper.xml (with the gripper.xml it attaches)
 #      from keyframe 0 with the lab's
-#      control files (tests/models/compose/gantry_lab_{slow,jump}.csv, made by
+#      control files (tests/models/compose/gantry_lab_{slow,jump,hold}.csv, made by
 #      make_lab_ctrl.py): lower, close, raise slowly (the cube is lifted) or in one jump
 #      (the cube slips), over the whole file.
 #   5. tests/models/contact_params.xml (priority, solmix, condim 1/4/6, margin/gap, an
@@ -63,12 +63,16 @@ for key in 0 1 2 3; do
 done
 
 # --- 4. the gantry gripper lab scenario --------------------------------------------------------
-for run in slow jump; do
+for run in slow jump hold; do
   ctrl="tests/models/compose/gantry_lab_$run.csv"
   steps=$(grep -vc '^#' "$ctrl")
   cp models/gantry_gripper.xml "$OUT/models/gantry_lab_$run.xml"
   cp models/gripper.xml "$OUT/models/gripper.xml"
+  # The 16 s hold is recorded every 50 steps (the golden stays small).
+  every_before=$EVERY
+  [ "$run" = hold ] && EVERY=50
   oracle_rollout "$OUT/models/gantry_lab_$run.xml" "$steps" key:0 "$ctrl" "$TOL" "$CASES"
+  EVERY=$every_before
 done
 
 # --- 5. contact parameters --------------------------------------------------------------------

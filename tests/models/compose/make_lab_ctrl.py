@@ -6,7 +6,8 @@ Rows are ctrl = [x, y, z, grip] per step (timestep 0.002 s):
   2.0-3.0 s  close the grip (target 0: the grip force saturates at its forcerange)
   then       slow: raise z linearly to 0 over 3 s and hold 1 s
              jump: set z to 0.05 at once and hold 2 s
-Run: python3 make_lab_ctrl.py (writes gantry_lab_slow.csv and gantry_lab_jump.csv here).
+             hold: raise as slow does, then hold z = 0 for 10 s (the cube stays held)
+Run: python3 make_lab_ctrl.py (writes gantry_lab_{slow,jump,hold}.csv here).
 """
 import os
 
@@ -34,9 +35,10 @@ def lab(finish):
 
 SLOW = [(3.0, lambda s: (X, Y, -0.33 + 0.33 * s, 0.0)), (1.0, lambda s: (X, Y, 0.0, 0.0))]
 JUMP = [(2.0, lambda s: (X, Y, 0.05, 0.0))]
+HOLD = SLOW[:1] + [(10.0, lambda s: (X, Y, 0.0, 0.0))]
 
 here = os.path.dirname(os.path.abspath(__file__))
-for name, finish in (("slow", SLOW), ("jump", JUMP)):
+for name, finish in (("slow", SLOW), ("jump", JUMP), ("hold", HOLD)):
     with open(os.path.join(here, f"gantry_lab_{name}.csv"), "w") as f:
         f.write(f"# gantry lab, {name} raise (make_lab_ctrl.py)\n")
         for r in lab(finish):
