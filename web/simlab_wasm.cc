@@ -219,16 +219,30 @@ class Simulation {
   }
 
   // ---- state
-  void Reset() { ResetData(m_, d_); }
+  // Engine errors (std::exception) reach JavaScript as Errors with their message.
+  void Reset() {
+    Guarded([&] {
+      ResetData(m_, d_);
+      return 0;
+    });
+  }
   void ResetKeyframe(const val& key) {
     Guarded([&] {
       ResetDataKeyframe(m_, d_, KeyIndex(key));
       return 0;
     });
   }
-  void Forward() { simlab::Forward(m_, d_); }
+  void Forward() {
+    Guarded([&] {
+      simlab::Forward(m_, d_);
+      return 0;
+    });
+  }
   void Step(int n) {
-    for (int i = 0; i < n; i++) simlab::Step(m_, d_);
+    Guarded([&] {
+      for (int i = 0; i < n; i++) simlab::Step(m_, d_);
+      return 0;
+    });
   }
   void StepOnce() { Step(1); }
   double Time() const { return d_.time; }

@@ -153,25 +153,34 @@ export function parseTarget(text) {
   if (!('source' in tree) || tree.source !== 'data') {
     throw new ExprError(`'${text}': a control must set one element, data.NAME[i]`);
   }
-  return { name: tree.name, index: evaluateExpr(tree.index, () => {
+  const index = evaluateExpr(tree.index, () => {
     throw new ExprError(`'${text}': the index of a control target must be a constant`);
-  }) };
+  });
+  if (!Number.isInteger(index)) throw new ExprError(`'${text}': the index must be a whole number`);
+  return { name: tree.name, index };
 }
 
-// A reader over arrays fetched by `fetchArray(source, name)` (null for an unknown name),
-// cached until clear(); it checks names and indices and says which one is wrong.
+// A reader over arrays fetched by `fetchArray(source, name)` (null for an unknown name;
+// the caller keeps its own arrays, so nothing is cached here); it checks names and indices
+// and says which one is wrong.
 export function arrayReader(fetchArray) {
-  const cache = new Map();
-  const read = (source, name, index) => {
-    const key = `${source}.${name}`;
-    if (!cache.has(key)) cache.set(key, fetchArray(source, name));
-    const array = cache.get(key);
+  return (source, name, index) => {
+    const array = fetchArray(source, name);
     if (!array) throw new ExprError(`no ${source} array named '${name}'`);
     if (index < 0 || index >= array.length) {
-      throw new ExprError(`${key}[${index}]: index out of range (${name} has ${array.length} numbers)`);
+      throw new ExprError(`${source}.${name}[${index}]: index out of range (${name} has ${array.length} numbers)`);
     }
     return array[index];
   };
-  read.clear = () => cache.clear();
-  return read;
+}
+
+// Every array an expression reads: [[source, name], ...] (repeats included).
+export function arraysOf(tree, out = []) {
+  if (!tree || typeof tree !== 'object') return out;
+  if ('source' in tree) {
+    out.push([tree.source, tree.name]);
+    return arraysOf(tree.index, out);
+  }
+  for (const key of ['left', 'right', 'operand']) arraysOf(tree[key], out);
+  return out;
 }

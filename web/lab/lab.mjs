@@ -3,7 +3,7 @@
 // (attached models, includes, meshes, textures...), resets to the block's keyframe and
 // shows the 3D view, sliders, readouts, plots and note, simulating in real time. See
 // web/README.md, "The lab".
-import { arrayReader, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
+import { arrayReader, arraysOf, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
 import { gatherModelFiles } from './model_files.mjs';
 import { LivePlot } from './plot.mjs';
 import { LabScene } from './scene.mjs';
@@ -82,6 +82,9 @@ class DataViews {
     return entry.view;
   }
 }
+
+// The Data arrays the 3D view reads every frame.
+const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator'];
 
 // A DOM element with a class and optional text.
 function make(tag, className, text) {
@@ -163,8 +166,9 @@ class Lab {
     // time per second spent stepping (how much faster than real time it could run).
     // dropped: wall-clock seconds the simulation gave up catching (budget spent, or gaps
     // over kMaxGap), in total since the lab was mounted.
+    // totalSteps, totalFrames: counted since mounting (steps per frame = their ratio).
     this.stats = { fps: 0, realTimeFactor: 0, engineFactor: 0, frames: 0, busy: 0,
-                   windowStart: performance.now(), simStart: 0, dropped: 0 };
+                   windowStart: performance.now(), simStart: 0, dropped: 0, totalSteps: 0, totalFrames: 0 };
     // Pacing (see kBudgetShare): the mean frame interval and cost of a step, in ms.
     this.frameInterval = 1000 / 60;
     this.msPerStep = 0.05;
@@ -181,8 +185,12 @@ class Lab {
     if (spec.note) root.appendChild(make('p', 'simlab-lab-note', spec.note));
     this.sceneModel = this.modelObject();
     this.contactStride = contactStride;
+    this.resolveArrays();
     this.scene.build(this.sceneModel, sim.statistic().extent || 1);
     new ResizeObserver(() => this.resize()).observe(root);
+    // Off screen (scrolled away), the lab keeps simulating but does not render.
+    this.onScreen = true;
+    new IntersectionObserver(([entry]) => { this.onScreen = entry.isIntersecting; }).observe(this.view);
 
     this.reset();
     this.frame = this.frame.bind(this);
@@ -191,19 +199,22 @@ class Lab {
   }
 
   // A Model or Data array by name, or null if there is none (Model arrays are copied
-  // once; Data arrays are views, see DataViews). Copying a Model array passes its name
-  // into wasm memory, which may grow it: the reader then forgets the views it holds.
+  // once, unknown names remembered as null; Data arrays are views, see DataViews).
   array(source, name) {
-    try {
-      if (source === 'data') return this.dataViews.get(name);
-      if (!this.modelArrays.has(name)) {
-        this.modelArrays.set(name, this.sim.model(name));
-        this.read.clear();
-      }
-      return this.modelArrays.get(name);
-    } catch {
-      return null;
+    if (source === 'data') return this.dataViews.get(name);
+    if (!this.modelArrays.has(name)) {
+      const known = this.sim.modelNames().includes(name);
+      this.modelArrays.set(name, known ? this.sim.model(name) : null);
     }
+    return this.modelArrays.get(name);
+  }
+
+  // Looks up, once and before the first draw, every array the readouts, plots and scene
+  // read, so that no name string crosses into wasm memory (and may grow it) mid-draw.
+  resolveArrays() {
+    const trees = [...this.readouts.map((r) => r.tree), ...this.plots.flatMap((p) => p.traces)];
+    for (const tree of trees) for (const [source, name] of arraysOf(tree)) this.array(source, name);
+    for (const name of kSceneArrays) this.dataViews.get(name);
   }
 
   // The Model arrays the 3D view needs, by name.
@@ -221,16 +232,20 @@ class Lab {
     this.playButton = bar.appendChild(make('button', 'simlab-lab-play'));
     this.playButton.addEventListener('click', () => (this.playing ? this.pause() : this.play()));
     const reset = bar.appendChild(make('button', 'simlab-lab-reset', 'reset'));
-    reset.addEventListener('click', () => this.reset());
+    reset.addEventListener('click', () => this.guarded(() => this.reset()));
     for (const name of this.spec.toggles ?? []) {
       if (!(name in this.toggles)) continue;
       const label = bar.appendChild(make('label', 'simlab-lab-toggle'));
       const box = label.appendChild(make('input'));
       box.type = 'checkbox';
       box.dataset.toggle = name;
-      box.addEventListener('change', () => { this.toggles[name] = box.checked; this.draw(); });
+      box.addEventListener('change', () => {
+        this.toggles[name] = box.checked;
+        this.guarded(() => this.draw());
+      });
       label.append(` ${name}`);
     }
+    this.errorText = bar.appendChild(make('span', 'simlab-lab-error'));
     this.statsText = bar.appendChild(make('span', 'simlab-lab-stats'));
     this.updatePlayButton();
   }
@@ -248,7 +263,7 @@ class Lab {
     const control = { spec, slider, shown, target: null };
     try {
       control.target = parseTarget(spec.set);
-      this.read('data', control.target.name, control.target.index);
+      this.read('data', control.target.name, control.target.index);  // checks name and index
     } catch (error) {
       control.target = null;
       slider.disabled = true;
@@ -322,7 +337,6 @@ class Lab {
   draw() {
     this.changed = false;
     this.dataViews.nextFrame();
-    this.read.clear();
     for (const r of this.readouts) {
       const value = r.tree ? this.evaluate(r.tree) : NaN;
       const error = r.tree ? this.lastError : r.error;
@@ -337,6 +351,7 @@ class Lab {
       plot.push(time, values);
       plot.draw();
     }
+    if (!this.onScreen) return;
     this.scene.update(this.sceneState(), this.toggles);
     this.scene.render();
   }
@@ -369,6 +384,7 @@ class Lab {
     while (owed > 0 && spent < budget) {
       const chunk = Math.min(owed, Math.max(1, Math.floor(kChunkMs / this.msPerStep)));
       this.sim.step(chunk);
+      this.stats.totalSteps += chunk;
       const now = performance.now();
       this.msPerStep = 0.8 * this.msPerStep + 0.2 * Math.max(1e-4, (now - start - spent) / chunk);
       spent = now - start;
@@ -386,6 +402,22 @@ class Lab {
   // (see advance), then draws and updates the frame rate and real-time factor.
   frame(now) {
     if (this.disposed) return;
+    try {
+      this.frameBody(now);
+    } catch (error) {
+      this.fail(error);
+    }
+    requestAnimationFrame(this.frame);
+  }
+
+  // An engine error (or any other) pauses the lab and shows the message in its toolbar;
+  // reset clears it.
+  fail(error) {
+    this.pause();
+    this.errorText.textContent = `stopped: ${error.message ?? error}`;
+  }
+
+  frameBody(now) {
     const wall = this.lastFrame === null ? 0 : (now - this.lastFrame) / 1000;
     const gap = Math.min(kMaxGap, wall);
     if (this.playing) this.stats.dropped += wall - gap;
@@ -393,17 +425,20 @@ class Lab {
     this.lastFrame = now;
     const timeBefore = this.sim.time;
     if (this.playing) this.advance(gap);
+    // Paused, a slider still acts at once: forward recomputes forces from the new ctrl
+    // (as MuJoCo's simulate does while paused).
+    else if (this.changed) this.sim.forward();
     // Readouts and plots only when time moved or something asked for it; the 3D view
-    // always (the camera may have moved).
+    // whenever it is on screen (the camera may have moved).
     if (this.changed || this.sim.time !== timeBefore) this.draw();
-    else this.scene.render();
+    else if (this.onScreen) this.scene.render();
     this.countFrame(now);
-    requestAnimationFrame(this.frame);
   }
 
   countFrame(now) {
     const s = this.stats;
     s.frames++;
+    s.totalFrames++;
     const elapsed = (now - s.windowStart) / 1000;
     if (elapsed < 0.5) return;
     s.fps = s.frames / elapsed;
@@ -416,6 +451,15 @@ class Lab {
     s.simStart = this.sim.time;
     this.statsText.textContent = `${s.fps.toFixed(0)} fps, real-time factor ${s.realTimeFactor.toFixed(2)}` +
       (s.engineFactor ? ` (engine ${s.engineFactor.toFixed(0)}x)` : '');
+  }
+
+  // Runs `action`; an error stops the lab with its message instead of escaping.
+  guarded(action) {
+    try {
+      action();
+    } catch (error) {
+      this.fail(error);
+    }
   }
 
   updatePlayButton() {
@@ -436,6 +480,7 @@ class Lab {
   // The keyframe (or the default state), the sliders back at their initial values,
   // written into ctrl, and empty plots.
   reset() {
+    this.errorText.textContent = '';
     if (this.spec.key !== undefined && this.spec.key !== null) this.sim.resetKeyframe(this.spec.key);
     else this.sim.reset();
     for (const control of this.controls) {
@@ -462,9 +507,10 @@ class Lab {
     this.draw();
   }
 
-  // The animation clock: the last frame's wall time (ms) and the simulation time then.
+  // The animation clock: the last frame's wall time (ms), the simulation time then, and the
+  // frames drawn and steps taken by the animation loop so far.
   clock() {
-    return { wall: this.lastFrame, time: this.sim.time };
+    return { wall: this.lastFrame, time: this.sim.time, frames: this.stats.totalFrames, steps: this.stats.totalSteps };
   }
 
   readoutValues() {

@@ -291,14 +291,21 @@ export class LabScene {
 
   // Left drag orbits (azimuth, elevation), right or shift drag pans the target, the
   // wheel zooms (distance).
+  // The wheel zooms only once the view was clicked (it has focus) or with Ctrl held, so
+  // that scrolling the lesson past the lab scrolls the page. Touch drags orbit too.
   attachMouse(canvas) {
     let last = null;
+    canvas.tabIndex = 0;
+    canvas.style.touchAction = 'none';
     canvas.addEventListener('contextmenu', (e) => e.preventDefault());
     canvas.addEventListener('pointerdown', (e) => {
+      canvas.focus({ preventScroll: true });
       last = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey };
       canvas.setPointerCapture(e.pointerId);
     });
-    canvas.addEventListener('pointerup', () => { last = null; });
+    const release = () => { last = null; };
+    canvas.addEventListener('pointerup', release);
+    canvas.addEventListener('pointercancel', release);
     canvas.addEventListener('pointermove', (e) => {
       if (!last) return;
       const dx = e.clientX - last.x, dy = e.clientY - last.y;
@@ -307,6 +314,7 @@ export class LabScene {
       if (last.pan) this.pan(dx, dy); else this.orbit(dx, dy);
     });
     canvas.addEventListener('wheel', (e) => {
+      if (document.activeElement !== canvas && !e.ctrlKey) return;
       e.preventDefault();
       this.view.distance = Math.min(50, Math.max(0.05, this.view.distance * Math.exp(0.001 * e.deltaY)));
     }, { passive: false });

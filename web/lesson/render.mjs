@@ -87,20 +87,24 @@ function renderCode(doc, block) {
   return figure;
 }
 
-// The parsed spec, shown where the live lab cannot run.
-function labPlaceholder(doc, element, block, reason) {
+// The lab's title and why it is not live (yet); with `showSpec`, the parsed spec too,
+// where the live lab cannot run.
+function labPlaceholder(doc, element, block, reason, showSpec = true) {
   element.classList.add('lab-placeholder');
   element.replaceChildren(
     make(doc, 'div', 'lab-title', [block.spec?.title ?? 'Lab']),
-    make(doc, 'p', 'lab-reason', [reason]),
-    make(doc, 'pre', 'lab-spec', [block.spec ? JSON.stringify(block.spec, null, 2) : block.raw]));
+    make(doc, 'p', 'lab-reason', [reason]));
+  if (showSpec) {
+    element.append(make(doc, 'pre', 'lab-spec', [block.spec ? JSON.stringify(block.spec, null, 2) : block.raw]));
+  }
 }
 
 function renderLab(doc, block, options) {
   const section = make(doc, 'section', 'lab-mount');
   section.dataset.model = block.spec?.model ?? '';
   // "dock": true keeps the lab in view beside the text on wide screens (lesson.css).
-  if (block.spec?.dock === true) {
+  // Only the first docked lab of a page docks (two would cover each other).
+  if (block.spec?.dock === true && !doc.querySelector('.lab-docked')) {
     section.classList.add('lab-docked');
     doc.body?.classList.add('has-docked-lab');
   }
@@ -108,13 +112,14 @@ function renderLab(doc, block, options) {
     labPlaceholder(doc, section, block, `The lab block's JSON could not be read: ${block.error}`);
     return section;
   }
-  labPlaceholder(doc, section, block, 'Loading the live lab…');
+  labPlaceholder(doc, section, block, 'Loading the live lab…', false);
   const load = options.loadLab ?? (() => Promise.reject(new Error('no lab loader')));
   load().then(async (module) => {
     section.classList.remove('lab-placeholder');
     section.replaceChildren();
-    await module.mountLab(section, block.spec, { baseUrl: options.baseUrl });
-    section.dataset.mounted = 'true';
+    // A lab that cannot start (its model fails to load) says why in place.
+    await module.mountLab(section, block.spec, { baseUrl: options.baseUrl })
+      .then(() => { section.dataset.mounted = 'true'; }, () => { section.dataset.mounted = 'error'; });
   }).catch((e) => {
     labPlaceholder(doc, section, block, `The live lab is not available here (${e.message}); its specification:`);
     section.dataset.mounted = 'placeholder';

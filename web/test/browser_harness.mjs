@@ -62,7 +62,13 @@ export function collectProblems(page) {
 export async function openLabSession(options) {
   const playwright = await loadPlaywright(options);
   const server = await startLabServer(options.simlab, options.lesson);
-  const browser = await launchChromium(playwright, options);
+  let browser = null;
+  try {
+    browser = await launchChromium(playwright, options);
+  } catch (error) {
+    server.stop();
+    throw error;
+  }
   const close = async () => {
     await browser.close();
     server.stop();

@@ -65,6 +65,9 @@ async function dragSlider(page, label, value) {
   await page.mouse.down();
   for (let k = 1; k <= 10; k++) await page.mouse.move(x(current + (value - current) * k / 10), box.y + box.height / 2);
   await page.mouse.up();
+  const dragged = Number(await slider.inputValue());
+  check(Math.abs(dragged - value) <= Math.max(3 * step, 0.05 * (max - min)),
+        `the mouse moved slider "${label}" from ${current} to ${dragged} (aiming at ${value})`);
   for (let guard = 0; guard < 200; guard++) {
     const now = Number(await slider.inputValue());
     if (Math.abs(now - value) < step / 2) break;
@@ -74,13 +77,14 @@ async function dragSlider(page, label, value) {
   check(Math.abs(final - value) < step / 2, `slider "${label}" dragged to ${final}`);
 }
 
-// Waits (real time) until `predicate(readouts)` holds, checking `invariant` on the way.
-async function waitFor(page, seconds, predicate, invariant = () => {}) {
+// Waits (real time, at most `seconds`) until `predicate(readouts)` holds, checking
+// `invariant` on the way; or, given `probe` and `until`, until `until(await probe())`.
+async function waitFor(page, seconds, predicate, invariant = () => {}, probe = null, until = null) {
   const end = Date.now() + 1000 * seconds;
   for (;;) {
     const r = await readouts(page);
     invariant(r);
-    if (predicate(r)) return r;
+    if (probe ? until(await probe()) : predicate(r)) return r;
     if (Date.now() > end) return null;
     await page.waitForTimeout(50);
   }
@@ -114,7 +118,10 @@ async function interactive(page, spec) {
   await shoot(page, 'lab_before.png');
 
   await dragSlider(page, 'ctrl[2]: carriage z target', -0.33);
-  await waitFor(page, 1.5, () => false, fingersEqual);  // the carriage comes down
+  const lowered = await waitFor(page, 10, () => false, fingersEqual,
+                                () => page.evaluate(() => window.lab.sim.data('qpos')[2]),
+                                (z) => Math.abs(z + 0.33) < 0.006);
+  check(lowered !== null, 'the carriage came down to z = -0.33 (within 6 mm)');
   await dragSlider(page, 'ctrl[3]: grip half-opening', 0);
   // Closing pulls the fingers to lower qpos: the force saturates at the lower bound.
   const bound = range[0];
@@ -146,8 +153,14 @@ async function interactive(page, spec) {
   console.log(`page shows "${shown}"; real-time factor over the raise ${rtf.toFixed(4)} ` +
               `(${(clock1.time - clock0.time).toFixed(3)} s simulated), frame rate ${stats.fps.toFixed(1)} fps, ` +
               `engine ${stats.engineFactor.toFixed(0)}x real time`);
-  check(/fps, real-time factor/.test(shown) && rtf >= 0.99 && stats.engineFactor >= 1,
-        'the page keeps real time (the engine is faster than real time)');
+  const [, fpsShown, rtfShown] = /^(\d+) fps, real-time factor (\d+\.\d\d)/.exec(shown) ?? [];
+  check(Number(fpsShown) >= 1 && Math.abs(Number(rtfShown) - 1) <= 0.05,
+        `the page shows its frame rate (${fpsShown} fps) and real-time factor (${rtfShown})`);
+  const stepsPerFrame = (clock1.steps - clock0.steps) / (clock1.frames - clock0.frames);
+  check(stepsPerFrame > 1, `several steps per frame: ${stepsPerFrame.toFixed(1)} on average over the raise`);
+  check(rtf >= 0.97 && rtf <= 1.03 && stats.engineFactor >= 1,
+        `the page keeps real time: ${rtf.toFixed(4)} over the raise, engine ${stats.engineFactor.toFixed(0)}x ` +
+        `(${stats.dropped.toFixed(3)} s of wall time dropped since mounting)`);
   // Held up, the cube stays in the grip (the model's hard elliptic friction stops the creep).
   await page.waitForTimeout(2000);
   const held = await readouts(page);
@@ -170,6 +183,15 @@ async function pauseAndReset(page, spec) {
   await page.waitForTimeout(300);
   const samplesLater = await page.evaluate(() => window.lab.plots.map(({ plot }) => plot.columns[0].length));
   check(samples.join() === samplesLater.join(), `plots hold ${samples} samples while paused`);
+  // Paused, a slider still acts at once: opening the grip turns its force from -5 N to +5 N.
+  await page.getByRole('slider', { name: 'ctrl[3]: grip half-opening' }).evaluate((slider) => {
+    slider.value = '0.04';
+    slider.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  const opened = await waitFor(page, 5, (r) => r['grip force (N)'].text === '5.00');
+  const tPaused = await page.evaluate(() => window.lab.sim.time);
+  check(opened !== null && tPaused === t0,
+        `paused, opening the grip shows ${opened?.['grip force (N)'].text} N at once (time still ${tPaused.toFixed(3)} s)`);
   await page.getByRole('button', { name: 'reset' }).click();
   const state = await page.evaluate(() => ({
     time: window.lab.sim.time, qpos: Array.from(window.lab.sim.data('qpos')),
@@ -187,7 +209,16 @@ async function pauseAndReset(page, spec) {
 async function orbit(page) {
   const canvas = await page.locator('canvas.simlab-lab-canvas').boundingBox();
   const view0 = await page.evaluate(() => ({ ...window.lab.scene.view }));
-  const [cx, cy] = [canvas.x + canvas.width / 2, canvas.y + canvas.height / 2];
+  let [cx, cy] = [canvas.x + canvas.width / 2, canvas.y + canvas.height / 2];
+  // Before the view is clicked, the wheel scrolls the page, not the camera.
+  await page.mouse.move(cx, cy + 50);
+  await page.mouse.wheel(0, -100);
+  await page.waitForTimeout(200);
+  const unfocused = await page.evaluate(() => window.lab.scene.view.distance);
+  check(unfocused === view0.distance, `the wheel over an unclicked view leaves the camera at ${unfocused}`);
+  // The page may have scrolled: where the view is now.
+  const moved = await page.locator('canvas.simlab-lab-canvas').boundingBox();
+  [cx, cy] = [moved.x + moved.width / 2, moved.y + moved.height / 2];
   await page.mouse.move(cx, cy + 50);
   await page.mouse.down();
   await page.mouse.move(cx + 30, cy - 50, { steps: 10 });
@@ -211,11 +242,11 @@ async function deterministic(page) {
     lab.reset();
     const rows = [];
     const checkpoints = [];
+    // ctrl stays as the sliders left it between moves: one row per step, then the steps at once.
     const run = (steps) => {
-      for (let i = 0; i < steps; i++) {
-        rows.push(Array.from(lab.sim.data('ctrl')));
-        lab.step(1);
-      }
+      const ctrl = Array.from(lab.sim.data('ctrl'));
+      for (let i = 0; i < steps; i++) rows.push(ctrl);
+      lab.step(steps);
       checkpoints.push({ step: rows.length, readouts: lab.readoutValues().map((r) => r.value) });
     };
     lab.setControl(1, -0.33);
@@ -260,6 +291,7 @@ function compareWithNative(result) {
   let worst = 0;
   for (const { step, readouts: values } of result.checkpoints) {
     const record = native[step];
+    if (record.step !== step) throw new Error(`native record ${step} is step ${record.step}`);
     const read = (source, name, i) => {
       if (source !== 'data' || !(name in record)) throw new Error(`native rollout has no ${source}.${name}`);
       return record[name][i];
@@ -467,6 +499,12 @@ async function testAllGeoms(session) {
   const message = await page.locator('.simlab-lab-control', { has: bad }).locator('.simlab-lab-error').textContent();
   check(await bad.isDisabled() && /ctrl\[7\]: index out of range/.test(message), `bad control target: "${message}"`);
   await page.screenshot({ path: path.join(options.shots, 'lab_all_geoms.png'), fullPage: true });
+  // An error while stepping stops the lab and says so in its toolbar; the page lives on.
+  await page.evaluate(() => { window.lab.sim.step = () => { throw new Error('the engine failed'); }; });
+  await page.waitForTimeout(500);
+  const stopped = await page.locator('.simlab-lab-toolbar .simlab-lab-error').textContent();
+  const button = await page.locator('button.simlab-lab-play').textContent();
+  check(stopped === 'stopped: the engine failed' && button === 'play', `a failing step shows "${stopped}" and pauses`);
   check(problems.length === 0, `no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
   await page.close();
 }

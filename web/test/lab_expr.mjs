@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import {
-  ExprError, arrayReader, evaluateExpr, parseExpr, parseTarget,
+  ExprError, arrayReader, arraysOf, evaluateExpr, parseExpr, parseTarget,
 } from '../lab/expr.mjs';
 import { parseLabSpec } from '../lab/spec.mjs';
 import { parseLesson } from '../lesson/parse.mjs';
@@ -67,14 +67,15 @@ const tests = {
     assert.throws(() => parseTarget('data.ctrl[0] + 1'), /must set one element/);
     assert.throws(() => parseTarget('data.ctrl[data.qpos[0]]'), /constant/);
   },
-  'the cache is cleared between frames': () => {
+  'the reader reads the live arrays, and arraysOf lists what an expression reads': () => {
     const live = { qpos: [1] };
     const reader = arrayReader((source, name) => live[name] ?? null);
     assert.equal(evaluateExpr(parseExpr('data.qpos[0]'), reader), 1);
     live.qpos = [2];
-    assert.equal(evaluateExpr(parseExpr('data.qpos[0]'), reader), 1);
-    reader.clear();
     assert.equal(evaluateExpr(parseExpr('data.qpos[0]'), reader), 2);
+    assert.deepEqual(arraysOf(parseExpr('-(data.qpos[model.jnt_qposadr[1]] + 2) * data.ctrl[0]')),
+                     [['data', 'qpos'], ['model', 'jnt_qposadr'], ['data', 'ctrl']]);
+    assert.throws(() => parseTarget('data.ctrl[0.5]'), /whole number/);
   },
   "the lesson's lab block, typographic quotes normalised": () => {
     const lesson = path.resolve(repoRoot, '../shared/lesson/lesson-2.3-actuators.txt');

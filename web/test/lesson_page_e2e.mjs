@@ -12,7 +12,7 @@
 // yes: fails).
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { kDefaultLesson, openLabSession } from './browser_harness.mjs';
+import { collectProblems, kDefaultLesson, openLabSession } from './browser_harness.mjs';
 import { parseOptions, repoRoot } from './wasm_harness.mjs';
 
 const options = parseOptions(process.argv.slice(2), {
@@ -141,8 +141,7 @@ async function main() {
   const { browser, url, close } = await openLabSession(options);
   try {
     const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
-    const lessonErrors = [];
-    page.on('pageerror', (e) => { if (/\/lesson\//.test(e.stack ?? '')) lessonErrors.push(e.message); });
+    const lessonErrors = collectProblems(page);
     await page.goto(url);
     await page.waitForSelector('body[data-ready]', { timeout: 15000 });
     assert.equal(await page.getAttribute('body', 'data-ready'), 'true');
