@@ -30,10 +30,19 @@ const kEvery = 500;
 async function rolloutInPage({ model, rows, every }) {
   const { default: createSimlab } = await import('/dist/simlab.mjs');
   const simlab = await createSimlab();
-  const text = async (p) => (await fetch(p)).text();
-  const folder = model.slice(0, model.lastIndexOf('/') + 1);
-  const sim = new simlab.Simulation(model.slice(folder.length), await text('/' + model),
-                                    { 'gripper.xml': await text('/' + folder + 'gripper.xml') });
+  // The model and every file it refers to, found as the lab's loader finds them.
+  const { gatherModelFiles } = await import('/lab/model_files.mjs');
+  const folder = '/' + model.slice(0, model.lastIndexOf('/') + 1);
+  const name = model.slice(folder.length - 1);
+  const fetchOk = async (p) => {
+    const response = await fetch(folder + p);
+    if (!response.ok) throw new Error(`${folder + p}: HTTP ${response.status}`);
+    return response;
+  };
+  const xml = await (await fetchOk(name)).text();
+  const files = await gatherModelFiles(name, xml, async (p) => (await fetchOk(p)).text(),
+                                       async (p) => new Uint8Array(await (await fetchOk(p)).arrayBuffer()));
+  const sim = new simlab.Simulation(name, xml, files);
   let best = Infinity;
   let records = [];
   for (let repeat = 0; repeat < 3; repeat++) {

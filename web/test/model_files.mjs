@@ -6,7 +6,7 @@
 // for the browser by tools/build_wasm.sh): the mesh models of tests/meshes give the same
 // mesh arrays as MuJoCo's goldens (which the native build matches too), and the fixture
 // mesh_drop.xml (colliding meshes falling on a plane) rolls out as natively
-// (`--simlab`; skipped when a build is older than the sources unless `--stale ok`).
+// (`--simlab`; skipped when a build is of other sources unless `--stale ok`).
 //
 //   node web/test/model_files.mjs [--dist web/dist] [--simlab build/simlab] [--stale ok]
 //        [--require yes]
@@ -15,7 +15,9 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { gatherModelFiles, normalizePath, startTags } from '../lab/model_files.mjs';
-import { nativeRollout, parseOptions, wasmRollout, whyNotTestable } from './wasm_harness.mjs';
+import {
+  diskReaders, nativeRollout, parseOptions, wasmRollout, whyNotTestable,
+} from './wasm_harness.mjs';
 
 const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const options = parseOptions(process.argv.slice(2), {
@@ -34,11 +36,6 @@ function memoryReaders(tree, log) {
   return [read, async (path) => new TextEncoder().encode(await read(path))];
 }
 
-// Readers over a folder on disk.
-function diskReaders(folder) {
-  return [async (p) => fs.readFileSync(path.join(folder, p), 'utf8'),
-    async (p) => new Uint8Array(fs.readFileSync(path.join(folder, p)))];
-}
 
 function checkTags() {
   const tags = startTags(`<mujoco><!-- <mesh file="no.stl"/> --><mesh name='a' file="x&amp;y.stl"/>

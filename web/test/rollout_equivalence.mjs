@@ -52,8 +52,8 @@ function compareRollouts(native, wasm) {
 }
 
 // One model: both rollouts, the per-field report, and the verdict.
-function checkCase(simlab, name, modelPath, extraFiles, { key, ctrlCsv, steps }) {
-  const sim = openModel(simlab, modelPath, extraFiles);
+async function checkCase(simlab, name, modelPath, { key, ctrlCsv, steps }) {
+  const sim = await openModel(simlab, modelPath);
   try {
     const controls = ctrlCsv ? readControls(ctrlCsv) : null;
     const native = nativeRollout(options.simlab, modelPath, { key, ctrl: ctrlCsv, steps });
@@ -116,9 +116,9 @@ function checkViewsAndContacts(simlab, sim) {
 }
 
 // The API beyond stepping: names, shapes, keyframes by name, views, errors.
-function checkApi(simlab) {
+async function checkApi(simlab) {
   const models = path.join(repoRoot, 'models');
-  const sim = openModel(simlab, path.join(models, 'gantry_gripper.xml'), ['gripper.xml']);
+  const sim = await openModel(simlab, path.join(models, 'gantry_gripper.xml'));
   try {
     assert.equal(sim.nameToId('key', 'home'), 0);
     assert.equal(sim.nameToId('actuator', 'no such actuator'), -1);
@@ -161,16 +161,18 @@ async function main() {
   const simlab = await openBuilds(options);
   const models = path.join(repoRoot, 'models');
   const steps = Number(options.steps);
-  checkCase(simlab, 'gantry_gripper (lab slow lift)', path.join(models, 'gantry_gripper.xml'),
-            ['gripper.xml'], { key: 0, steps,
-              ctrlCsv: path.join(repoRoot, 'tests/models/compose/gantry_lab_slow.csv') });
+  await checkCase(simlab, 'gantry_gripper (lab slow lift)', path.join(models, 'gantry_gripper.xml'), {
+    key: 0, steps, ctrlCsv: path.join(repoRoot, 'tests/models/compose/gantry_lab_slow.csv'),
+  });
   const benchPath = path.join(models, 'actuator_bench.xml');
   if (fs.existsSync(benchPath)) {
-    const nu = (() => { const s = openModel(simlab, benchPath); const n = s.sizes().nu; s.delete(); return n; })();
-    checkCase(simlab, 'actuator_bench', benchPath, [], { key: -1, steps: 1000,
+    const bench = await openModel(simlab, benchPath);
+    const nu = bench.sizes().nu;
+    bench.delete();
+    await checkCase(simlab, 'actuator_bench', benchPath, { key: -1, steps: 1000,
               ctrlCsv: benchControls(nu, 1000) });
   }
-  checkApi(simlab);
+  await checkApi(simlab);
   console.log('PASS');
 }
 

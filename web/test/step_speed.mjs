@@ -44,7 +44,7 @@ function nativeSeconds(repeats) {
 async function main() {
   const repeats = Number(options.repeats);
   const simlab = await openBuilds(options);
-  const sim = openModel(simlab, model, ['gripper.xml']);
+  const sim = await openModel(simlab, model);
   const wasm = best(repeats, () => wasmRollout(sim, { key: 0, controls, steps, fields: [], record: false }));
   const timestep = sim.option().timestep;
   sim.delete();

@@ -5,6 +5,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { gatherModelFiles } from '../lab/model_files.mjs';
 
 export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 
@@ -32,22 +33,26 @@ export function parseOptions(argv, defaults) {
   return options;
 }
 
-// The newest file below the engine's sources (what the WASM build is made from).
-function newestSource() {
-  let newest = { file: '', mtime: 0 };
-  const visit = (p) => {
-    const st = fs.statSync(p);
-    if (st.isDirectory()) {
-      for (const name of fs.readdirSync(p)) visit(path.join(p, name));
-    } else if (/\.(cc|h)$/.test(p) && st.mtimeMs > newest.mtime) {
-      newest = { file: p, mtime: st.mtimeMs };
-    }
-  };
-  for (const dir of ['src', 'include', 'web/simlab_wasm.cc']) visit(path.join(repoRoot, dir));
-  return newest;
+// The engine sources' hash now (tools/source_hash.cmake; `wasm`: with the binding).
+function sourceHash(wasm) {
+  const args = [`-DROOT=${repoRoot}`, '-P', path.join(repoRoot, 'tools/source_hash.cmake')];
+  if (wasm) args.unshift('-DWASM=ON');
+  const run = spawnSync('cmake', args, { encoding: 'utf8' });
+  if (run.status !== 0) throw new Error(`cmake -P tools/source_hash.cmake failed: ${run.stderr}`);
+  return run.stdout.trim();
 }
 
-// Why the WASM build cannot be tested (missing, or older than the sources unless
+// Why a build is not of the sources now: its hash file missing or different, or ''.
+function staleBuild(what, stampFile, wasm) {
+  const how = wasm ? 'bash tools/build_wasm.sh' : 'cmake --build';
+  if (!fs.existsSync(stampFile)) return `${what} has no ${path.basename(stampFile)} (${how} writes it)`;
+  if (fs.readFileSync(stampFile, 'utf8').trim() !== sourceHash(wasm)) {
+    return `${what} was built from other sources than src/ and include/ now (${how} rebuilds it)`;
+  }
+  return '';
+}
+
+// Why the WASM build cannot be tested (missing, or built from other sources unless
 // `staleOk`), or ''.
 export function whyNotTestable(dist, staleOk = false) {
   const wasm = path.join(dist, 'simlab.wasm');
@@ -56,12 +61,7 @@ export function whyNotTestable(dist, staleOk = false) {
     return `no WebAssembly build in ${dist} (` +
            (emscripten ? 'bash tools/build_wasm.sh makes it' : 'emscripten is not installed') + ')';
   }
-  const newest = newestSource();
-  if (!staleOk && newest.mtime > fs.statSync(wasm).mtimeMs) {
-    return `${wasm} is older than ${path.relative(repoRoot, newest.file)} ` +
-           '(bash tools/build_wasm.sh rebuilds it)';
-  }
-  return '';
+  return staleOk ? '' : staleBuild(wasm, path.join(dist, 'sources.sha256'), true);
 }
 
 // The module factory's result, with the binary read from disk (node has no fetch of file paths).
@@ -70,12 +70,19 @@ export async function loadSimlab(dist) {
   return createSimlab({ wasmBinary: fs.readFileSync(path.join(dist, 'simlab.wasm')) });
 }
 
-// A Simulation of models/NAME with its extra files (paths relative to the model's folder).
-export function openModel(simlab, modelPath, extraFiles = []) {
-  const folder = path.dirname(modelPath);
-  const files = {};
-  for (const rel of extraFiles) files[rel] = fs.readFileSync(path.join(folder, rel), 'utf8');
-  return new simlab.Simulation(path.basename(modelPath), fs.readFileSync(modelPath, 'utf8'), files);
+// Readers of a folder on disk, for gatherModelFiles: text, and bytes.
+export function diskReaders(folder) {
+  return [async (p) => fs.readFileSync(path.join(folder, p), 'utf8'),
+    async (p) => new Uint8Array(fs.readFileSync(path.join(folder, p)))];
+}
+
+// A Simulation of the model at `modelPath` with every file it refers to (found as the
+// lab's loader finds them, web/lab/model_files.mjs).
+export async function openModel(simlab, modelPath) {
+  const xml = fs.readFileSync(modelPath, 'utf8');
+  const name = path.basename(modelPath);
+  const files = await gatherModelFiles(name, xml, ...diskReaders(path.dirname(modelPath)));
+  return new simlab.Simulation(name, xml, files);
 }
 
 // Control rows of a CSV as `simlab rollout --ctrl` reads it ('#' lines are comments).
@@ -127,9 +134,7 @@ export async function openBuilds(options) {
   if (reason) skipOrFail(reason, options);
   if (!fs.existsSync(options.simlab)) throw new Error(`no native simlab at ${options.simlab}`);
   // Both builds must come from the same sources (others may edit them meanwhile).
-  const newest = newestSource();
-  if (options.stale !== 'ok' && newest.mtime > fs.statSync(options.simlab).mtimeMs) {
-    skipOrFail(`${options.simlab} is older than ${path.relative(repoRoot, newest.file)}`, options);
-  }
+  const native = options.stale === 'ok' ? '' : staleBuild(options.simlab, `${options.simlab}.sources`, false);
+  if (native) skipOrFail(native, options);
   return loadSimlab(options.dist);
 }
