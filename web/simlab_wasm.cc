@@ -534,7 +534,15 @@ EMSCRIPTEN_BINDINGS(simlab) {
       .function("contactData", &Simulation::ContactData)
       .function("dataId", &Simulation::DataId)
       .function("dataViewAt", &Simulation::DataViewAt);
+  // contactData()'s row layout: its length and where each part starts.
   emscripten::constant("contactStride", kContactStride);
+  emscripten::constant("contactPos", kContactPos);
+  emscripten::constant("contactFrame", kContactFrame);
+  emscripten::constant("contactForce", kContactForce);
+  emscripten::constant("contactGeom1", kContactGeom1);
+  emscripten::constant("contactGeom2", kContactGeom2);
+  emscripten::constant("contactDist", kContactDist);
+  emscripten::constant("contactDim", kContactDim);
 }
 
 }  // namespace simlab::web

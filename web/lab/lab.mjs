@@ -140,7 +140,9 @@ export async function mountLab(element, spec, options = {}) {
     const [simlab, files] = await Promise.all([loadEngine(distUrl), fetchModel(baseUrl, labSpec.model)]);
     const sim = new simlab.Simulation(files.filename, files.xml, files.files);
     status.remove();
-    const lab = new Lab(root, labSpec, sim, simlab.contactStride);
+    const contactLayout = { stride: simlab.contactStride, pos: simlab.contactPos, frame: simlab.contactFrame,
+                            force: simlab.contactForce };
+    const lab = new Lab(root, labSpec, sim, contactLayout);
     element.simlabLab = lab;
     return lab;
   } catch (error) {
@@ -152,7 +154,7 @@ export async function mountLab(element, spec, options = {}) {
 
 // One mounted lab: the simulation, its widgets and the animation loop.
 class Lab {
-  constructor(root, spec, sim, contactStride) {
+  constructor(root, spec, sim, contactLayout) {
     this.root = root;
     this.spec = spec;
     this.sim = sim;
@@ -173,7 +175,7 @@ class Lab {
     this.frameInterval = 1000 / 60;
     this.msPerStep = 0.05;
     // Reused every frame: the scene's state, the plots' sample rows.
-    this.state = { model: null, contacts: null, contactStride: 0, geom_xpos: null, geom_xmat: null,
+    this.state = { model: null, contacts: null, contactLayout, geom_xpos: null, geom_xmat: null,
                    xanchor: null, xaxis: null, qfrc_actuator: null };
 
     this.view = root.appendChild(make('div', 'simlab-lab-view'));
@@ -184,7 +186,6 @@ class Lab {
     this.plots = (spec.plots ?? []).map((p) => this.buildPlot(p));
     if (spec.note) root.appendChild(make('p', 'simlab-lab-note', spec.note));
     this.sceneModel = this.modelObject();
-    this.contactStride = contactStride;
     this.resolveArrays();
     this.scene.build(this.sceneModel, sim.statistic().extent || 1);
     new ResizeObserver(() => this.resize()).observe(root);
@@ -342,8 +343,11 @@ class Lab {
       const error = r.tree ? this.lastError : r.error;
       r.current = value;
       r.error = error;
-      r.value.className = error ? 'value simlab-lab-error' : 'value';
-      r.value.textContent = error ? error : value.toFixed(r.spec.digits ?? 3);
+      const className = error ? 'value simlab-lab-error' : 'value';
+      const text = error ? error : value.toFixed(r.spec.digits ?? 3);
+      // The DOM only when what it shows changes.
+      if (r.value.className !== className) r.value.className = className;
+      if (r.value.textContent !== text) r.value.textContent = text;
     }
     const time = this.sim.time;
     for (const { traces, values, plot } of this.plots) {
@@ -357,12 +361,11 @@ class Lab {
   }
 
   // What the view draws (one object, refilled every frame): contacts as ncon rows of
-  // contactStride numbers (see web/README.md), then views of the poses and forces.
+  // contactLayout.stride numbers (see web/README.md), then views of the poses and forces.
   sceneState() {
     const state = this.state;
     const wantsContacts = this.toggles.contacts || this.toggles.forces;
     state.contacts = wantsContacts ? this.sim.contactData() : null;
-    state.contactStride = this.contactStride;
     state.model = this.sceneModel;
     state.geom_xpos = this.dataViews.get('geom_xpos');
     state.geom_xmat = this.dataViews.get('geom_xmat');

@@ -144,7 +144,6 @@ export function cameraPosition({ azimuth, elevation, distance, target }, out = n
 }
 
 // Contact rows of contactData() (web/README.md): offsets within a row.
-const kContactPos = 0, kContactFrame = 3, kContactForce = 12;
 
 export class LabScene {
   constructor(container, height, cameraSpec) {
@@ -206,10 +205,11 @@ export class LabScene {
   }
 
   // Poses every geom from the state, then draws the toggled overlays. state.contacts
-  // holds contactData()'s rows (contactStride numbers each), or null.
+  // holds contactData()'s rows, or null; state.contactLayout says where what is in a row
+  // ({stride, pos, frame, force}, the module's constants).
   update(state, toggles) {
     for (const { g, mesh } of this.geoms) setPose(mesh, state.geom_xpos, state.geom_xmat, g);
-    const ncon = state.contacts ? state.contacts.length / state.contactStride : 0;
+    const ncon = state.contacts ? state.contacts.length / state.contactLayout.stride : 0;
     this.drawContacts(toggles.contacts ? state : null, ncon);
     this.drawForces(toggles.forces ? state : null, ncon);
     this.drawAxes(toggles.joints ? state : null);
@@ -228,7 +228,7 @@ export class LabScene {
       const dot = this.contactPoints[i];
       dot.visible = i < shown;
       if (!dot.visible) continue;
-      const at = i * state.contactStride + kContactPos;
+      const at = i * state.contactLayout.stride + state.contactLayout.pos;
       dot.position.set(state.contacts[at], state.contacts[at + 1], state.contacts[at + 2]);
     }
   }
@@ -241,9 +241,10 @@ export class LabScene {
     contact.begin();
     actuator.begin();
     if (state) {
-      const rows = state.contacts, stride = state.contactStride;
+      const rows = state.contacts, layout = state.contactLayout;
       for (let i = 0; i < ncon; i++) {
-        const pos = i * stride + kContactPos, frame = i * stride + kContactFrame, force = i * stride + kContactForce;
+        const start = i * layout.stride;
+        const pos = start + layout.pos, frame = start + layout.frame, force = start + layout.force;
         // world = frame^T force (the frame's rows are the contact axes).
         for (let k = 0; k < 3; k++) {
           let sum = 0;
