@@ -32,10 +32,7 @@ STEPS=200
 TOL=1e-8
 CONTACTS=yes
 
-cd "$ROOT"
-OUT=tests/conformance/contact
-CASES=tests/conformance/contact_cases.txt
-case_folder "$CASES"
+case_suite contact
 
 # --- 1. corpus models, unchanged ------------------------------------------------------------
 for rel in test/engine/testdata/actuation/activation.xml \

@@ -29,10 +29,7 @@ source "$(dirname "$0")/oracle_case.sh"
 TOL=1e-8
 CONTACTS=yes
 
-cd "$ROOT"
-OUT=tests/conformance/hfield
-CASES=tests/conformance/hfield_cases.txt
-case_folder "$CASES"
+case_suite hfield
 SRC=tests/hfield
 
 # --- 1. rollouts -----------------------------------------------------------------------------

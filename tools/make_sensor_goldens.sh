@@ -21,10 +21,7 @@ STEPS=200
 TOL=1e-8
 CONTACTS=yes
 
-cd "$ROOT"
-OUT=tests/conformance/sensor
-CASES=tests/conformance/sensor_cases.txt
-case_folder "$CASES"
+case_suite sensor
 
 # --- 1. corpus sensor models ---------------------------------------------------------------
 SENSOR="$SHARED_CORPUS/test/engine/testdata/sensor"

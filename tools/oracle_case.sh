@@ -15,6 +15,9 @@
 #       ctrl/<name>.csv = ctrlgen.mjs MODEL, then oracle_rollout with it.
 #   case_folder CASES
 #       Empties $OUT/{models,goldens,ctrl} and the case list CASES.
+#   case_suite NAME
+#       Starts the suite tests/conformance/NAME from the repository: cd to ROOT, sets
+#       OUT=tests/conformance/NAME and CASES=tests/conformance/NAME_cases.txt, case_folder.
 #   integrator_models BASE
 #       models/<name>__I.xml for I in (Euler RK4 implicit implicitfast): BASE with
 #       integrator="I" added to its <option timestep=...> tag; prints their paths.
@@ -61,6 +64,13 @@ case_folder() {
   rm -rf "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
   mkdir -p "$OUT/models" "$OUT/goldens" "$OUT/ctrl"
   : > "$1"
+}
+
+case_suite() {
+  cd "$ROOT"
+  OUT="tests/conformance/$1"
+  CASES="tests/conformance/$1_cases.txt"
+  case_folder "$CASES"
 }
 
 integrator_models() {

@@ -189,7 +189,8 @@ class Lab {
     this.resolveArrays();
     this.scene.build(this.sceneModel, sim.statistic().extent || 1);
     new ResizeObserver(() => this.resize()).observe(root);
-    // Off screen (scrolled away), the lab keeps simulating but does not render.
+    // Off screen (scrolled away), the lab keeps simulating but does not pose or render its
+    // view; back on screen, drawScene catches up.
     this.onScreen = true;
     new IntersectionObserver(([entry]) => { this.onScreen = entry.isIntersecting; }).observe(this.view);
 
@@ -275,10 +276,11 @@ class Lab {
     return control;
   }
 
+  // Writes the slider's value through the target's view (no name string into wasm).
   applyControl(control) {
     if (!control.target) return;
     const value = Number(control.slider.value);
-    this.sim.setDataAt(control.target.name, control.target.index, value);
+    this.dataViews.get(control.target.name)[control.target.index] = value;
     this.changed = true;
     control.shown.textContent = `${value} ${control.spec.unit ?? ''}`;
   }
@@ -355,8 +357,14 @@ class Lab {
       plot.push(time, values);
       plot.draw();
     }
-    if (!this.onScreen) return;
-    this.scene.update(this.sceneState(), this.toggles);
+    this.sceneStale = true;
+    if (this.onScreen) this.drawScene();
+  }
+
+  // The 3D view: posed anew from the state when a draw left it stale, then rendered.
+  drawScene() {
+    if (this.sceneStale) this.scene.update(this.sceneState(), this.toggles);
+    this.sceneStale = false;
     this.scene.render();
   }
 
@@ -434,7 +442,7 @@ class Lab {
     // Readouts and plots only when time moved or something asked for it; the 3D view
     // whenever it is on screen (the camera may have moved).
     if (this.changed || this.sim.time !== timeBefore) this.draw();
-    else if (this.onScreen) this.scene.render();
+    else if (this.onScreen) this.drawScene();
     this.countFrame(now);
   }
 

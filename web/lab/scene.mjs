@@ -143,8 +143,6 @@ export function cameraPosition({ azimuth, elevation, distance, target }, out = n
   return [x, y, z];
 }
 
-// Contact rows of contactData() (web/README.md): offsets within a row.
-
 export class LabScene {
   constructor(container, height, cameraSpec) {
     this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });

@@ -77,14 +77,14 @@ async function dragSlider(page, label, value) {
   check(Math.abs(final - value) < step / 2, `slider "${label}" dragged to ${final}`);
 }
 
-// Waits (real time, at most `seconds`) until `predicate(readouts)` holds, checking
-// `invariant` on the way; or, given `probe` and `until`, until `until(await probe())`.
-async function waitFor(page, seconds, predicate, invariant = () => {}, probe = null, until = null) {
+// Waits (real time, at most `seconds`) until `predicate(readouts)` holds (it may be
+// async), checking `invariant` on the way; the readouts then, or null.
+async function waitFor(page, seconds, predicate, invariant = () => {}) {
   const end = Date.now() + 1000 * seconds;
   for (;;) {
     const r = await readouts(page);
     invariant(r);
-    if (probe ? until(await probe()) : predicate(r)) return r;
+    if (await predicate(r)) return r;
     if (Date.now() > end) return null;
     await page.waitForTimeout(50);
   }
@@ -118,9 +118,8 @@ async function interactive(page, spec) {
   await shoot(page, 'lab_before.png');
 
   await dragSlider(page, 'ctrl[2]: carriage z target', -0.33);
-  const lowered = await waitFor(page, 10, () => false, fingersEqual,
-                                () => page.evaluate(() => window.lab.sim.data('qpos')[2]),
-                                (z) => Math.abs(z + 0.33) < 0.006);
+  const carriageZ = () => page.evaluate(() => window.lab.sim.data('qpos')[2]);
+  const lowered = await waitFor(page, 10, async () => Math.abs((await carriageZ()) + 0.33) < 0.006, fingersEqual);
   check(lowered !== null, 'the carriage came down to z = -0.33 (within 6 mm)');
   await dragSlider(page, 'ctrl[3]: grip half-opening', 0);
   // Closing pulls the fingers to lower qpos: the force saturates at the lower bound.

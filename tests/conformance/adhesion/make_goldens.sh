@@ -24,10 +24,7 @@ STEPS=500
 TOL=1e-8
 CONTACTS=yes
 
-cd "$ROOT"
-OUT=tests/conformance/adhesion
-CASES=tests/conformance/adhesion_cases.txt
-case_folder "$CASES"
+case_suite adhesion
 
 # --- 1. our models in every integrator ----------------------------------------------------
 base_cases "$STEPS" "$TOL" "$CASES"

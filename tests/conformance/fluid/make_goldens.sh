@@ -24,10 +24,7 @@ CORPUS="$(cd "$ROOT/../shared/corpus/mujoco/test/engine/testdata/actuation" && p
 STEPS=500
 TOL=1e-9
 
-cd "$ROOT"
-OUT=tests/conformance/fluid
-CASES=tests/conformance/fluid_cases.txt
-case_folder "$CASES"
+case_suite fluid
 
 # --- 1. our models in every integrator (one control file per base) -----------------------
 for base in "$OUT"/base/*.xml; do

@@ -25,10 +25,7 @@ source "$(dirname "$0")/../../../tools/oracle_case.sh"
 STEPS=500
 TOL=1e-8
 
-cd "$ROOT"
-OUT=tests/conformance/gravcomp
-CASES=tests/conformance/gravcomp_cases.txt
-case_folder "$CASES"
+case_suite gravcomp
 
 # --- 1. our models in every integrator ----------------------------------------------------
 base_cases "$STEPS" "$TOL" "$CASES"

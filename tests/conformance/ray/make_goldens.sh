@@ -17,10 +17,7 @@ source "$(dirname "$0")/../../../tools/oracle_case.sh"
 CORPUS="$(cd "$ROOT/../shared/corpus/mujoco/test/engine/testdata/sensor" && pwd)"
 TOL=1e-9
 
-cd "$ROOT"
-OUT=tests/conformance/ray
-CASES=tests/conformance/ray_cases.txt
-case_folder "$CASES"
+case_suite ray
 
 cp "$CORPUS/rfcamera.xml" "$OUT/models/rfcamera.xml"
 oracle_case "$OUT/models/rfcamera.xml" 200 - "$TOL" "$CASES"

@@ -36,10 +36,7 @@ export CONTACTS=yes
 # count and the answer by the tolerance; their cases run to a tight tolerance instead.
 TIGHT='tolerance="1e-13" iterations="300" noslip_tolerance="1e-13"'
 
-cd "$ROOT"
-OUT=tests/conformance/solver
-CASES=tests/conformance/solver_cases.txt
-case_folder "$CASES"
+case_suite solver
 BASE="$OUT/base/contact_cones.xml"
 
 # The bench's tolerance: free bodies bounce and spin on each other, which amplifies

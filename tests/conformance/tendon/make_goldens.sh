@@ -18,10 +18,7 @@ source "$(dirname "$0")/../../../tools/oracle_case.sh"
 STEPS=500
 TOL=1e-9
 
-cd "$ROOT"
-OUT=tests/conformance/tendon
-CASES=tests/conformance/tendon_cases.txt
-case_folder "$CASES"
+case_suite tendon
 for base in "$OUT"/base/*.xml; do
   name="$(basename "$base" .xml)"
   state="$OUT/base/$name.state.json"
