@@ -288,18 +288,7 @@ std::string ClampLines(const Model& m, int i) {
 
 // The name of object `id` of an MJCF object type, quoted, or its index if unnamed.
 std::string ObjectName(const Model& m, int type, int id) {
-  const std::vector<std::string>* names = nullptr;
-  switch (type) {
-    case kObjBody: case kObjXBody: names = &m.body_names; break;
-    case kObjJoint: names = &m.jnt_names; break;
-    case kObjGeom: names = &m.geom_names; break;
-    case kObjSite: names = &m.site_names; break;
-    case kObjCamera: names = &m.cam_names; break;
-    case kObjTendon: names = &m.tendon_names; break;
-    case kObjActuator: names = &m.actuator_names; break;
-    case kObjMesh: names = &m.mesh_names; break;
-    default: break;
-  }
+  const std::vector<std::string>* names = m.Names(static_cast<ObjType>(type));
   bool named = names && id < static_cast<int>(names->size()) && !(*names)[id].empty();
   return std::string(ObjTypeName(type)) + " " + (named ? Quoted((*names)[id]) : "#" + std::to_string(id));
 }

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "simlab/named.h"
 #include "simlab/simlab.h"
 
 namespace l2_3 {
@@ -187,10 +188,11 @@ inline void Coupling(const std::string& models_dir, std::ostream& out) {
   simlab::Model m = simlab::LoadXml(models_dir + "/gantry_gripper.xml");
   simlab::Data d = simlab::MakeData(m);
   simlab::ResetDataKeyframe(m, d, 0);
-  d.ctrl[simlab::NameToId(m, simlab::kObjActuator, "gripper/grip")] = 0.03;
+  simlab::DataObject(m, d, simlab::kObjActuator, "gripper/grip")["ctrl"][0] = 0.03;
   for (int i = 0; i < 1000; i++) simlab::Step(m, d);
+  // Named access, as MuJoCo's data.joint("gripper/finger_left").qpos[0].
   auto joint_qpos = [&](const char* name) {
-    return d.qpos[m.jnt_qposadr[simlab::NameToId(m, simlab::kObjJoint, name)]];
+    return simlab::DataObject(m, d, simlab::kObjJoint, name)["qpos"][0];
   };
   out << Format(" grip command 0.03 m: finger_left %.5f m, finger_right %.5f m, "
                 "tendon length %.5f m\n",

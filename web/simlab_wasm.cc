@@ -181,20 +181,10 @@ void WriteContactRow(const Model& m, const Data& d, int i, double* out) {
 
 // ---------------------------------------------------------------- names of objects
 
-// The name list of an object kind, by MuJoCo's field prefix ("body", "jnt", "cam", "eq",
-// "actuator", "key"...) or by its mjtObj keyword ("joint", "camera", "equality").
+// The name list of an object kind, by its mjtObj keyword ("joint", "camera", "equality")
+// or MuJoCo's field prefix ("body", "jnt", "cam", "eq", "actuator", "key"...).
 const std::vector<std::string>* NamesOfKind(const Model& m, const std::string& kind) {
-#define SIMLAB_X(prefix, count) \
-  if (kind == #prefix) return &m.prefix##_names;
-  SIMLAB_MODEL_NAMED(SIMLAB_X)
-#undef SIMLAB_X
-  static const std::pair<const char*, const char*> kAliases[] = {
-      {"joint", "jnt"}, {"camera", "cam"}, {"equality", "eq"}, {"xbody", "body"},
-      {"keyframe", "key"}};
-  for (const auto& [alias, prefix] : kAliases) {
-    if (kind == alias) return NamesOfKind(m, prefix);
-  }
-  return nullptr;
+  return m.Names(ObjTypeFromName(kind));
 }
 
 const std::vector<std::string>& NamesOfKindOrThrow(const Model& m, const std::string& kind) {
@@ -319,11 +309,8 @@ class Simulation {
   val Counts() const;
   int NameToId(const std::string& kind, const std::string& name) const {
     return Guarded([&] {
-      const std::vector<std::string>& names = NamesOfKindOrThrow(m_, kind);
-      for (size_t i = 0; i < names.size(); i++) {
-        if (!name.empty() && names[i] == name) return static_cast<int>(i);
-      }
-      return -1;
+      NamesOfKindOrThrow(m_, kind);  // a known kind
+      return m_.NameToId(ObjTypeFromName(kind), name);
     });
   }
   std::string IdToName(const std::string& kind, int id) const {
@@ -405,10 +392,9 @@ int Simulation::KeyIndex(const val& key) const {
   if (key.isNumber()) return key.as<int>();
   if (!key.isString()) throw Error("a keyframe is chosen by index or name");
   std::string name = key.as<std::string>();
-  for (int k = 0; k < m_.nkey; k++) {
-    if (m_.key_names[k] == name) return k;
-  }
-  throw Error("no keyframe named '" + name + "'");
+  int k = m_.NameToId(kObjKey, name);
+  if (k < 0) throw Error("no keyframe named '" + name + "'");
+  return k;
 }
 
 // Points the efc_* entries of the Data table at the current rows (nefc of them; efc_J

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace simlab {
@@ -469,6 +470,7 @@ struct Statistic {
 // A view of one array of a Model or Data by its MuJoCo name (for bindings and the lab).
 struct FieldView {
   const char* name = nullptr;
+  const char* rows_name = nullptr;  // the size member that counts its rows ("nbody"), or ""
   bool is_int = false;
   double* doubles = nullptr;
   int* ints = nullptr;
@@ -500,11 +502,23 @@ struct Model {
   // Resizes every array to the sizes above (values are zero-filled).
   void Allocate();
 
-  // Id of the named object of the given kind, or -1.
+  // The names of the objects of a kind (body_names for kObjBody and kObjXBody...), or
+  // null for a kind without names.
+  const std::vector<std::string>* Names(ObjType type) const;
+
+  // Id of the named object of the given kind, or -1 (by hash once IndexNames ran, which
+  // the compiler does; by a scan of the names otherwise).
   int NameToId(ObjType type, const std::string& name) const;
+
+  // Builds the name -> id tables NameToId uses; call again after renaming objects.
+  void IndexNames();
 
   // Every array of the model, in table order.
   std::vector<FieldView> Fields();
+
+  // name -> id per object kind (indexed by ObjType), filled by IndexNames. The first of
+  // equal names wins, as in MuJoCo; unnamed objects are not listed.
+  std::vector<std::unordered_map<std::string, int>> name_index;
 };
 
 

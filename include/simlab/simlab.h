@@ -10,6 +10,7 @@
 #ifndef SIMLAB_SIMLAB_H_
 #define SIMLAB_SIMLAB_H_
 
+#include <map>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,15 @@ Model LoadXml(const std::string& path);
 // Compile MJCF text; `filename` names it in error messages and is the base folder
 // for included files.
 Model LoadXmlString(const std::string& xml, const std::string& filename = "<string>");
+
+// Files given in memory: file name -> bytes (MjModel.from_xml_string's `assets`).
+using Assets = std::map<std::string, std::string>;
+
+// The same, reading included files, <model file="..."> and mesh files among `assets`
+// before the disk, as MuJoCo's virtual file system: a file is matched by its base name,
+// ignoring case, whatever the folders in the XML (meshdir too) or in the asset's name.
+// Throws Error for two assets with the same base name (as "a.xml", "dir/A.xml").
+Model LoadXmlString(const std::string& xml, const std::string& filename, const Assets& assets);
 
 // Default state: qpos = qpos0, everything else zero, mocap poses from the model.
 void ResetData(const Model& m, Data& d);
@@ -81,6 +91,9 @@ std::span<double> SensorData(const Model& m, Data& d, const std::string& name);
 // keyword ("site"); "unknown" outside the enum.
 const char* SensorTypeName(int type);
 const char* ObjTypeName(int type);
+// The object type an MJCF keyword ("joint"), or MuJoCo's field prefix or Python view name
+// for it ("jnt", "cam", "eq", "keyframe"), names; kObjUnknown for none.
+ObjType ObjTypeFromName(const std::string& name);
 
 // The MuJoCo version whose semantics this engine follows.
 const char* ReferenceVersion();

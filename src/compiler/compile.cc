@@ -72,6 +72,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // Statistics the model gives replace the computed ones (after the length ranges,
   // which MuJoCo simulates with the computed meaninertia).
   if (!std::isnan(spec.meaninertia)) m.stat.meaninertia = spec.meaninertia;
+  m.IndexNames();
   return m;
 }
 
@@ -79,6 +80,13 @@ Model Compile(const mjcf::ModelSpec& spec) {
 
 Model LoadXmlString(const std::string& xml, const std::string& filename) {
   mjcf::ModelSpec spec = mjcf::ReadMjcf(xml, filename);
+  return compiler::Compile(spec);
+}
+
+Model LoadXmlString(const std::string& xml, const std::string& filename, const Assets& assets) {
+  // The assets, keyed by file name, go with the spec to every file the load reads.
+  auto files = std::make_shared<const mjcf::AssetFiles>(assets);
+  mjcf::ModelSpec spec = mjcf::ReadMjcf(xml, filename, files);
   return compiler::Compile(spec);
 }
 

@@ -41,13 +41,14 @@ double Triangle(double normal[3], double center[3], const double* a, const doubl
 
 // ---------------------------------------------------------------- loading
 
-// Vertices and faces from the file or the inline attributes (not both).
-MeshData LoadGeometry(const mjcf::MeshSpec& s) {
+// Vertices and faces from the file (among `assets` first) or the inline attributes
+// (not both).
+MeshData LoadGeometry(const mjcf::MeshSpec& s, const mjcf::AssetFiles* assets) {
   MeshData data;
   if (s.builtin != mjcf::kMeshBuiltinNone) {
     data = BuiltinMesh(s);
   } else if (!s.path.empty()) {
-    data = ReadMeshFile(s);
+    data = ReadMeshFile(s, assets);
     if (!s.vertex.empty()) ThrowAt(s.src, "repeated vertex specification (file and vertex)");
     if (!data.face.empty() && !s.face.empty()) {
       ThrowAt(s.src, "repeated face specification (file and face)");
@@ -385,9 +386,9 @@ void MoveToInertialFrame(MeshState* mesh, const double com[3], const double quat
   math::CopyQuat(mesh->quat, quat);
 }
 
-void CompileMesh(bool needhull, MeshState* mesh) {
+void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh) {
   const mjcf::MeshSpec& s = *mesh->spec;
-  MeshData data = LoadGeometry(s);
+  MeshData data = LoadGeometry(s, assets);
   CheckGeometry(s, data);
   mesh->vert.assign(data.vert.begin(), data.vert.end());
   mesh->face = std::move(data.face);
@@ -461,7 +462,7 @@ void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state) {
   state->meshes.resize(spec.meshes.size());
   for (size_t i = 0; i < spec.meshes.size(); i++) {
     state->meshes[i].spec = &spec.meshes[i];
-    CompileMesh(needhull[i], &state->meshes[i]);
+    CompileMesh(needhull[i], spec.assets.get(), &state->meshes[i]);
   }
   for (size_t i = 0; i < state->geoms.size(); i++) {
     if (ids[i] < 0) continue;

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -48,12 +47,13 @@ std::string FileKind(const mjcf::MeshSpec& mesh) {
   ThrowAt(mesh.src, "unknown or unsupported mesh file: '" + mesh.path + "'");
 }
 
-std::string ReadBytes(const mjcf::MeshSpec& mesh) {
-  std::ifstream in(mesh.path, std::ios::binary);
-  if (!in) ThrowAt(mesh.src, "cannot open mesh file '" + mesh.path + "'");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+// The file's bytes: an asset with its name shadows the disk.
+std::string ReadBytes(const mjcf::MeshSpec& mesh, const mjcf::AssetFiles* assets) {
+  std::string bytes;
+  if (!mjcf::ReadFileOrAsset(mesh.path, assets, &bytes)) {
+    ThrowAt(mesh.src, "cannot open mesh file '" + mesh.path + "'" + mjcf::NotAmongAssets(assets));
+  }
+  return bytes;
 }
 
 bool RightHanded(const mjcf::MeshSpec& mesh) {
@@ -346,9 +346,9 @@ MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
 
 // ---------------------------------------------------------------- entry points
 
-MeshData ReadMeshFile(const mjcf::MeshSpec& mesh) {
+MeshData ReadMeshFile(const mjcf::MeshSpec& mesh, const mjcf::AssetFiles* assets) {
   std::string kind = FileKind(mesh);
-  std::string bytes = ReadBytes(mesh);
+  std::string bytes = ReadBytes(mesh, assets);
   return kind == "stl"   ? ReadStl(mesh, bytes)
          : kind == "obj" ? ReadObj(mesh, bytes)
                          : ReadMsh(mesh, bytes);

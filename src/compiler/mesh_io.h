@@ -19,9 +19,10 @@ struct MeshData {
   std::vector<float> normal;
 };
 
-// Reads mesh.path; the file type comes from content_type or the extension. A negative
-// scale product reverses the triangles' winding, as in MuJoCo. Throws at mesh.src.
-MeshData ReadMeshFile(const mjcf::MeshSpec& mesh);
+// Reads mesh.path, from `assets` (may be null) when one has its file name, else from
+// disk; the file type comes from content_type or the extension. A negative scale
+// product reverses the triangles' winding, as in MuJoCo. Throws at mesh.src.
+MeshData ReadMeshFile(const mjcf::MeshSpec& mesh, const mjcf::AssetFiles* assets = nullptr);
 
 }  // namespace simlab::compiler
 

@@ -19,36 +19,58 @@ void Model::Allocate() {
 #undef SIMLAB_X
 }
 
-int Model::NameToId(ObjType type, const std::string& name) const {
-  // Pick the name list of the object kind, then search it.
-  const std::vector<std::string>* names = nullptr;
+const std::vector<std::string>* Model::Names(ObjType type) const {
   switch (type) {
     case kObjBody:
-    case kObjXBody: names = &body_names; break;
-    case kObjJoint: names = &jnt_names; break;
-    case kObjGeom: names = &geom_names; break;
-    case kObjSite: names = &site_names; break;
-    case kObjCamera: names = &cam_names; break;
-    case kObjMesh: names = &mesh_names; break;
-    case kObjPair: names = &pair_names; break;
-    case kObjExclude: names = &exclude_names; break;
-    case kObjEquality: names = &eq_names; break;
-    case kObjTendon: names = &tendon_names; break;
-    case kObjActuator: names = &actuator_names; break;
-    case kObjSensor: names = &sensor_names; break;
-    case kObjKey: names = &key_names; break;
-    default: return -1;
+    case kObjXBody: return &body_names;
+    case kObjJoint: return &jnt_names;
+    case kObjGeom: return &geom_names;
+    case kObjSite: return &site_names;
+    case kObjCamera: return &cam_names;
+    case kObjMesh: return &mesh_names;
+    case kObjHfield: return &hfield_names;
+    case kObjPair: return &pair_names;
+    case kObjExclude: return &exclude_names;
+    case kObjEquality: return &eq_names;
+    case kObjTendon: return &tendon_names;
+    case kObjActuator: return &actuator_names;
+    case kObjSensor: return &sensor_names;
+    case kObjKey: return &key_names;
+    default: return nullptr;
   }
-  if (name.empty()) return -1;
+}
+
+int Model::NameToId(ObjType type, const std::string& name) const {
+  const std::vector<std::string>* names = Names(type);
+  if (!names || name.empty()) return -1;
+  // By hash when the tables are built for these names.
+  if (static_cast<size_t>(type) < name_index.size()) {
+    const auto& index = name_index[type];
+    auto found = index.find(name);
+    return found == index.end() ? -1 : found->second;
+  }
+  // A model put together by hand: scan the names.
   for (size_t i = 0; i < names->size(); i++) {
     if ((*names)[i] == name) return static_cast<int>(i);
   }
   return -1;
 }
 
+void Model::IndexNames() {
+  // One table per object kind that has names; the first of equal names wins.
+  name_index.assign(kObjPlugin + 1, {});
+  for (int type = 0; type <= kObjPlugin; type++) {
+    const std::vector<std::string>* names = Names(static_cast<ObjType>(type));
+    if (!names) continue;
+    for (size_t i = 0; i < names->size(); i++) {
+      if (!(*names)[i].empty()) name_index[type].emplace((*names)[i], static_cast<int>(i));
+    }
+  }
+}
+
 std::vector<FieldView> Model::Fields() {
   std::vector<FieldView> fields;
-#define SIMLAB_X(type, name, rows, cols) fields.push_back(MakeFieldView(#name, name, rows, cols));
+#define SIMLAB_X(type, name, rows, cols) fields.push_back(MakeFieldView(#name, #rows, name, rows, cols));
   SIMLAB_MODEL_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
   return fields;

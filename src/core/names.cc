@@ -1,6 +1,7 @@
 // Names of enum values as MJCF writes them (sensor element tags, object types), and
 // access to a sensor's output by its name (MuJoCo's data.sensor("name").data).
 #include <string>
+#include <utility>
 
 #include "simlab/simlab.h"
 
@@ -41,6 +42,22 @@ const char* SensorTypeName(int type) {
 const char* ObjTypeName(int type) {
   constexpr int n = sizeof(kObjNames) / sizeof(kObjNames[0]);
   return type >= 0 && type < n ? kObjNames[type] : "unknown";
+}
+
+ObjType ObjTypeFromName(const std::string& name) {
+  // MJCF keywords.
+  constexpr int n = sizeof(kObjNames) / sizeof(kObjNames[0]);
+  for (int type = 1; type < n; type++) {
+    if (name == kObjNames[type]) return static_cast<ObjType>(type);
+  }
+  // MuJoCo's field prefixes and Python view names.
+  static const std::pair<const char*, ObjType> kAliases[] = {
+      {"jnt", kObjJoint}, {"cam", kObjCamera}, {"eq", kObjEquality},
+      {"keyframe", kObjKey}, {"ten", kObjTendon}};
+  for (const auto& [alias, type] : kAliases) {
+    if (name == alias) return type;
+  }
+  return kObjUnknown;
 }
 
 int SensorId(const Model& m, const std::string& name) {

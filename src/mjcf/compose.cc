@@ -9,9 +9,7 @@
 // model, completed by the compiler (see AttachedKey).
 #include "mjcf/compose.h"
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "mjcf/error.h"
 #include "mjcf/reader.h"
@@ -45,15 +43,6 @@ XmlElement ElementAt(pugi::xml_node node, const NodeOrigins* origins, const std:
   return XmlElement(node, file, lines);
 }
 
-bool ReadTextFile(const std::string& path, std::string* text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  *text = buffer.str();
-  return !in.bad();
-}
-
 bool IsAbsolute(const std::string& path) { return !path.empty() && path[0] == '/'; }
 
 // Parses one file; a syntax error names that file and line.
@@ -74,8 +63,10 @@ constexpr int kMaxIncludeDepth = 64;
 
 class IncludeExpander {
  public:
-  IncludeExpander(const std::string& file, const LineIndex& lines, NodeOrigins* origins)
-      : main_file_(file), main_dir_(DirectoryOf(file)), main_lines_(lines), origins_(origins) {
+  IncludeExpander(const std::string& file, const LineIndex& lines, NodeOrigins* origins,
+                  const AssetFiles* assets)
+      : main_file_(file), main_dir_(DirectoryOf(file)), main_lines_(lines), origins_(origins),
+        assets_(assets) {
     included_.insert(file);
   }
 
@@ -106,7 +97,9 @@ class IncludeExpander {
     if (depth > kMaxIncludeDepth) e.Fail("includes are nested too deeply");
     std::string name, path, text;
     e.RequiredText("file", &name);
-    if (!Open(name, dir, &path, &text)) e.Fail("cannot open included file '" + name + "'");
+    if (!Open(name, dir, &path, &text)) {
+      e.Fail("cannot open included file '" + name + "'" + NotAmongAssets(assets_));
+    }
     if (included_.count(path)) {
       e.Fail("file '" + path + "' is already included (a file can be included only once, " +
              "so an include cannot be recursive)");
@@ -141,13 +134,14 @@ class IncludeExpander {
     }
   }
 
-  // MuJoCo looks next to the main file first, then next to the including file.
+  // MuJoCo looks next to the main file first, then next to the including file; each
+  // place among the assets (matched by file name), then on disk.
   bool Open(const std::string& name, const std::string& dir, std::string* path,
             std::string* text) const {
     std::vector<std::string> candidates = {name};
     if (!IsAbsolute(name)) candidates = {main_dir_ + name, dir + name};
     for (const std::string& candidate : candidates) {
-      if (ReadTextFile(candidate, text)) {
+      if (ReadFileOrAsset(candidate, assets_, text)) {
         *path = candidate;
         return true;
       }
@@ -168,14 +162,15 @@ class IncludeExpander {
   std::string main_file_, main_dir_;
   const LineIndex& main_lines_;
   NodeOrigins* origins_;
+  const AssetFiles* assets_;  // may be null
   std::set<std::string> included_;
 };
 
 }  // namespace
 
 void ExpandIncludes(pugi::xml_node root, const std::string& file, const LineIndex& lines,
-                    NodeOrigins* origins) {
-  IncludeExpander expander(file, lines, origins);
+                    NodeOrigins* origins, const AssetFiles* assets) {
+  IncludeExpander expander(file, lines, origins, assets);
   expander.Children(root, DirectoryOf(file), 0);
 }
 
@@ -201,15 +196,18 @@ void Reader::AssetModel(const XmlElement& e) {
     e.Fail("content_type must be \"text/xml\"");
   }
 
-  // The file is relative to the main file's folder; it is read on its own.
+  // The file is relative to the main file's folder (among the assets first); it is
+  // read on its own, with this model's assets.
   std::string path = IsAbsolute(file) ? file : DirectoryOf(file_) + file;
   std::string text;
-  if (!ReadTextFile(path, &text)) e.Fail("cannot open model file '" + path + "'");
+  if (!ReadFileOrAsset(path, spec_->assets.get(), &text)) {
+    e.Fail("cannot open model file '" + path + "'" + NotAmongAssets(spec_->assets.get()));
+  }
   if (model_depth >= kMaxModelDepth) e.Fail("models are nested too deeply (a cycle of models?)");
   auto model = std::make_shared<ParsedModel>();
   model_depth++;
   try {
-    ReadModel(text, path, model.get());
+    ReadModel(text, path, model.get(), spec_->assets);
   } catch (...) {
     model_depth--;
     throw;

@@ -36,10 +36,11 @@ class NodeOrigins {
 
 // Replaces every <include file="..."/> below `root` (the document of `file`) by the
 // elements under the root of the included file, recursively. A file is found relative
-// to the main file's folder, else to the including file's folder; each file can be
-// included once (which also stops recursion).
+// to the main file's folder, else to the including file's folder, each time among
+// `assets` (may be null) before the disk; each file can be included once (which also
+// stops recursion).
 void ExpandIncludes(pugi::xml_node root, const std::string& file, const LineIndex& lines,
-                    NodeOrigins* origins);
+                    NodeOrigins* origins, const AssetFiles* assets);
 
 // The folder part of a path, with its trailing '/' ("" for a bare file name).
 std::string DirectoryOf(const std::string& path);

@@ -22,13 +22,15 @@ bool IsUnsupportedSection(const std::string& tag) {
 
 // ---------------------------------------------------------------- entry point
 
-ModelSpec ReadMjcf(const std::string& text, const std::string& file) {
+ModelSpec ReadMjcf(const std::string& text, const std::string& file,
+                   const AssetFilesPtr& assets) {
   ParsedModel model;
-  ReadModel(text, file, &model);
+  ReadModel(text, file, &model, assets);
   return std::move(model.spec);
 }
 
-void ReadModel(const std::string& text, const std::string& file, ParsedModel* out) {
+void ReadModel(const std::string& text, const std::string& file, ParsedModel* out,
+               const AssetFilesPtr& assets) {
   // Parse the XML; a syntax error names the line where pugixml stopped.
   LineIndex lines(text);
   pugi::xml_document doc;
@@ -45,10 +47,12 @@ void ReadModel(const std::string& text, const std::string& file, ParsedModel* ou
     e.Fail("the root element must be <mujoco>");
   }
 
-  // Paste in included files, then walk the document into a spec.
+  // Paste in included files, then walk the document into a spec (which keeps the
+  // assets for the models it attaches and for the compiler).
   NodeOrigins origins;
-  ExpandIncludes(root, file, lines, &origins);
+  ExpandIncludes(root, file, lines, &origins, assets.get());
   out->spec.file = file;
+  out->spec.assets = assets;
   Reader reader(file, lines, &out->spec, &origins);
   reader.Root(root);
   out->classes = std::move(reader.classes_);

@@ -20,11 +20,14 @@
 namespace simlab::mjcf {
 
 // Parses MJCF text; `file` names it in error messages and its folder is where
-// included and attached files are found.
-ModelSpec ReadMjcf(const std::string& text, const std::string& file);
+// included and attached files are found: among `assets` first (may be null), then on
+// disk. The spec keeps `assets` for the compiler, which reads the mesh files.
+ModelSpec ReadMjcf(const std::string& text, const std::string& file,
+                   const AssetFilesPtr& assets = nullptr);
 
 // The same, keeping the default classes (for models that get attached).
-void ReadModel(const std::string& text, const std::string& file, ParsedModel* out);
+void ReadModel(const std::string& text, const std::string& file, ParsedModel* out,
+               const AssetFilesPtr& assets = nullptr);
 
 // The reader's state while walking one document.
 class Reader {
@@ -34,7 +37,8 @@ class Reader {
   void Root(pugi::xml_node root);
 
  private:
-  friend void ReadModel(const std::string& text, const std::string& file, ParsedModel* out);
+  friend void ReadModel(const std::string& text, const std::string& file, ParsedModel* out,
+                        const AssetFilesPtr& assets);
   // The element with its file and line (from `origins_` if it was included).
   XmlElement Element(pugi::xml_node node) const;
   [[noreturn]] void NotSupported(const XmlElement& e, const std::string& what = "") const;

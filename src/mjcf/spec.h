@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mjcf/assets.h"
 #include "simlab/model.h"
 
 namespace simlab::mjcf {
@@ -418,6 +419,7 @@ struct CompilerSpec {
 // The whole parsed model.
 struct ModelSpec {
   std::string file;
+  AssetFilesPtr assets;  // files given in memory (null: only the disk); see assets.h
   std::string model_name = "MuJoCo Model";
   CompilerSpec compiler;
   Option option;
