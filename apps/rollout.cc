@@ -91,7 +91,16 @@ std::vector<std::vector<double>> ReadControls(const std::string& path, int nu) {
   return rows;
 }
 
-Json Header(const Model& m) {
+// {name: shape} of every array, in MuJoCo's shapes ([rows] or [rows, cols]).
+Json Shapes(const std::vector<FieldView>& fields) {
+  Json shapes = Json::object();
+  for (const FieldView& f : fields) {
+    shapes[f.name] = f.one_dimensional() ? Json::array({f.rows}) : Json::array({f.rows, f.cols});
+  }
+  return shapes;
+}
+
+Json Header(Model& m, Data& d) {
   Json h;
   h["engine"] = std::string("simlab (") + ReferenceVersion() + " semantics)";
   h["nq"] = m.nq;
@@ -110,6 +119,9 @@ Json Header(const Model& m) {
                        {"dim", m.sensor_dim[i]}});
   }
   h["sensors"] = std::move(sensors);
+  // Every array of Model and Data with its shape, as the Python bindings give them.
+  h["model_fields"] = Shapes(m.Fields());
+  h["data_fields"] = Shapes(DataFields(m, d));
   return h;
 }
 
@@ -164,7 +176,7 @@ int RunRollout(const RolloutOptions& o, std::ostream& default_out) {
     for (int i = 0; i < std::min(m.nq, 4); i++) out << "     qpos[" << i << "]";
     out << "\n";
   } else {
-    out << Header(m).dump() << "\n";
+    out << Header(m, d).dump() << "\n";
   }
   auto record = [&](int step) {
     if (o.table) {

@@ -285,7 +285,7 @@ TEST(Assets, ErrorsInAnAssetNameItsPathAndLine) {
 TEST(Assets, NamesThatCollideAreRefused) {
   // As MuJoCo's Python binding: one file name, whatever the folders and case.
   ExpectParts(MemoryLoadError("<mujoco/>", {{"asset.xml", "a"}, {"path/ASSET.xml", "b"}}),
-              {"repeated file name in assets", "asset.xml", "path/ASSET.xml"});
+              {"Repeated file name in assets", "asset.xml", "path/ASSET.xml"});
   ExpectParts(MemoryLoadError("<mujoco/>", {{"folder/", "a"}}), {"asset 'folder/' has no file name"});
 }
 

@@ -7,6 +7,8 @@ packages=(
   g++ cmake make
   libeigen3-dev libpugixml-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev libqhull-dev
+  # the Python package (pybind11 module for Debian's python3, numpy) and its tests
+  pybind11-dev python3-dev python3-numpy python3-pytest
   # the browser lab: the engine in WebAssembly, and a headless browser for its tests
   emscripten chromium
 

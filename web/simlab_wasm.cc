@@ -402,7 +402,8 @@ int Simulation::KeyIndex(const val& key) const {
 void Simulation::RefreshRowFields() {
   size_t at = first_row_field_;
 #define SIMLAB_X(type, name, cols) \
-  data_fields_[at++] = MakeFieldView(#name, d_.name, d_.nefc, (cols) == 0 ? m_.nv : (cols));
+  data_fields_[at++] = MakeFieldView(#name, "nefc", (cols) == 0 ? "nv" : #cols, d_.name, \
+                                     d_.nefc, (cols) == 0 ? m_.nv : (cols));
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
 }

@@ -470,12 +470,17 @@ struct Statistic {
 // A view of one array of a Model or Data by its MuJoCo name (for bindings and the lab).
 struct FieldView {
   const char* name = nullptr;
-  const char* rows_name = nullptr;  // the size member that counts its rows ("nbody"), or ""
+  const char* rows_name = "";  // the size member that counts its rows ("nbody")
+  const char* cols_name = "";  // its column count as the table writes it ("1", "kNGain", "nq")
   bool is_int = false;
   double* doubles = nullptr;
   int* ints = nullptr;
   int rows = 0;
   int cols = 0;
+
+  // MuJoCo's shape: (rows,) when the table's column count is the literal 1, else
+  // (rows, cols) (so key_qpos stays (nkey, nq) even when nq is 1).
+  bool one_dimensional() const { return cols_name[0] == '1' && cols_name[1] == '\0'; }
 };
 
 // ---------------------------------------------------------------- Model

@@ -5,8 +5,10 @@
 //   simlab::Forward(m, d);          // all derived quantities for the current state
 //   simlab::Step(m, d);             // advance by m.opt.timestep
 //
-// Loading throws simlab::Error (file, line, element, what is wrong). Stepping never
-// throws: a diverging state is reported in d.warning and the data is reset.
+// Loading throws simlab::Error (file, line, element, what is wrong). A diverging state
+// does not throw: it is reported in d.warning and the data is reset. Forward and the
+// Step functions throw simlab::Error only for options changed to values that do not
+// exist (an unknown opt.solver, opt.integrator, opt.cone or opt.jacobian).
 #ifndef SIMLAB_SIMLAB_H_
 #define SIMLAB_SIMLAB_H_
 

@@ -25,7 +25,7 @@ std::vector<FieldView> DataFields(const Model& m, Data& d) {
   SIMLAB_MODEL_SIZES(SIMLAB_X)
 #undef SIMLAB_X
   std::vector<FieldView> fields;
-#define SIMLAB_X(type, name, rows, cols) fields.push_back(MakeFieldView(#name, #rows, d.name, rows, cols));
+#define SIMLAB_X(type, name, rows, cols) fields.push_back(MakeFieldView(#name, #rows, #cols, d.name, rows, cols));
   SIMLAB_DATA_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
   return fields;

@@ -10,11 +10,12 @@
 namespace simlab {
 
 template <typename T>
-FieldView MakeFieldView(const char* name, const char* rows_name, std::vector<T>& v, int rows,
-                        int cols) {
+FieldView MakeFieldView(const char* name, const char* rows_name, const char* cols_name,
+                        std::vector<T>& v, int rows, int cols) {
   FieldView f;
   f.name = name;
   f.rows_name = rows_name;
+  f.cols_name = cols_name;
   f.rows = rows;
   f.cols = cols;
   if constexpr (std::is_same_v<T, int>) {

@@ -70,7 +70,7 @@ void Model::IndexNames() {
 
 std::vector<FieldView> Model::Fields() {
   std::vector<FieldView> fields;
-#define SIMLAB_X(type, name, rows, cols) fields.push_back(MakeFieldView(#name, #rows, name, rows, cols));
+#define SIMLAB_X(type, name, rows, cols) fields.push_back(MakeFieldView(#name, #rows, #cols, name, rows, cols));
   SIMLAB_MODEL_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
   return fields;

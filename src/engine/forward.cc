@@ -13,6 +13,7 @@
 // are computed on demand by those sensors, once per step.
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "engine/collision.h"
 #include "engine/constraint.h"
@@ -36,6 +37,23 @@ const char* const kWarningText[kNumWarnings] = {
 };
 
 bool IsBad(double x) { return std::isnan(x) || x > kMaxVal || x < -kMaxVal; }
+
+// One option outside its values: a clear error rather than undefined behaviour (the
+// options can be changed after compilation, from C++ or Python).
+void CheckOption(int value, int count, const char* what, const char* values) {
+  if (value < 0 || value >= count) {
+    throw Error("unknown " + std::string(what) + " " + std::to_string(value) + " (" + values + ")");
+  }
+}
+
+// The options the stages switch on, before a pipeline runs.
+void CheckOptions(const Option& o) {
+  CheckOption(o.integrator, 4, "integrator",
+              "opt.integrator: 0 Euler, 1 RK4, 2 implicit, 3 implicitfast");
+  CheckOption(o.cone, 2, "cone type", "opt.cone: 0 pyramidal, 1 elliptic");
+  CheckOption(o.jacobian, 3, "jacobian type", "opt.jacobian: 0 dense, 1 sparse, 2 auto");
+  CheckOption(o.solver, 3, "solver type", "opt.solver: 0 PGS, 1 CG, 2 Newton");
+}
 
 
 void FwdVelocity(const Model& m, Data& d) {
@@ -147,6 +165,7 @@ void SmoothAcceleration(const Model& m, Data& d) {
 }
 
 void ForwardSkip(const Model& m, Data& d, bool skip_position, bool skip_sensor) {
+  CheckOptions(m.opt);
   // Each stage, then the sensors that need it.
   if (!skip_position) {
     FwdPosition(m, d);
@@ -183,6 +202,7 @@ void Step(const Model& m, Data& d) {
 }
 
 void Step1(const Model& m, Data& d) {
+  CheckOptions(m.opt);
   CheckState(m, d, d.qpos, kWarnBadQpos);
   CheckState(m, d, d.qvel, kWarnBadQvel);
   FwdPosition(m, d);
@@ -194,6 +214,7 @@ void Step1(const Model& m, Data& d) {
 }
 
 void Step2(const Model& m, Data& d) {
+  CheckOptions(m.opt);
   Actuation(m, d);
   SmoothAcceleration(m, d);
   Constraint(m, d);

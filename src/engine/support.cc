@@ -116,9 +116,9 @@ auto PartOf(D& d, int bit) -> decltype(d.qpos.data()) {
 }
 
 void CheckSpec(int spec) {
-  if (spec < 0 || spec >= (1 << kNStateBits)) {
-    throw Error("invalid state specification " + std::to_string(spec) + " (0 to " +
-                std::to_string((1 << kNStateBits) - 1) + ")");
+  if (spec < 0) throw Error("invalid state signature " + std::to_string(spec) + " < 0");
+  if (spec >= (1 << kNStateBits)) {
+    throw Error("invalid state signature " + std::to_string(spec) + " >= 2^mjNSTATE");
   }
 }
 

@@ -25,7 +25,7 @@ AssetFiles::AssetFiles(const std::map<std::string, std::string>& files) {
     if (key.empty()) throw Error("asset '" + name + "' has no file name");
     auto [it, added] = names.emplace(key, &name);
     if (!added) {
-      throw Error("repeated file name in assets: '" + *it->second + "' and '" + name +
+      throw Error("Repeated file name in assets: '" + *it->second + "' and '" + name +
                   "' (assets are found by file name, whatever their folders and case)");
     }
     files_.emplace(key, bytes);
