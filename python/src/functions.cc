@@ -1,5 +1,7 @@
 // MuJoCo's mj_* functions, as its Python bindings take them: (model, data, arrays...),
 // outputs written into numpy arrays the caller passes. Stepping releases the GIL.
+#include <time.h>
+
 #include <string>
 
 #include "engine/engine.h"
@@ -96,6 +98,18 @@ void DefineSimulation(py::module_& m) {
       OrFatal(name, [&] { stage(*mw.model, dw.data); });
     }, py::arg("m"), py::arg("d"), f.doc);
   }
+  // For bench/python/python_overhead.py: a plain C++ loop of Step, timed in thread CPU
+  // seconds, so that the module's calls can be compared with the very same machine code.
+  m.def("_benchmark_step_loop", [](const PyModel& mw, PyData& dw, int nstep) {
+    CheckCompatible(mw, dw);
+    const Model& model = *mw.model;
+    Data& data = dw.data;
+    timespec begin, end;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &begin);
+    for (int i = 0; i < nstep; i++) Step(model, data);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &end);
+    return (end.tv_sec - begin.tv_sec) + 1e-9 * (end.tv_nsec - begin.tv_nsec);
+  }, py::arg("m"), py::arg("d"), py::arg("nstep"));
   m.def("mj_resetDataKeyframe", [](const PyModel& mw, PyData& dw, int key) {
     CheckCompatible(mw, dw);
     OrFatal("mj_resetDataKeyframe", [&] { ResetDataKeyframe(*mw.model, dw.data, key); });
