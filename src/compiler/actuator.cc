@@ -22,25 +22,30 @@ std::vector<std::string> Names(const std::vector<T>& items) {
   return names;
 }
 
+// The objects a transmission can name, indexed once for all actuators.
+struct TargetNames {
+  NameIndex joints, sites, tendons, bodies;
+};
+
 // actuator_trnid: the target, and the slider or reference site where used.
-void ResolveTarget(const mjcf::ActuatorSpec& a, const CompileState& s, const Model& m, int* trnid) {
+void ResolveTarget(const mjcf::ActuatorSpec& a, const TargetNames& names, int* trnid) {
   trnid[0] = trnid[1] = -1;
   if (a.target.empty()) ThrowAt(a.src, "missing transmission target");
   switch (a.trntype) {
     case kTrnJoint:
-    case kTrnJointInParent: trnid[0] = FindNamed(a.src, Names(s.joints), a.target, "joint"); break;
-    case kTrnTendon: trnid[0] = FindNamed(a.src, m.tendon_names, a.target, "tendon"); break;
+    case kTrnJointInParent: trnid[0] = FindNamed(a.src, names.joints, a.target, "joint"); break;
+    case kTrnTendon: trnid[0] = FindNamed(a.src, names.tendons, a.target, "tendon"); break;
     case kTrnSliderCrank:
       if (a.slidersite.empty()) ThrowAt(a.src, "missing slidersite for a slider-crank");
-      trnid[1] = FindNamed(a.src, Names(s.sites), a.slidersite, "site");
+      trnid[1] = FindNamed(a.src, names.sites, a.slidersite, "site");
       if (a.cranklength <= 0) ThrowAt(a.src, "cranklength must be positive");
-      trnid[0] = FindNamed(a.src, Names(s.sites), a.target, "site");
+      trnid[0] = FindNamed(a.src, names.sites, a.target, "site");
       break;
     case kTrnSite:
-      trnid[0] = FindNamed(a.src, Names(s.sites), a.target, "site");
-      if (!a.refsite.empty()) trnid[1] = FindNamed(a.src, Names(s.sites), a.refsite, "site");
+      trnid[0] = FindNamed(a.src, names.sites, a.target, "site");
+      if (!a.refsite.empty()) trnid[1] = FindNamed(a.src, names.sites, a.refsite, "site");
       break;
-    case kTrnBody: trnid[0] = FindNamed(a.src, m.body_names, a.target, "body"); break;
+    case kTrnBody: trnid[0] = FindNamed(a.src, names.bodies, a.target, "body"); break;
     default: ThrowAt(a.src, "missing transmission target");
   }
 }
@@ -169,17 +174,20 @@ int ActuatorActDim(const mjcf::ActuatorSpec& a) {
 }
 
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
+  TargetNames targets = {NameIndex(Names(state.joints)), NameIndex(Names(state.sites)),
+                         NameIndex(m->tendon_names), NameIndex(m->body_names)};
+  NameIndex seen;
   int adr = 0;
   for (int i = 0; i < m->nu; i++) {
     const mjcf::ActuatorSpec& a = spec.actuators[i];
-    if (!a.src.name.empty() && FindName(m->actuator_names, a.src.name) >= 0) {
+    if (!seen.Insert(a.src.name, i)) {
       ThrowAt(a.src, "repeated actuator name '" + a.src.name + "'");
     }
     m->actuator_names[i] = a.src.name;
 
     // Transmission and ranges.
     int trnid[2];
-    ResolveTarget(a, state, *m, trnid);
+    ResolveTarget(a, targets, trnid);
     std::array<double, 2> ctrl = a.ctrlrange, act = a.actrange;
     InheritRange(a, state, *m, trnid, &ctrl, &act);
     Limits(spec, a, ctrl, act, i, m);

@@ -26,6 +26,9 @@ void Visit(const mjcf::BodySpec& spec, int parent, CompileState* state) {
   body.spec = &spec;
   body.id = static_cast<int>(state->bodies.size());
   body.parent = parent;
+  body.joint_begin = static_cast<int>(state->joints.size());
+  body.geom_begin = static_cast<int>(state->geoms.size());
+  body.site_begin = static_cast<int>(state->sites.size());
   state->bodies.push_back(body);
   int id = body.id;
   for (const mjcf::JointSpec& j : spec.joints) {
@@ -52,14 +55,13 @@ void Visit(const mjcf::BodySpec& spec, int parent, CompileState* state) {
 // Names must be unique within each kind of object.
 template <typename T>
 void CheckUnique(const std::vector<T>& items, const char* kind) {
-  std::vector<std::string> seen;
+  NameIndex seen;
   for (const T& item : items) {
     const mjcf::Source& src = item.spec->src;
     if (src.name.empty()) continue;
-    if (FindName(seen, src.name) >= 0) {
+    if (!seen.Insert(src.name, 0)) {
       ThrowAt(src, std::string("repeated ") + kind + " name '" + src.name + "'");
     }
-    seen.push_back(src.name);
   }
 }
 
@@ -105,6 +107,28 @@ int FindName(const std::vector<std::string>& names, const std::string& name) {
 int FindNamed(const mjcf::Source& src, const std::vector<std::string>& names,
               const std::string& name, const std::string& kind) {
   int id = name.empty() ? -1 : FindName(names, name);
+  if (id < 0) ThrowAt(src, "unknown " + kind + " '" + name + "'");
+  return id;
+}
+
+NameIndex::NameIndex(const std::vector<std::string>& names) {
+  ids_.reserve(names.size());
+  for (size_t i = 0; i < names.size(); i++) Insert(names[i], static_cast<int>(i));
+}
+
+bool NameIndex::Insert(const std::string& name, int id) {
+  if (name.empty()) return true;
+  return ids_.emplace(name, id).second;
+}
+
+int NameIndex::Find(const std::string& name) const {
+  auto it = ids_.find(name);
+  return it == ids_.end() ? -1 : it->second;
+}
+
+int FindNamed(const mjcf::Source& src, const NameIndex& names, const std::string& name,
+              const std::string& kind) {
+  int id = name.empty() ? -1 : names.Find(name);
   if (id < 0) ThrowAt(src, "unknown " + kind + " '" + name + "'");
   return id;
 }
@@ -272,8 +296,8 @@ void CompileBody(CompileState* state, int id) {
 
   // Geoms, then the inertial frame from geoms where MuJoCo infers it.
   std::vector<GeomState*> geoms;
-  for (GeomState& g : state->geoms) {
-    if (g.body != id) continue;
+  for (size_t k = 0; k < s.geoms.size(); k++) {
+    GeomState& g = state->geoms[b.geom_begin + k];
     bool in_group = g.spec->group >= c.inertiagrouprange[0] && g.spec->group <= c.inertiagrouprange[1];
     bool infer = id > 0 && (!s.explicit_inertial || c.inertiafromgeom == kTrue) && in_group;
     if (g.spec->type == kGeomPlane && b.weldid != 0) {
@@ -300,8 +324,8 @@ void CompileBody(CompileState* state, int id) {
 
   // Joints: at most 6 dofs, no rotation after a ball joint.
   bool ball = false;
-  for (JointState& j : state->joints) {
-    if (j.body != id) continue;
+  for (size_t k = 0; k < s.joints.size(); k++) {
+    JointState& j = state->joints[b.joint_begin + k];
     b.dofnum += CompileJoint(c, &j);
     int type = j.spec->type;
     if (ball && (type == kJointBall || type == kJointHinge)) ThrowAt(j.spec->src, "a ball joint is followed by a rotation in the same body");
@@ -313,9 +337,7 @@ void CompileBody(CompileState* state, int id) {
   if (s.mocap && (b.dofnum > 0 || b.parent != 0)) {
     ThrowAt(s.src, "a mocap body must be a fixed child of the world body");
   }
-  for (SiteState& site : state->sites) {
-    if (site.body == id) CompileSite(c, &site);
-  }
+  for (size_t k = 0; k < s.sites.size(); k++) CompileSite(c, &state->sites[b.site_begin + k]);
 }
 
 }  // namespace
@@ -324,26 +346,32 @@ void CompileBodies(CompileState* state) {
   for (size_t i = 0; i < state->bodies.size(); i++) CompileBody(state, static_cast<int>(i));
 }
 
-// A moving body needs mass and inertia, its own or from a static child.
+// A moving body needs mass and inertia, its own or from a static child (`children`
+// lists each body's child bodies).
 namespace {
-bool HasMassInertia(const CompileState& state, int id) {
+bool HasMassInertia(const CompileState& state, const std::vector<std::vector<int>>& children,
+                    int id) {
   const BodyState& b = state.bodies[id];
   if (b.mass >= kMinVal && b.inertia[0] >= kMinVal && b.inertia[1] >= kMinVal &&
       b.inertia[2] >= kMinVal) {
     return true;
   }
-  for (const BodyState& child : state.bodies) {
-    if (child.parent != id || !child.spec->joints.empty()) continue;
-    if (HasMassInertia(state, child.id)) return true;
+  for (int child : children[id]) {
+    if (!state.bodies[child].spec->joints.empty()) continue;
+    if (HasMassInertia(state, children, child)) return true;
   }
   return false;
 }
 }  // namespace
 
 void CheckMovingBodies(const CompileState& state) {
+  std::vector<std::vector<int>> children(state.bodies.size());
+  for (const BodyState& b : state.bodies) {
+    if (b.parent >= 0) children[b.parent].push_back(b.id);
+  }
   for (const BodyState& b : state.bodies) {
     if (b.id == 0 || b.spec->joints.empty()) continue;
-    if (!HasMassInertia(state, b.id)) {
+    if (!HasMassInertia(state, children, b.id)) {
       ThrowAt(b.spec->src, "mass and inertia of a moving body must be positive (mass=" +
                                std::to_string(b.mass) + ")");
     }
@@ -549,8 +577,8 @@ void TreeSizes(const CompileState& state, Model* m) {
   std::vector<int> parent, lastdof(state.bodies.size(), -1);
   for (const BodyState& b : state.bodies) {
     lastdof[b.id] = b.parent >= 0 ? lastdof[b.parent] : -1;
-    for (const JointState& j : state.joints) {
-      if (j.body != b.id) continue;
+    for (size_t n = 0; n < b.spec->joints.size(); n++) {
+      const JointState& j = state.joints[b.joint_begin + n];
       for (int k = 0; k < JointNv(j.spec->type); k++) {
         parent.push_back(lastdof[b.id]);
         lastdof[b.id] = static_cast<int>(parent.size()) - 1;

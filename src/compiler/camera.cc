@@ -87,14 +87,15 @@ void CameraIntrinsics(const mjcf::CameraSpec& s, float znear, double* fovy, doub
 }
 
 // One camera's row of the model.
-void LayoutCamera(const mjcf::ModelSpec& spec, const CameraRef& ref, int id, Model* m) {
+void LayoutCamera(const mjcf::ModelSpec& spec, const CameraRef& ref, const NameIndex& bodies,
+                  int id, Model* m) {
   const mjcf::CameraSpec& s = *ref.spec;
   CameraPose(spec.compiler, s, &m->cam_pos[3 * id], &m->cam_quat[4 * id]);
   m->cam_names[id] = s.src.name;
   m->cam_bodyid[id] = ref.body;
   m->cam_mode[id] = s.mode;
   m->cam_targetbodyid[id] =
-      s.target.empty() ? -1 : FindNamed(s.src, m->body_names, s.target, "target body");
+      s.target.empty() ? -1 : FindNamed(s.src, bodies, s.target, "target body");
   if (s.fovy >= 180) ThrowAt(s.src, "fovy too large (must be below 180 degrees)");
   m->cam_projection[id] = s.projection;
   m->cam_ipd[id] = s.ipd;
@@ -114,14 +115,13 @@ int CameraCount(const CompileState& state) {
 
 void CompileCameras(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
   std::vector<CameraRef> cams = CollectCameras(state);
-  std::vector<std::string> seen;
+  NameIndex seen, bodies(m->body_names);
   for (size_t i = 0; i < cams.size(); i++) {
     const mjcf::Source& src = cams[i].spec->src;
-    if (!src.name.empty() && FindName(seen, src.name) >= 0) {
+    if (!seen.Insert(src.name, static_cast<int>(i))) {
       ThrowAt(src, "repeated camera name '" + src.name + "'");
     }
-    seen.push_back(src.name);
-    LayoutCamera(spec, cams[i], static_cast<int>(i), m);
+    LayoutCamera(spec, cams[i], bodies, static_cast<int>(i), m);
   }
 }
 

@@ -1,9 +1,12 @@
 // The compiler's driver, and the public loading functions.
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <cstdint>
+#include <string>
 
 #include "compiler/compiler.h"
+#include "mjcf/assets.h"
+#include "mjcf/error.h"
+#include "mjcf/limits.h"
 #include "mjcf/reader.h"
 #include "simlab/simlab.h"
 
@@ -27,6 +30,66 @@ void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
   m->nexclude = static_cast<int>(spec.excludes.size());
   m->nsensor = static_cast<int>(spec.sensors.size());
   m->nuser_sensor = NUserSensor(spec);
+
+  // <size nuser_sensor> numbers for each sensor: within the budget of one array.
+  uint64_t bytes = mjcf::MulBytes(mjcf::MulBytes(m->nsensor, m->nuser_sensor), sizeof(double));
+  if (bytes > mjcf::kMaxArrayBytes) {
+    std::string request = mjcf::AttrText("nuser_sensor", std::to_string(m->nuser_sensor)) +
+                          " for " + std::to_string(m->nsensor) + " sensors";
+    mjcf::ThrowAt(spec.size_src, mjcf::OverBudget(request, bytes, "sensor user numbers",
+                                                  mjcf::kMaxArrayBytes));
+  }
+}
+
+// Every array of the Model together, from the field table and the sizes, before they
+// are allocated: within the budget of one Model (the largest array is named).
+void CheckModelBudget(const mjcf::ModelSpec& spec, const Model& m) {
+#define SIMLAB_X(size) [[maybe_unused]] uint64_t size = static_cast<uint64_t>(m.size);
+  SIMLAB_MODEL_SIZES(SIMLAB_X)
+#undef SIMLAB_X
+  nmocap3 = 3 * nmocap;
+  nmocap4 = 4 * nmocap;
+  uint64_t total = 0, largest = 0;
+  const char* largest_name = "";
+#define SIMLAB_X(type, name, rows, cols)                                        \
+  {                                                                             \
+    uint64_t bytes = mjcf::MulBytes(mjcf::MulBytes(rows, cols), sizeof(type)); \
+    total = mjcf::AddBytes(total, bytes);                                       \
+    if (bytes > largest) largest = bytes, largest_name = #name;                 \
+  }
+  SIMLAB_MODEL_FIELDS(SIMLAB_X)
+#undef SIMLAB_X
+  if (total <= mjcf::kMaxModelBytes) return;
+  mjcf::ThrowAt({spec.file, 0, "", ""},
+                "the model is too large: its arrays need " + mjcf::ByteSize(total) +
+                    " (the largest, " + largest_name + ", " + mjcf::ByteSize(largest) +
+                    "), over the " + mjcf::ByteSize(mjcf::kMaxModelBytes) +
+                    " budget of one Model");
+}
+
+// Body pairs are ordered and found by MuJoCo's signature (body1 << 16) + body2 in an int
+// (pair_signature, exclude_signature, the broad phase), which holds body ids below
+// 32768 only.
+constexpr int kMaxBodies = 32768;
+void CheckBodyCount(const mjcf::ModelSpec& spec, const CompileState& state) {
+  if (state.bodies.size() <= static_cast<size_t>(kMaxBodies)) return;
+  mjcf::ThrowAt({spec.file, 0, "", ""},
+                "too many bodies: the model has " + std::to_string(state.bodies.size()) +
+                    " (the world included), more than the " + std::to_string(kMaxBodies) +
+                    " that MuJoCo's body-pair signatures (body1 << 16) + body2 can number");
+}
+
+// The Data the model will need, within the budget of one Data (MakeData refuses more;
+// here the message names the model's file). Before the constants, which make a Data.
+void CheckDataBudget(const mjcf::ModelSpec& spec, const Model& m) {
+  const char* largest = "";
+  uint64_t largest_bytes = 0, total = DataBytes(m, &largest, &largest_bytes);
+  if (total <= kMaxDataBytes) return;
+  mjcf::ThrowAt({spec.file, 0, "", ""},
+                std::string(largest) + " too large: the model's Data would need " +
+                    mjcf::ByteSize(total) + " (" + largest + " " +
+                    mjcf::ByteSize(largest_bytes) + "), over the " +
+                    mjcf::ByteSize(kMaxDataBytes) + " budget of one Data");
 }
 
 }  // namespace
@@ -35,6 +98,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // The tree: flatten, compile bodies and their elements, check masses.
   CompileState state;
   FlattenTree(spec, &state);
+  CheckBodyCount(spec, state);
   CompileMeshes(spec, &state);
   CompileHFields(spec, &state);
   CompileBodies(&state);
@@ -49,6 +113,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   MeshSizes(state, &m);
   HFieldSizes(state, &m);
   SectionSizes(spec, &m);
+  CheckModelBudget(spec, m);
   m.Allocate();
   LayoutTree(state, &m);
   CompileCameras(spec, state, &m);
@@ -60,6 +125,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CompileActuators(spec, state, &m);
   CompileKeyframes(spec, state, &m);
   CompileSensors(spec, &m);
+  CheckDataBudget(spec, m);
 
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
@@ -91,12 +157,13 @@ Model LoadXmlString(const std::string& xml, const std::string& filename, const A
 }
 
 Model LoadXml(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read file");
-  return LoadXmlString(text.str(), path);
+  // Read through the loader's one reader of files (a regular file within the budget).
+  std::string text, problem;
+  if (!mjcf::ReadFileOrAsset(path, nullptr, &text, &problem)) {
+    throw Error(path + ": " +
+                (problem.empty() ? "cannot open file" : "cannot read file: " + problem));
+  }
+  return LoadXmlString(text, path);
 }
 
 }  // namespace simlab

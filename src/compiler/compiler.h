@@ -16,6 +16,7 @@
 #define SIMLAB_COMPILER_COMPILER_H_
 
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "mjcf/spec.h"
@@ -38,6 +39,9 @@ struct BodyState {
   double inertia[3] = {0, 0, 0};
   int weldid = 0;
   int dofnum = 0;
+  // Its joints, geoms and sites: spec->joints.size() (...) entries of the state's lists
+  // from these, which list each body's elements together.
+  int joint_begin = 0, geom_begin = 0, site_begin = 0;
 };
 
 // A compiled mesh (mesh.cc): vertices in its inertial frame, triangles, the convex
@@ -170,12 +174,31 @@ void SimpleBodies(Model* m);
 // actuator_lengthrange where the <compiler><lengthrange> options ask for it (lengthrange.cc).
 void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m);
 
-// Name lookup while compiling (-1 if absent).
+// Name lookup while compiling (-1 if absent), by a scan: for short lists.
 int FindName(const std::vector<std::string>& names, const std::string& name);
 // The id of the object named `name` (of the given kind, for the message), or an error
 // at the element `src` that names it ("unknown joint 'x'").
 int FindNamed(const mjcf::Source& src, const std::vector<std::string>& names,
               const std::string& name, const std::string& kind);
+
+// Names -> the id of the first object with that name (empty names are left out), for
+// lookups in constant time: models with many objects (a large <replicate>) compile in
+// time linear in their size.
+class NameIndex {
+ public:
+  NameIndex() = default;
+  explicit NameIndex(const std::vector<std::string>& names);
+  // Adds a name for `id`; false (and no change) if it is there already.
+  bool Insert(const std::string& name, int id);
+  int Find(const std::string& name) const;  // -1 if absent
+
+ private:
+  std::unordered_map<std::string, int> ids_;
+};
+
+// FindNamed through an index.
+int FindNamed(const mjcf::Source& src, const NameIndex& names, const std::string& name,
+              const std::string& kind);
 
 }  // namespace simlab::compiler
 

@@ -19,9 +19,10 @@ namespace simlab::compiler {
 
 namespace {
 
-// Tendon spring lengths left at -1 ("use the length at qpos_spring").
-void TendonSpringLengths(Model* m, const Data& at_qpos0) {
-  Data d = at_qpos0;
+// Tendon spring lengths left at -1 ("use the length at qpos_spring"): on the Data of
+// the constants once they are done with it (a copy of a whole Data is as large as the
+// model's Data).
+void TendonSpringLengths(Model* m, Data& d) {
   d.qpos = m->qpos_spring;
   Kinematics(*m, d);
   Tendon(*m, d);
@@ -89,15 +90,14 @@ void ComputeConstants(Model* m) {
   ComPos(*m, d);
   SetM0(m, d);
 
-  // Tendon lengths at qpos0 and spring lengths at qpos_spring.
+  // Tendon lengths at qpos0 (spring lengths at qpos_spring come last).
   FwdPositionSmooth(*m, d);
   for (int t = 0; t < m->ntendon; t++) m->tendon_length0[t] = d.ten_length[t];
-  TendonSpringLengths(m, d);
 
   // Actuators: length0, acc0 = |M^-1 moment| and the dampratio damping.
   std::vector<double> acc(m->nv);
   for (int i = 0; i < m->nu; i++) {
-    const double* moment = &d.actuator_moment[static_cast<size_t>(i) * m->nv];
+    const double* moment = d.actuator_moment.data() + static_cast<size_t>(i) * m->nv;
     m->actuator_length0[i] = d.actuator_length[i];
     std::copy(moment, moment + m->nv, acc.begin());
     SolveSparse(*m, d.qLD.data(), d.qLDiagInv.data(), acc.data());
@@ -105,8 +105,9 @@ void ComputeConstants(Model* m) {
     DampRatio(m, i, d, moment);
   }
 
-  // Inverse weights and meaninertia, from the same Data.
+  // Inverse weights and meaninertia, from the same Data; then the spring lengths.
   ComputeInvWeights(m, d);
+  TendonSpringLengths(m, d);
 }
 
 // Joints with springdamper="timeconst dampratio" get the stiffness and damping of that

@@ -53,10 +53,11 @@ void LayoutPair(const mjcf::PairSpec& p, int g1, int g2, int i, Model* m) {
 void CompilePairs(const mjcf::ModelSpec& spec, Model* m) {
   // Resolve the geoms, then lay the pairs out in signature order.
   std::vector<int> g1(m->npair), g2(m->npair), signatures(m->npair);
+  NameIndex geoms(m->geom_names);
   for (int i = 0; i < m->npair; i++) {
     const mjcf::PairSpec& p = spec.pairs[i];
-    g1[i] = FindNamed(p.src, m->geom_names, p.geom1, "geom");
-    g2[i] = FindNamed(p.src, m->geom_names, p.geom2, "geom");
+    g1[i] = FindNamed(p.src, geoms, p.geom1, "geom");
+    g2[i] = FindNamed(p.src, geoms, p.geom2, "geom");
     int b1 = m->geom_bodyid[g1[i]], b2 = m->geom_bodyid[g2[i]];
     signatures[i] = Signature(std::min(b1, b2), std::max(b1, b2));
   }
@@ -69,10 +70,11 @@ void CompilePairs(const mjcf::ModelSpec& spec, Model* m) {
 
 void CompileExcludes(const mjcf::ModelSpec& spec, Model* m) {
   std::vector<int> signatures(m->nexclude);
+  NameIndex bodies(m->body_names);
   for (int i = 0; i < m->nexclude; i++) {
     const mjcf::ExcludeSpec& ex = spec.excludes[i];
-    int b1 = FindNamed(ex.src, m->body_names, ex.body1, "body");
-    int b2 = FindNamed(ex.src, m->body_names, ex.body2, "body");
+    int b1 = FindNamed(ex.src, bodies, ex.body1, "body");
+    int b2 = FindNamed(ex.src, bodies, ex.body2, "body");
     signatures[i] = Signature(std::min(b1, b2), std::max(b1, b2));
   }
   std::vector<int> order = SortedBySignature(signatures);

@@ -24,27 +24,32 @@ using mjcf::ThrowAt;
 
 namespace {
 
+// The objects equalities can name, indexed once for all of them.
+struct EqualityNames {
+  NameIndex joints, tendons, sites, bodies;
+};
+
 // The names and kind (for messages) of the objects an equality refers to.
-const std::vector<std::string>& ObjectNames(const mjcf::EqualitySpec& eq, const Model& m,
-                                            std::string* kind) {
+const NameIndex& ObjectNames(const mjcf::EqualitySpec& eq, const EqualityNames& names,
+                             std::string* kind) {
   switch (eq.type) {
-    case kEqJoint: *kind = "joint"; return m.jnt_names;
-    case kEqTendon: *kind = "tendon"; return m.tendon_names;
+    case kEqJoint: *kind = "joint"; return names.joints;
+    case kEqTendon: *kind = "tendon"; return names.tendons;
     default: break;
   }
   if (eq.objtype == kObjSite) {
     *kind = "site";
-    return m.site_names;
+    return names.sites;
   }
   *kind = "body";
-  return m.body_names;
+  return names.bodies;
 }
 
 // eq_obj1id, eq_obj2id: a missing second body is the world; a missing second joint or
 // tendon is -1. Both objects must differ; joints must be hinges or slides.
-void ResolveObjects(const mjcf::EqualitySpec& eq, int i, Model* m) {
+void ResolveObjects(const mjcf::EqualitySpec& eq, const EqualityNames& all, int i, Model* m) {
   std::string kind;
-  const std::vector<std::string>& names = ObjectNames(eq, *m, &kind);
+  const NameIndex& names = ObjectNames(eq, all, &kind);
   int id1 = FindNamed(eq.src, names, eq.name1, kind);
   int id2 = eq.name2.empty() ? -1 : FindNamed(eq.src, names, eq.name2, kind);
   if (id2 < 0 && eq.objtype == kObjBody) id2 = 0;
@@ -89,13 +94,16 @@ void WeldAtQpos0(const Data& d, int id1, int id2, double* data) {
 }  // namespace
 
 void CompileEqualities(const mjcf::ModelSpec& spec, Model* m) {
+  EqualityNames names = {NameIndex(m->jnt_names), NameIndex(m->tendon_names),
+                         NameIndex(m->site_names), NameIndex(m->body_names)};
+  NameIndex seen;
   for (int i = 0; i < m->neq; i++) {
     const mjcf::EqualitySpec& eq = spec.equalities[i];
-    if (!eq.src.name.empty() && FindName(m->eq_names, eq.src.name) >= 0) {
+    if (!seen.Insert(eq.src.name, i)) {
       ThrowAt(eq.src, "repeated equality name '" + eq.src.name + "'");
     }
     m->eq_names[i] = eq.src.name;
-    ResolveObjects(eq, i, m);
+    ResolveObjects(eq, names, i, m);
 
     // Everything else is copied as read.
     m->eq_type[i] = eq.type;

@@ -60,7 +60,7 @@ double PushStep(const Model& m, Data& d, const mjcf::LengthRangeSpec& opt, int i
   Step1(m, d);
 
   // qfrc_applied along the moment, scaled so that M^-1 qfrc has norm accel.
-  const double* moment = &d.actuator_moment[static_cast<size_t>(i) * nv];
+  const double* moment = d.actuator_moment.data() + static_cast<size_t>(i) * nv;
   std::copy(moment, moment + nv, d.qfrc_applied.begin());
   SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qfrc_applied.data());
   auto norm_of_applied = [&d, nv] {

@@ -423,12 +423,13 @@ bool InPair(const mjcf::ModelSpec& spec, const std::string& geom) {
 
 // The mesh id each geom names (-1 for none); checks that mesh geoms name one.
 std::vector<int> GeomMeshIds(const std::vector<std::string>& names, const CompileState& state) {
+  NameIndex index(names);
   std::vector<int> ids;
   for (const GeomState& g : state.geoms) {
     const mjcf::GeomSpec& s = *g.spec;
     int id = -1;
     if (!s.mesh.empty()) {
-      id = FindName(names, s.mesh);
+      id = index.Find(s.mesh);
       if (id < 0) ThrowAt(s.src, "unknown mesh '" + s.mesh + "'");
     } else if (s.type == kGeomMesh) {
       ThrowAt(s.src, "a mesh geom needs a mesh");

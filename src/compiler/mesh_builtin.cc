@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <string>
@@ -13,6 +15,7 @@
 #include "compiler/orientation.h"
 #include "math/math.h"
 #include "mjcf/error.h"
+#include "mjcf/limits.h"
 
 namespace simlab::compiler {
 
@@ -286,9 +289,44 @@ void Require(const mjcf::MeshSpec& s, bool ok, const char* message) {
   if (!ok) ThrowAt(s.src, message);
 }
 
+// The parameters as written, for messages.
+std::string ParamsText(const mjcf::MeshSpec& s) {
+  std::string text;
+  for (double p : s.params) {
+    char number[32];
+    std::snprintf(number, sizeof(number), "%.17g", p);
+    if (!text.empty()) text += ' ';
+    text += number;
+  }
+  return text;
+}
+
+// Parameter k as an int (a resolution or a count), truncated as MuJoCo casts it; a value
+// an int cannot hold (MuJoCo's cast is undefined then) is an error.
+int IntParam(const mjcf::MeshSpec& s, size_t k) {
+  double v = s.params[k];
+  if (!(v > -2147483649.0 && v < 2147483648.0)) {
+    ThrowAt(s.src, "params=\"" + ParamsText(s) + "\": parameter " + std::to_string(k + 1) +
+                       " is out of the range of an integer");
+  }
+  return static_cast<int>(v);
+}
+
+// A shape of `vertices` vertices and `faces` triangles, with a frame (9 numbers) per
+// vertex if `frames`, must fit the budget of one array: counted in double precision
+// (no overflow) before anything is made, as the Model stores them.
+void CheckBudget(const mjcf::MeshSpec& s, double vertices, double faces, bool frames) {
+  double bytes = vertices * 3 * sizeof(double) + faces * 3 * sizeof(int) +
+                 (frames ? vertices * 9 * sizeof(double) : 0.0);
+  if (bytes <= static_cast<double>(mjcf::kMaxArrayBytes)) return;
+  uint64_t shown = bytes < 1.8e19 ? static_cast<uint64_t>(bytes) : UINT64_MAX;
+  ThrowAt(s.src, mjcf::OverBudget(mjcf::AttrText("params", ParamsText(s)), shown,
+                                  "mesh vertices and faces", mjcf::kMaxArrayBytes));
+}
+
 MeshData SphereLike(const mjcf::MeshSpec& s, bool hemisphere) {
   NeedParams(s, 1, hemisphere ? "Hemisphere" : "Sphere");
-  int subdiv = static_cast<int>(s.params[0]);
+  int subdiv = IntParam(s, 0);
   Require(s, subdiv >= 0, hemisphere ? "Hemisphere resolution cannot be negative"
                                      : "Sphere subdivision cannot be negative");
   Require(s, subdiv <= (hemisphere ? 10 : 4),
@@ -303,43 +341,51 @@ MeshData SphereLike(const mjcf::MeshSpec& s, bool hemisphere) {
 
 MeshData SupersphereFrom(const mjcf::MeshSpec& s) {
   NeedParams(s, 3, "Supersphere");
-  Require(s, static_cast<int>(s.params[0]) >= 3, "Supersphere resolution must be greater than 2");
+  int res = IntParam(s, 0);
+  Require(s, res >= 3, "Supersphere resolution must be greater than 2");
   Require(s, s.params[1] >= 0, "Supersphere 'e' cannot be negative");
   Require(s, s.params[2] >= 0, "Supersphere 'n' cannot be negative");
-  return Supersphere(static_cast<int>(s.params[0]), s.params[1], s.params[2]);
+  CheckBudget(s, (res - 1.0) * res + 2, 2.0 * res * (res - 1), false);
+  return Supersphere(res, s.params[1], s.params[2]);
 }
 
 MeshData SupertorusFrom(const mjcf::MeshSpec& s) {
   NeedParams(s, 4, "Supertorus");
-  Require(s, static_cast<int>(s.params[0]) >= 3, "Supertorus resolution must be greater than 3");
+  int res = IntParam(s, 0);
+  Require(s, res >= 3, "Supertorus resolution must be greater than 3");
   Require(s, s.params[1] > 0 && s.params[1] <= 1, "Supertorus radius must be in (0, 1]");
   Require(s, s.params[2] > 0, "Supertorus 's' must be greater than 0");
   Require(s, s.params[3] > 0, "Supertorus 't' must be greater than 0");
-  return Supertorus(static_cast<int>(s.params[0]), s.params[1], s.params[2], s.params[3]);
+  CheckBudget(s, 1.0 * res * res, 2.0 * res * res, false);
+  return Supertorus(res, s.params[1], s.params[2], s.params[3]);
 }
 
 MeshData WedgeFrom(const mjcf::MeshSpec& s) {
   NeedParams(s, 5, "Wedge builtin");
-  const int res[2] = {static_cast<int>(s.params[0]), static_cast<int>(s.params[1])};
+  const int res[2] = {IntParam(s, 0), IntParam(s, 1)};
   const double fov[2] = {s.params[2], s.params[3]};
   Require(s, fov[0] > 0 && fov[0] <= 180, "fov[0] must be a float between (0, 180] degrees");
   Require(s, fov[1] > 0 && fov[1] <= 90, "fov[1] must be a float between (0, 90] degrees");
   Require(s, res[0] > 0 && res[1] > 0, "Horizontal and vertical resolutions must be positive");
   Require(s, s.params[4] >= 0 && s.params[4] <= 1, "gamma must be a float in [0, 1]");
+  CheckBudget(s, 1.0 * res[0] * res[1], 0, true);
   return Wedge(res, fov, s.params[4]);
 }
 
 MeshData PlateFrom(const mjcf::MeshSpec& s) {
   NeedParams(s, 2, "Plate builtin");
-  const int res[2] = {static_cast<int>(s.params[0]), static_cast<int>(s.params[1])};
+  const int res[2] = {IntParam(s, 0), IntParam(s, 1)};
   Require(s, res[0] > 0 && res[1] > 0, "Horizontal and vertical resolutions must be positive");
+  CheckBudget(s, 1.0 * res[0] * res[1], 2.0 * (res[0] - 1) * (res[1] - 1), true);
   return Plate(res);
 }
 
 MeshData ConeFrom(const mjcf::MeshSpec& s) {
   NeedParams(s, 2, "Cone");
-  Require(s, static_cast<int>(s.params[0]) >= 3, "Cone needs at least 3 edges");
-  return Cone(static_cast<int>(s.params[0]), s.params[1]);
+  int nedge = IntParam(s, 0);
+  Require(s, nedge >= 3, "Cone needs at least 3 edges");
+  CheckBudget(s, 2.0 * nedge, 0, false);
+  return Cone(nedge, s.params[1]);
 }
 
 }  // namespace

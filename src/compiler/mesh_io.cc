@@ -312,6 +312,14 @@ MeshData ReadObj(const mjcf::MeshSpec& mesh, const std::string& bytes) {
 
 // ---------------------------------------------------------------- MSH
 
+// Fills `out` (sized already) from raw bytes. An empty `out` copies nothing: memcpy
+// wants valid pointers even for zero bytes, and an empty vector's data() may be null
+// (a file without normals or faces).
+template <typename T>
+void CopyFromBytes(const char* bytes, std::vector<T>* out) {
+  if (!out->empty()) std::memcpy(out->data(), bytes, out->size() * sizeof(T));
+}
+
 // MuJoCo's binary format: counts of vertices, normals, texture coordinates and faces
 // (ints), then the floats of each, then the faces (ints).
 MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
@@ -331,11 +339,9 @@ MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
   out.vert.resize(3 * static_cast<size_t>(n[0]));
   out.normal.resize(3 * static_cast<size_t>(n[1]));
   out.face.resize(3 * static_cast<size_t>(n[3]));
-  std::memcpy(out.vert.data(), bytes.data() + sizeof(n), out.vert.size() * sizeof(float));
-  std::memcpy(out.normal.data(), bytes.data() + sizeof(n) + out.vert.size() * sizeof(float),
-              out.normal.size() * sizeof(float));
-  std::memcpy(out.face.data(), bytes.data() + sizeof(n) + floats * sizeof(float),
-              out.face.size() * sizeof(int));
+  CopyFromBytes(bytes.data() + sizeof(n), &out.vert);
+  CopyFromBytes(bytes.data() + sizeof(n) + out.vert.size() * sizeof(float), &out.normal);
+  CopyFromBytes(bytes.data() + sizeof(n) + floats * sizeof(float), &out.face);
   if (!RightHanded(mesh)) {
     for (size_t i = 0; i < out.face.size(); i += 3) std::swap(out.face[i + 1], out.face[i + 2]);
   }

@@ -2,10 +2,12 @@
 // check that each type is attached to what it can measure, give every sensor MuJoCo's
 // data type, stage and output size, and lay out sensordata and the history buffer.
 #include <algorithm>
+#include <cstdint>
 #include <string>
 
 #include "compiler/compiler.h"
 #include "mjcf/error.h"
+#include "mjcf/limits.h"
 
 namespace simlab::compiler {
 
@@ -66,13 +68,14 @@ int RayDataSize(int mask) {
 }
 
 // Rays a rangefinder casts: one from a site, one per pixel from a camera.
-int RayCount(const Model& m, const SensorSpec& s, int objid) {
+int64_t RayCount(const Model& m, const SensorSpec& s, int objid) {
   if (s.objtype != kObjCamera) return 1;
-  return m.cam_resolution[2 * objid] * m.cam_resolution[2 * objid + 1];
+  return int64_t{m.cam_resolution[2 * objid]} * m.cam_resolution[2 * objid + 1];
 }
 
-// Output size (MuJoCo's mjs_sensorDim).
-int SensorDim(const Model& m, const SensorSpec& s, int objid) {
+// Output size (MuJoCo's mjs_sensorDim), in 64 bits: attributes can make it overflow an
+// int (see CheckDataBudget).
+int64_t SensorDim(const Model& m, const SensorSpec& s, int objid) {
   switch (s.type) {
     case kSensCamProjection: return 2;
     case kSensAccelerometer: case kSensVelocimeter: case kSensGyro: case kSensForce:
@@ -83,7 +86,7 @@ int SensorDim(const Model& m, const SensorSpec& s, int objid) {
       return 3;
     case kSensBallQuat: case kSensFrameQuat: return 4;
     case kSensGeomFromTo: return 6;
-    case kSensContact: return s.intprm[2] * ContactDataSize(s.intprm[0]);
+    case kSensContact: return int64_t{s.intprm[2]} * ContactDataSize(s.intprm[0]);
     case kSensTactile: return 3 * m.mesh_vertnum[objid];
     case kSensRangefinder: return RayDataSize(s.intprm[0]) * RayCount(m, s, objid);
     case kSensUser: return s.dim;
@@ -217,8 +220,34 @@ void CheckCommon(const SensorSpec& s, int nuser) {
   CheckHistory(s.src, s.delay, s.nsample, "sensor history buffer");
 }
 
+// What makes a sensor's output as large as it is, for messages: the attribute for the
+// sensors that have one, else the size itself.
+std::string DimRequest(const SensorSpec& s, int64_t dim) {
+  if (s.type == kSensUser) return mjcf::AttrText("dim", std::to_string(s.dim));
+  if (s.type == kSensContact) return mjcf::AttrText("num", std::to_string(s.intprm[2]));
+  return "an output of " + std::to_string(dim) + " numbers";
+}
+
+// sensordata (and a history buffer's values) must fit the budget of one array, checked
+// before the sizes go into the model's ints and before Data allocates them. MuJoCo
+// refuses sizes it cannot allocate with "sensordata too large".
+void CheckDataBudget(const SensorSpec& s, int64_t dim, int64_t total) {
+  uint64_t bytes = mjcf::MulBytes(static_cast<uint64_t>(dim), sizeof(double));
+  if (dim < 0 || bytes > mjcf::kMaxArrayBytes) {
+    ThrowAt(s.src, "sensordata too large: " +
+                       mjcf::OverBudget(DimRequest(s, dim), bytes, "sensordata",
+                                        mjcf::kMaxArrayBytes));
+  }
+  uint64_t all = mjcf::MulBytes(static_cast<uint64_t>(total), sizeof(double));
+  if (all > mjcf::kMaxArrayBytes) {
+    ThrowAt(s.src, "sensordata too large: the sensors up to this one ask for " +
+                       mjcf::ByteSize(all) + " of sensordata, over the " +
+                       mjcf::ByteSize(mjcf::kMaxArrayBytes) + " budget of one array");
+  }
+}
+
 // One sensor's row of the model.
-void CompileSensor(const SensorSpec& s, int i, Model* m) {
+void CompileSensor(const SensorSpec& s, int i, int64_t adr, Model* m) {
   CheckCommon(s, m->nuser_sensor);
   int objid = Resolve(*m, s, s.objtype, s.objname, "sensorized object");
   int refid = Resolve(*m, s, s.reftype, s.refname, "reference object");
@@ -242,7 +271,9 @@ void CompileSensor(const SensorSpec& s, int i, Model* m) {
   bool user = s.type == kSensUser;
   m->sensor_datatype[i] = user ? s.datatype : SensorDataType(s.type);
   m->sensor_needstage[i] = user ? s.needstage : NeedStage(s.type);
-  m->sensor_dim[i] = SensorDim(*m, s, objid);
+  int64_t dim = SensorDim(*m, s, objid);
+  CheckDataBudget(s, dim, adr + dim);
+  m->sensor_dim[i] = static_cast<int>(dim);
   int datatype = m->sensor_datatype[i];
   if (s.cutoff > 0 && (datatype == kDataQuaternion ||
                        (datatype == kDataAxis && s.type != kSensGeomNormal))) {
@@ -263,23 +294,34 @@ void CompileSensor(const SensorSpec& s, int i, Model* m) {
 
 // Actuators with a history buffer come first in it, then sensors; each takes
 // [user, cursor, times(n), values(n x dim)] numbers (MuJoCo's layout).
+// The buffer is counted in 64 bits and held to the budget of one array, naming the
+// element whose buffer crosses it.
 void LayoutHistory(const mjcf::ModelSpec& spec, Model* m) {
-  int adr = 0;
+  int64_t adr = 0;
+  auto grow = [&](const mjcf::Source& src, int64_t size) {
+    adr += size;
+    uint64_t bytes = mjcf::MulBytes(static_cast<uint64_t>(adr), sizeof(double));
+    if (bytes > mjcf::kMaxArrayBytes) {
+      ThrowAt(src, "history buffer too large: the buffers up to this element ask for " +
+                       mjcf::ByteSize(bytes) + ", over the " +
+                       mjcf::ByteSize(mjcf::kMaxArrayBytes) + " budget of one array");
+    }
+  };
   for (int i = 0; i < m->nu; i++) {
     const mjcf::ActuatorSpec& a = spec.actuators[i];
     CheckHistory(a.src, a.delay, a.nsample, "history buffer");
     m->actuator_history[2 * i] = a.nsample;
     m->actuator_history[2 * i + 1] = a.interp;
     m->actuator_delay[i] = a.delay;
-    m->actuator_historyadr[i] = a.nsample > 0 ? adr : -1;
-    if (a.nsample > 0) adr += 2 + 2 * a.nsample;
+    m->actuator_historyadr[i] = a.nsample > 0 ? static_cast<int>(adr) : -1;
+    if (a.nsample > 0) grow(a.src, 2 + 2 * int64_t{a.nsample});
   }
   for (int i = 0; i < m->nsensor; i++) {
-    int n = m->sensor_history[2 * i];
-    m->sensor_historyadr[i] = n > 0 ? adr : -1;
-    if (n > 0) adr += 2 + n + n * m->sensor_dim[i];
+    int64_t n = m->sensor_history[2 * i];
+    m->sensor_historyadr[i] = n > 0 ? static_cast<int>(adr) : -1;
+    if (n > 0) grow(spec.sensors[i].src, 2 + n + n * m->sensor_dim[i]);
   }
-  m->nhistory = adr;
+  m->nhistory = static_cast<int>(adr);
 }
 
 }  // namespace
@@ -293,21 +335,23 @@ int NUserSensor(const mjcf::ModelSpec& spec) {
 
 void CompileSensors(const mjcf::ModelSpec& spec, Model* m) {
   // Unique names, then each sensor, then the addresses of their outputs.
+  // (objects are found by name through the model's hash, built here for them)
+  m->IndexNames();
+  NameIndex seen;
+  int64_t adr = 0;
   for (size_t i = 0; i < spec.sensors.size(); i++) {
     const SensorSpec& s = spec.sensors[i];
-    for (size_t j = 0; j < i && !s.src.name.empty(); j++) {
-      if (spec.sensors[j].src.name == s.src.name) {
-        ThrowAt(s.src, "repeated sensor name '" + s.src.name + "'");
-      }
+    if (!seen.Insert(s.src.name, static_cast<int>(i))) {
+      ThrowAt(s.src, "repeated sensor name '" + s.src.name + "'");
     }
-    CompileSensor(s, static_cast<int>(i), m);
-  }
-  int adr = 0;
-  for (int i = 0; i < m->nsensor; i++) {
-    m->sensor_adr[i] = adr;
+    CompileSensor(s, static_cast<int>(i), adr, m);
     adr += m->sensor_dim[i];
   }
-  m->nsensordata = adr;
+  for (int i = 0, at = 0; i < m->nsensor; i++) {
+    m->sensor_adr[i] = at;
+    at += m->sensor_dim[i];
+  }
+  m->nsensordata = static_cast<int>(adr);
   LayoutHistory(spec, m);
 }
 

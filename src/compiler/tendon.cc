@@ -55,9 +55,9 @@ void TendonFields(const mjcf::CompilerSpec& c, const mjcf::TendonSpec& t, int i,
   m->tendon_names[i] = t.src.name;
 }
 
-// Name lists of the tree objects a path can refer to.
+// The tree objects a path can refer to, indexed by name.
 struct PathNames {
-  std::vector<std::string> joints, sites, geoms;
+  NameIndex joints, sites, geoms;
 };
 
 // Model ids of one path element (MuJoCo's wrap_type, wrap_objid, wrap_prm).
@@ -130,9 +130,16 @@ void CheckSpatialPath(const mjcf::TendonSpec& t, int adr, int n, const Model& m)
 
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
   PathNames names;
-  for (const JointState& j : state.joints) names.joints.push_back(j.spec->src.name);
-  for (const SiteState& s : state.sites) names.sites.push_back(s.spec->src.name);
-  for (const GeomState& g : state.geoms) names.geoms.push_back(g.spec->src.name);
+  for (size_t i = 0; i < state.joints.size(); i++) {
+    names.joints.Insert(state.joints[i].spec->src.name, static_cast<int>(i));
+  }
+  for (size_t i = 0; i < state.sites.size(); i++) {
+    names.sites.Insert(state.sites[i].spec->src.name, static_cast<int>(i));
+  }
+  for (size_t i = 0; i < state.geoms.size(); i++) {
+    names.geoms.Insert(state.geoms[i].spec->src.name, static_cast<int>(i));
+  }
+  NameIndex seen;
   int adr = 0;
   for (int i = 0; i < m->ntendon; i++) {
     const mjcf::TendonSpec& t = spec.tendons[i];
@@ -141,9 +148,7 @@ void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Mode
       ThrowAt(t.src, "a spatial tendon path needs at least two objects");
     }
     if (t.spatial && t.width <= 0) ThrowAt(t.src, "a spatial tendon must have positive width");
-    if (!t.src.name.empty() && FindName(m->tendon_names, t.src.name) >= 0) {
-      ThrowAt(t.src, "repeated tendon name '" + t.src.name + "'");
-    }
+    if (!seen.Insert(t.src.name, i)) ThrowAt(t.src, "repeated tendon name '" + t.src.name + "'");
 
     // Path: joints with coefficients, or sites, geoms and pulleys.
     m->tendon_adr[i] = adr;

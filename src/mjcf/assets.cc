@@ -2,9 +2,12 @@
 #include "mjcf/assets.h"
 
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
+#include "mjcf/limits.h"
 #include "simlab/simlab.h"
 
 namespace simlab::mjcf {
@@ -37,7 +40,28 @@ const std::string* AssetFiles::Find(const std::string& path) const {
   return it == files_.end() ? nullptr : &it->second;
 }
 
-bool ReadFileOrAsset(const std::string& path, const AssetFiles* assets, std::string* bytes) {
+namespace {
+
+// Why the file at `path` cannot be read as a model file, or "" if it can (or does not
+// exist, which the callers report themselves).
+std::string FileProblem(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) return "";
+  if (!std::filesystem::is_regular_file(status)) return "not a regular file";
+  uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return "cannot read its size";
+  if (size > kMaxArrayBytes) {
+    return "the file has " + ByteSize(size) + ", over the " + ByteSize(kMaxArrayBytes) +
+           " budget of one file";
+  }
+  return "";
+}
+
+}  // namespace
+
+bool ReadFileOrAsset(const std::string& path, const AssetFiles* assets, std::string* bytes,
+                     std::string* problem) {
   // An asset with the file's name shadows the disk.
   if (assets) {
     if (const std::string* found = assets->Find(path)) {
@@ -46,12 +70,18 @@ bool ReadFileOrAsset(const std::string& path, const AssetFiles* assets, std::str
     }
   }
 
-  // Else the file itself.
+  // Else the file itself, if it is a regular file within the budget.
+  std::string why = FileProblem(path);
+  if (!why.empty()) {
+    if (problem) *problem = why;
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   std::ostringstream buffer;
   buffer << in.rdbuf();
   *bytes = buffer.str();
+  if (in.bad() && problem) *problem = "read error";
   return !in.bad();
 }
 

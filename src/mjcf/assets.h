@@ -42,8 +42,12 @@ using AssetFilesPtr = std::shared_ptr<const AssetFiles>;
 std::string AssetKey(const std::string& path);
 
 // The bytes of the file at `path`: the asset with its name if `assets` (may be null)
-// has one, else the file on disk. False if neither can be read.
-bool ReadFileOrAsset(const std::string& path, const AssetFiles* assets, std::string* bytes);
+// has one, else the file on disk. False if neither can be read; then `problem` (may be
+// null) says why when the file exists: only a regular file is read (a device such as
+// /dev/zero, a pipe or a folder is refused before it is opened), of at most
+// kMaxArrayBytes (mjcf/limits.h). This is the one place the loader reads files.
+bool ReadFileOrAsset(const std::string& path, const AssetFiles* assets, std::string* bytes,
+                     std::string* problem = nullptr);
 
 // What "cannot open file 'x'" adds when assets were given: that none had its name.
 std::string NotAmongAssets(const AssetFiles* assets);

@@ -9,9 +9,11 @@
 // model, completed by the compiler (see AttachedKey).
 #include "mjcf/compose.h"
 
+#include <algorithm>
 #include <set>
 
 #include "mjcf/error.h"
+#include "mjcf/limits.h"
 #include "mjcf/reader.h"
 
 namespace simlab::mjcf {
@@ -45,18 +47,6 @@ XmlElement ElementAt(pugi::xml_node node, const NodeOrigins* origins, const std:
 
 bool IsAbsolute(const std::string& path) { return !path.empty() && path[0] == '/'; }
 
-// Parses one file; a syntax error names that file and line.
-pugi::xml_node ParseFile(const std::string& path, const std::string& text,
-                         const LineIndex& lines, pugi::xml_document* doc) {
-  pugi::xml_parse_result result =
-      doc->load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
-  if (!result) {
-    throw Error(path + ":" + std::to_string(lines.Line(result.offset)) +
-                ": malformed XML: " + result.description());
-  }
-  return doc->document_element();
-}
-
 // ---------------------------------------------------------------- <include>
 
 constexpr int kMaxIncludeDepth = 64;
@@ -70,34 +60,53 @@ class IncludeExpander {
     included_.insert(file);
   }
 
-  // Expands the includes among the descendants of `parent`, which is in a file of `dir`.
-  void Children(pugi::xml_node parent, const std::string& dir, int depth) {
+  // Expands the includes among the descendants of `parent`, an element on `level` of
+  // the composed document, in a file of `dir`.
+  void Children(pugi::xml_node parent, const std::string& dir, int depth, int level) {
     pugi::xml_node child = parent.first_child();
     while (child) {
       pugi::xml_node next = child.next_sibling();
       if (child.type() == pugi::node_element) {
         if (std::string(child.name()) == "include") {
-          Include(child, dir, depth);
+          Include(child, dir, depth, level + 1);
         } else {
-          Children(child, dir, depth);
+          Enter(child, level + 1);
+          Children(child, dir, depth, level + 1);
         }
       }
       child = next;
     }
   }
 
+  // The deepest level of the composed document so far (the root is level 1).
+  int max_level() const { return max_level_; }
+
  private:
-  // Replaces one <include> by the elements of its file, then expands those.
-  void Include(pugi::xml_node node, const std::string& dir, int depth) {
+  // Every element of the composed document is at most kMaxTreeDepth levels deep, so
+  // that the recursive walks after this one are bounded (each file on its own was
+  // held to kMaxXmlDepth by its parser).
+  void Enter(pugi::xml_node node, int level) {
+    if (level > kMaxTreeDepth) {
+      ElementAt(node, origins_, main_file_, main_lines_)
+          .Fail("element nesting is too deep: with its included files pasted in, the model "
+                "nests elements more than " + std::to_string(kMaxTreeDepth) +
+                " levels deep (simlab's limit)");
+    }
+    max_level_ = std::max(max_level_, level);
+  }
+
+  // Replaces one <include> (on `level`) by the elements of its file, then expands those.
+  void Include(pugi::xml_node node, const std::string& dir, int depth, int level) {
     XmlElement e = ElementAt(node, origins_, main_file_, main_lines_);
     e.CheckAttributes({"file"});
     if (node.find_child([](pugi::xml_node n) { return n.type() == pugi::node_element; })) {
       e.Fail("<include> cannot have child elements");
     }
     if (depth > kMaxIncludeDepth) e.Fail("includes are nested too deeply");
-    std::string name, path, text;
+    std::string name, path, text, problem;
     e.RequiredText("file", &name);
-    if (!Open(name, dir, &path, &text)) {
+    if (!Open(name, dir, &path, &text, &problem)) {
+      if (!problem.empty()) e.Fail("cannot read included file " + problem);
       e.Fail("cannot open included file '" + name + "'" + NotAmongAssets(assets_));
     }
     if (included_.count(path)) {
@@ -109,7 +118,7 @@ class IncludeExpander {
     // Parse it; its root element is dropped and must hold at least one element.
     LineIndex lines(text);
     pugi::xml_document doc;
-    pugi::xml_node root = ParseFile(path, text, lines, &doc);
+    pugi::xml_node root = ParseXml(text, path, lines, &doc);
     if (root.empty()) e.Fail("included file '" + path + "' has no root element");
     pugi::xml_node parent = node.parent();
     std::vector<pugi::xml_node> pasted;
@@ -127,24 +136,28 @@ class IncludeExpander {
     std::string next_dir = DirectoryOf(path);
     for (pugi::xml_node copy : pasted) {
       if (std::string(copy.name()) == "include") {
-        Include(copy, next_dir, depth + 1);
+        Include(copy, next_dir, depth + 1, level);
       } else {
-        Children(copy, next_dir, depth + 1);
+        Enter(copy, level);
+        Children(copy, next_dir, depth + 1, level);
       }
     }
   }
 
   // MuJoCo looks next to the main file first, then next to the including file; each
   // place among the assets (matched by file name), then on disk.
+  // `problem` says why the first file found could not be read (see ReadFileOrAsset).
   bool Open(const std::string& name, const std::string& dir, std::string* path,
-            std::string* text) const {
+            std::string* text, std::string* problem) const {
     std::vector<std::string> candidates = {name};
     if (!IsAbsolute(name)) candidates = {main_dir_ + name, dir + name};
     for (const std::string& candidate : candidates) {
-      if (ReadFileOrAsset(candidate, assets_, text)) {
+      std::string why;
+      if (ReadFileOrAsset(candidate, assets_, text, &why)) {
         *path = candidate;
         return true;
       }
+      if (problem->empty() && !why.empty()) *problem = "'" + candidate + "': " + why;
     }
     return false;
   }
@@ -164,14 +177,16 @@ class IncludeExpander {
   NodeOrigins* origins_;
   const AssetFiles* assets_;  // may be null
   std::set<std::string> included_;
+  int max_level_ = 1;
 };
 
 }  // namespace
 
-void ExpandIncludes(pugi::xml_node root, const std::string& file, const LineIndex& lines,
-                    NodeOrigins* origins, const AssetFiles* assets) {
+int ExpandIncludes(pugi::xml_node root, const std::string& file, const LineIndex& lines,
+                   NodeOrigins* origins, const AssetFiles* assets) {
   IncludeExpander expander(file, lines, origins, assets);
-  expander.Children(root, DirectoryOf(file), 0);
+  expander.Children(root, DirectoryOf(file), 0, 1);
+  return expander.max_level();
 }
 
 XmlElement Reader::Element(pugi::xml_node node) const {
@@ -199,8 +214,9 @@ void Reader::AssetModel(const XmlElement& e) {
   // The file is relative to the main file's folder (among the assets first); it is
   // read on its own, with this model's assets.
   std::string path = IsAbsolute(file) ? file : DirectoryOf(file_) + file;
-  std::string text;
-  if (!ReadFileOrAsset(path, spec_->assets.get(), &text)) {
+  std::string text, problem;
+  if (!ReadFileOrAsset(path, spec_->assets.get(), &text, &problem)) {
+    if (!problem.empty()) e.Fail("cannot read model file '" + path + "': " + problem);
     e.Fail("cannot open model file '" + path + "'" + NotAmongAssets(spec_->assets.get()));
   }
   if (model_depth >= kMaxModelDepth) e.Fail("models are nested too deeply (a cycle of models?)");
@@ -394,6 +410,7 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
   }
   std::shared_ptr<const ParsedModel> child = found->second;
   const ModelSpec& cs = child->spec;
+  CheckAttachDepth(e, *child);
   if (!SameElementSettings(spec_->compiler, cs.compiler)) {
     NotSupported(e, "attaching a model whose <compiler> settings differ from this model's");
   }
@@ -468,6 +485,22 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
   }
   AttachClasses(*child, att.prefix);
   CarryKeys(att);
+}
+
+// The copied tree nests below the <attach> element as deep as in its own model: the
+// two together stay within kMaxTreeDepth (each was read within it).
+void Reader::CheckAttachDepth(const XmlElement& e, const ParsedModel& child) {
+  int level = 0;
+  for (pugi::xml_node n = e.node(); n.type() == pugi::node_element; n = n.parent()) level++;
+  int depth = level + child.depth;
+  if (depth > kMaxTreeDepth) {
+    std::string name;
+    e.Text("model", &name);
+    e.Fail("element nesting is too deep: with model '" + name + "' attached here, the " +
+           "model nests elements " + std::to_string(depth) + " levels deep, more than " +
+           std::to_string(kMaxTreeDepth) + " (simlab's limit)");
+  }
+  depth_ = std::max(depth_, depth);
 }
 
 // The child's default classes become classes of this model, prefixed ("main" too).

@@ -38,9 +38,10 @@ class NodeOrigins {
 // elements under the root of the included file, recursively. A file is found relative
 // to the main file's folder, else to the including file's folder, each time among
 // `assets` (may be null) before the disk; each file can be included once (which also
-// stops recursion).
-void ExpandIncludes(pugi::xml_node root, const std::string& file, const LineIndex& lines,
-                    NodeOrigins* origins, const AssetFiles* assets);
+// stops recursion). Returns how deep the composed document nests (the root is level 1),
+// at most kMaxTreeDepth (mjcf/limits.h).
+int ExpandIncludes(pugi::xml_node root, const std::string& file, const LineIndex& lines,
+                   NodeOrigins* origins, const AssetFiles* assets);
 
 // The folder part of a path, with its trailing '/' ("" for a bare file name).
 std::string DirectoryOf(const std::string& path);
@@ -51,6 +52,7 @@ struct ParsedModel {
   ModelSpec spec;
   std::map<std::string, std::unique_ptr<DefaultClass>> classes;
   int own_keys = 0;  // spec.keys before the <size nkey> blanks
+  int depth = 1;     // levels of its composed document, attached models in place
 };
 
 // What one <attach> copied: child elements and their copies (compose.cc).

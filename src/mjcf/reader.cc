@@ -31,16 +31,10 @@ ModelSpec ReadMjcf(const std::string& text, const std::string& file,
 
 void ReadModel(const std::string& text, const std::string& file, ParsedModel* out,
                const AssetFilesPtr& assets) {
-  // Parse the XML; a syntax error names the line where pugixml stopped.
+  // Parse the XML (its syntax and depth checked).
   LineIndex lines(text);
   pugi::xml_document doc;
-  pugi::xml_parse_result result =
-      doc.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
-  if (!result) {
-    throw Error(file + ":" + std::to_string(lines.Line(result.offset)) +
-                ": malformed XML: " + result.description());
-  }
-  pugi::xml_node root = doc.document_element();
+  pugi::xml_node root = ParseXml(text, file, lines, &doc);
   if (root.empty()) throw Error(file + ":1: malformed XML: no root element");
   if (std::strcmp(root.name(), "mujoco") != 0) {
     XmlElement e(root, file, lines);
@@ -50,13 +44,15 @@ void ReadModel(const std::string& text, const std::string& file, ParsedModel* ou
   // Paste in included files, then walk the document into a spec (which keeps the
   // assets for the models it attaches and for the compiler).
   NodeOrigins origins;
-  ExpandIncludes(root, file, lines, &origins, assets.get());
+  int depth = ExpandIncludes(root, file, lines, &origins, assets.get());
   out->spec.file = file;
   out->spec.assets = assets;
   Reader reader(file, lines, &out->spec, &origins);
+  reader.depth_ = depth;
   reader.Root(root);
   out->classes = std::move(reader.classes_);
   out->own_keys = reader.own_keys_;
+  out->depth = reader.depth_;
 }
 
 Reader::Reader(const std::string& file, const LineIndex& lines, ModelSpec* spec,

@@ -7,6 +7,7 @@
 #ifndef SIMLAB_MJCF_READER_H_
 #define SIMLAB_MJCF_READER_H_
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -89,7 +90,6 @@ class Reader {
   // <replicate> (reader_replicate.cc)
   void Replicate(const XmlElement& e, BodySpec* body, const FramePtr& frame,
                  const DefaultClass* def);
-  void ReplicateReferences(const std::string& suffix);
 
   // one element of each kind, in a body or a default class (reader_elements.cc)
   void ReadJoint(const XmlElement& e, JointSpec* joint, bool in_default) const;
@@ -104,6 +104,7 @@ class Reader {
   // composition: <asset><model> and <attach> (compose.cc)
   void AssetModel(const XmlElement& e);
   void Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame);
+  void CheckAttachDepth(const XmlElement& e, const ParsedModel& child);
   void AttachClasses(const ParsedModel& child, const std::string& prefix);
   void HoldKeys(const XmlElement& e, const ParsedModel& child, const std::string& prefix);
   void CarryKeys(const Attachment& att);
@@ -121,6 +122,10 @@ class Reader {
   std::map<std::string, AttachedKey> carried_;    // by keyframe name
   int own_keys_ = 0;
   std::vector<const BodySpec*> world_standins_;  // scratch bodies of replicates in the world
+  int depth_ = 1;  // levels of the composed document, attached models in place
+  // The product of the counts of the <replicate> elements being read (each copies
+  // what is read inside it that many times).
+  uint64_t replicate_factor_ = 1;
 };
 
 }  // namespace simlab::mjcf

@@ -3,12 +3,14 @@
 // compiler reads and processes them (src/compiler/mesh.cc).
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
 #include <string>
 
 #include "mjcf/error.h"
+#include "mjcf/limits.h"
 #include "mjcf/reader.h"
 
 namespace simlab::mjcf {
@@ -132,10 +134,16 @@ void Reader::ReadHField(const XmlElement& e, HFieldSpec* hfield) const {
   e.Int("ncol", &hfield->ncol);
   if (e.Numbers("size", hfield->size) != 4) e.Fail("'size' needs 4 numbers");
   if (hfield->nrow < 1 || hfield->ncol < 1) e.Fail("hfield needs positive nrow and ncol");
+  size_t n = static_cast<size_t>(hfield->nrow) * hfield->ncol;
+  uint64_t bytes = MulBytes(n, sizeof(double));  // the Model's hfield_data
+  if (bytes > kMaxArrayBytes) {
+    e.Fail(OverBudget(AttrText("nrow", std::to_string(hfield->nrow)) + " x " +
+                          AttrText("ncol", std::to_string(hfield->ncol)),
+                      bytes, "height field data", kMaxArrayBytes));
+  }
 
   // Elevation rows are written from +y down to -y; they are stored from -y up.
   std::vector<float> rows = ReadList(e, "elevation", ParseFloat);
-  size_t n = static_cast<size_t>(hfield->nrow) * hfield->ncol;
   if (rows.empty()) rows.assign(n, 0.0f);
   if (rows.size() != n) e.Fail("elevation data length must match nrow*ncol");
   hfield->elevation.resize(n);

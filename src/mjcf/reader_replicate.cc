@@ -9,12 +9,14 @@
 // attach does. Finally the scratch body goes away, and with it every element that
 // still names one of its objects.
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
 
 #include "compiler/orientation.h"
 #include "math/math.h"
+#include "mjcf/limits.h"
 #include "mjcf/reader.h"
 
 namespace simlab::mjcf {
@@ -183,17 +185,65 @@ bool Resolve(const NameTable& names, SensorSpec* s, const std::string& suffix) {
   return ResolveSensor(names, s, suffix);
 }
 
-// Appends a suffixed copy of every element of `list` (those present when the call
-// starts) whose suffixed references exist.
+// Whether an element names no object at all (a clock or energy sensor): it resolves
+// under any suffix.
 template <typename T>
-void CopyReferencing(const NameTable& names, const std::string& suffix, std::vector<T>* list) {
-  size_t n = list->size();
-  for (size_t k = 0; k < n; k++) {
+bool NamesNothing(const T&) {
+  return false;
+}
+bool NamesNothing(const SensorSpec& s) {
+  return s.objtype == kObjUnknown && s.reftype == kObjUnknown;
+}
+
+// Appends a suffixed copy of every element of `list` present when the call starts
+// whose suffixed references exist, as MuJoCo does (copies made for earlier replicas
+// included); the copies' names join `names` as `type` (kObjUnknown: not referenced by
+// name). Elements from index `first_copy` on were copied by this replicate: unless
+// `retry_copies`, only those that name nothing (listed in `unnamed_copies`, which the
+// new ones join) are tried again, since the others' names already carry an earlier
+// replica's suffix and cannot take another one (see NameTakesTwoSuffixes). This keeps
+// replicate linear in its count.
+template <typename T>
+void CopyReferencing(NameTable* names, const std::string& suffix, size_t first_copy,
+                     bool retry_copies, int type, std::vector<T>* list,
+                     std::vector<size_t>* unnamed_copies) {
+  auto copy_one = [&](size_t k) {
     T copy = (*list)[k];
-    if (!Resolve(names, &copy, suffix)) continue;
+    if (!Resolve(*names, &copy, suffix)) return;
     copy.src.name = Suffixed(copy.src.name, suffix);
+    if (type != kObjUnknown) names->Add(type, copy.src.name);
+    if (NamesNothing(copy)) unnamed_copies->push_back(list->size());
     list->push_back(std::move(copy));
+  };
+  // (indices in increasing order either way: the copies keep MuJoCo's order)
+  size_t n = list->size();
+  if (retry_copies) {
+    for (size_t k = 0; k < n; k++) copy_one(k);
+    return;
   }
+  std::vector<size_t> again = *unnamed_copies;
+  for (size_t k = 0; k < first_copy; k++) copy_one(k);
+  for (size_t k : again) copy_one(k);
+}
+
+// Whether some name ends like a replica suffix (`sep` and the count's digits, below
+// `count`). Only then can a copy made for replica j, whose references end with j's
+// suffix, find them again with replica i's suffix appended: that needs an object
+// named "x<j's suffix><i's suffix>", i.e. one copied from an object "x<j's suffix>".
+bool NameTakesTwoSuffixes(const NameTable& names, const std::string& sep, int count) {
+  size_t width = std::to_string(count - 1).size();
+  for (const auto& [type, set] : names.by_type) {
+    for (const std::string& name : set) {
+      if (name.size() < sep.size() + width) continue;
+      size_t digits_at = name.size() - width;
+      if (name.compare(digits_at - sep.size(), sep.size(), sep) != 0) continue;
+      std::string digits = name.substr(digits_at);
+      if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        continue;
+      if (std::stoll(digits) < count) return true;
+    }
+  }
+  return false;
 }
 
 // Drops the elements that named something that is gone (they resolved before).
@@ -247,9 +297,10 @@ void SuffixTree(BodySpec* body, const std::string& suffix) {
   for (auto& child : body->bodies) SuffixTree(child.get(), suffix);
 }
 
-// Appends one replica of the scratch body's elements to `body`, each list in order.
+// Appends one replica of the scratch body's elements to `body`, each list in order;
+// their names join `names`.
 void CopyReplica(const BodySpec& scratch, FrameRebase& rebase, const std::string& suffix,
-                 BodySpec* body) {
+                 BodySpec* body, NameTable* names) {
   BodySpec renamed;
   renamed.joints = scratch.joints;
   renamed.geoms = scratch.geoms;
@@ -257,6 +308,7 @@ void CopyReplica(const BodySpec& scratch, FrameRebase& rebase, const std::string
   renamed.cameras = scratch.cameras;
   renamed.bodies = scratch.bodies;
   SuffixTree(&renamed, suffix);
+  CollectTree(renamed, names);  // (`renamed` itself has no name)
   auto move_all = [&](auto& from, auto& to) {
     for (auto& element : from) {
       element.frame = rebase(element.frame);
@@ -273,12 +325,94 @@ void CopyReplica(const BodySpec& scratch, FrameRebase& rebase, const std::string
   }
 }
 
+// Bytes of the elements one replica copies (its frame, the scratch body's elements and
+// child subtrees), as the spec holds them.
+uint64_t ReplicaBytes(const BodySpec& body) {
+  uint64_t bytes = sizeof(FrameSpec);
+  bytes += body.joints.size() * sizeof(JointSpec) + body.geoms.size() * sizeof(GeomSpec) +
+           body.sites.size() * sizeof(SiteSpec) + body.cameras.size() * sizeof(CameraSpec);
+  for (const auto& child : body.bodies) bytes += sizeof(BodySpec) + ReplicaBytes(*child);
+  return bytes;
+}
+
+// The lengths of the lists of referencing elements before the first replica (the
+// elements after them are this replicate's copies).
+struct ReferenceCounts {
+  size_t pairs, excludes, tendons, equalities, actuators, sensors;
+};
+
+// Replica i's frame: the template turned by i times `euler`, at `pos`, which then moves
+// one offset further, in this replica's orientation.
+FramePtr ReplicaFrame(const FrameSpec& templ, int i, const std::array<double, 3>& euler,
+                      const std::array<double, 3>& offset, const CompilerSpec& compiler,
+                      double pos[3]) {
+  auto replica = std::make_shared<FrameSpec>(templ);
+  Orientation turn;
+  turn.kind = OrientKind::kEuler;
+  for (int k = 0; k < 3; k++) turn.euler[k] = i * euler[k];
+  compiler::ResolveOrientation(replica->quat.data(), compiler.degree, compiler.eulerseq, turn);
+  std::copy(pos, pos + 3, replica->pos.begin());
+  double mat[9], step[3];
+  math::QuatToMat(mat, replica->quat.data());
+  math::MulMatVec3(step, mat, offset.data());
+  for (int k = 0; k < 3; k++) pos[k] += step[k];
+  return replica;
+}
+
 // "sep" followed by the index, zero-padded to the digits of the count.
 std::string ReplicaSuffix(const std::string& sep, int count, int index) {
   std::string digits = std::to_string(index);
   size_t width = std::to_string(count).size();
   if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
   return sep + digits;
+}
+
+// Copies, with one replica's suffix, the elements outside the tree that name its
+// objects: in MuJoCo's order; tendons and actuators join the names before their users.
+// `unnamed_copies`: the copies so far that name nothing, list by list (see
+// CopyReferencing).
+struct UnnamedCopies {
+  std::vector<size_t> pairs, excludes, tendons, equalities, actuators, sensors;
+};
+void ReplicateReferences(const std::string& suffix, const ReferenceCounts& originals,
+                         bool retry, NameTable* names, ModelSpec* spec, UnnamedCopies* unnamed) {
+  CopyReferencing(names, suffix, originals.pairs, retry, kObjUnknown, &spec->pairs,
+                  &unnamed->pairs);
+  CopyReferencing(names, suffix, originals.excludes, retry, kObjUnknown, &spec->excludes,
+                  &unnamed->excludes);
+  CopyReferencing(names, suffix, originals.tendons, retry, kObjTendon, &spec->tendons,
+                  &unnamed->tendons);
+  CopyReferencing(names, suffix, originals.equalities, retry, kObjUnknown, &spec->equalities,
+                  &unnamed->equalities);
+  CopyReferencing(names, suffix, originals.actuators, retry, kObjActuator, &spec->actuators,
+                  &unnamed->actuators);
+  CopyReferencing(names, suffix, originals.sensors, retry, kObjUnknown, &spec->sensors,
+                  &unnamed->sensors);
+}
+
+// Sensors that name no object are copied again with every replica, copies included
+// (MuJoCo's rule: `count` replicas make 2^count of them). Past kMaxDoubledSensors the
+// model is refused, before the next replica doubles them again.
+constexpr size_t kMaxDoubledSensors = size_t{1} << 16;
+void CheckSensorCopies(const XmlElement& e, int count, size_t doubling) {
+  if (doubling <= kMaxDoubledSensors) return;
+  e.Fail(AttrText("count", std::to_string(count)) + " copies the sensors without objects " +
+         "(clock, energy...) with every replica, doubling them each time; " +
+         std::to_string(doubling) + " already, over simlab's limit of " +
+         std::to_string(kMaxDoubledSensors));
+}
+
+// The copies a replicate makes, multiplied by the replicates around it (`outer`), must
+// fit the budget of one array; checked before the first copy.
+void CheckReplicateBudget(const XmlElement& e, int count, uint64_t outer,
+                          uint64_t replica_bytes) {
+  uint64_t bytes = MulBytes(MulBytes(outer, static_cast<uint64_t>(count)), replica_bytes);
+  if (bytes <= kMaxArrayBytes) return;
+  std::string request = AttrText("count", std::to_string(count));
+  if (outer > 1) {
+    request += " (inside replicates that copy it " + std::to_string(outer) + " times)";
+  }
+  e.Fail(OverBudget(request, bytes, "replicated elements", kMaxArrayBytes));
 }
 
 }  // namespace
@@ -302,7 +436,8 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
     NotSupported(e, "<replicate> in a model with keyframes");
   }
 
-  // Read the children once, into a scratch body in the replicate's place.
+  // Read the children once, into a scratch body in the replicate's place (replicates
+  // inside are multiplied by this count).
   auto scratch_owner = std::make_unique<BodySpec>();
   BodySpec* scratch = scratch_owner.get();
   scratch->src = e.src();
@@ -311,28 +446,27 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
   templ->src = e.src();
   templ->parent = frame;
   if (IsWorld(body)) world_standins_.push_back(scratch);
+  uint64_t outer = replicate_factor_;
+  replicate_factor_ = MulBytes(outer, static_cast<uint64_t>(count));
   Body(e, scratch, templ, childclass ? childclass : def);
+  replicate_factor_ = outer;
+  CheckReplicateBudget(e, count, outer, ReplicaBytes(*scratch));
 
   // One replica per index: its frame, its tree elements, then the references to them.
+  NameTable names = CollectNames(*spec_);
+  ReferenceCounts originals = {spec_->pairs.size(),     spec_->excludes.size(),
+                               spec_->tendons.size(),   spec_->equalities.size(),
+                               spec_->actuators.size(), spec_->sensors.size()};
+  bool retry_copies = NameTakesTwoSuffixes(names, sep, count);
+  UnnamedCopies unnamed;
   double pos[3] = {0, 0, 0};
   for (int i = 0; i < count; i++) {
-    auto replica = std::make_shared<FrameSpec>(*templ);
-    Orientation turn;
-    turn.kind = OrientKind::kEuler;
-    for (int k = 0; k < 3; k++) turn.euler[k] = i * euler[k];
-    compiler::ResolveOrientation(replica->quat.data(), spec_->compiler.degree,
-                                 spec_->compiler.eulerseq, turn);
-    std::copy(pos, pos + 3, replica->pos.begin());
-    // The next replica sits one offset further, in this replica's orientation.
-    double mat[9], step[3];
-    math::QuatToMat(mat, replica->quat.data());
-    math::MulMatVec3(step, mat, offset.data());
-    for (int k = 0; k < 3; k++) pos[k] += step[k];
-
+    FramePtr replica = ReplicaFrame(*templ, i, euler, offset, spec_->compiler, pos);
     std::string suffix = ReplicaSuffix(sep, count, i);
     FrameRebase rebase(templ.get(), replica);
-    CopyReplica(*scratch, rebase, suffix, body);
-    ReplicateReferences(suffix);
+    CopyReplica(*scratch, rebase, suffix, body, &names);
+    ReplicateReferences(suffix, originals, retry_copies, &names, spec_, &unnamed);
+    CheckSensorCopies(e, count, unnamed.sensors.size());
   }
 
   // Remove the scratch body, and whatever still names its elements.
@@ -349,19 +483,6 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
   DropDangling(before, CollectNames(*spec_), &spec_->equalities);
   DropDangling(before, CollectNames(*spec_), &spec_->actuators);
   DropDangling(before, CollectNames(*spec_), &spec_->sensors);
-}
-
-void Reader::ReplicateReferences(const std::string& suffix) {
-  // In MuJoCo's order; tendons and actuators join the names before their users.
-  NameTable names = CollectNames(*spec_);
-  CopyReferencing(names, suffix, &spec_->pairs);
-  CopyReferencing(names, suffix, &spec_->excludes);
-  CopyReferencing(names, suffix, &spec_->tendons);
-  names = CollectNames(*spec_);
-  CopyReferencing(names, suffix, &spec_->equalities);
-  CopyReferencing(names, suffix, &spec_->actuators);
-  names = CollectNames(*spec_);
-  CopyReferencing(names, suffix, &spec_->sensors);
 }
 
 bool Reader::IsWorld(const BodySpec* body) const {

@@ -1,9 +1,11 @@
 // MJCF reader: the sections outside the body tree (compiler, option, visual, asset,
 // contact, tendon, actuator, keyframe), cameras, and lights, which are accepted and
 // ignored because they do not change the simulation.
+#include <cstdint>
 #include <string>
 
 #include "mjcf/error.h"
+#include "mjcf/limits.h"
 #include "mjcf/reader.h"
 
 namespace simlab::mjcf {
@@ -180,7 +182,16 @@ void Reader::Size(const XmlElement& e) {
   if (e.Int("nuser_sensor", &spec_->nuser_sensor) && spec_->nuser_sensor < -1) {
     e.Fail("nuser_sensor must be -1 (automatic) or more");
   }
+  spec_->size_src = e.src();
+
+  // Keyframes: the reader makes nkey of them (blank ones up to nkey), so their number
+  // is held to the budget before any is made.
   if (e.Int("nkey", &spec_->nkey) && spec_->nkey < 0) e.Fail("nkey cannot be negative");
+  uint64_t bytes = MulBytes(static_cast<uint64_t>(spec_->nkey), sizeof(KeySpec));
+  if (bytes > kMaxArrayBytes) {
+    e.Fail(OverBudget(AttrText("nkey", std::to_string(spec_->nkey)), bytes, "keyframes",
+                      kMaxArrayBytes));
+  }
 }
 
 void Reader::Visual(const XmlElement& e) {

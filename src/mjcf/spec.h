@@ -435,6 +435,7 @@ struct ModelSpec {
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
   int nuser_sensor = -1;  // <size nuser_sensor>; -1: the longest sensor user data
+  Source size_src;        // the <size> element, if any (for messages about its sizes)
   // <statistic>: values given by the model (undefined: computed by the compiler).
   double meaninertia = kUndefined;
   double znear = 0.01;  // <visual><map znear>: default focal length of cameras

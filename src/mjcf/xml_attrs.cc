@@ -2,6 +2,7 @@
 #include "mjcf/xml_attrs.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "mjcf/error.h"
+#include "mjcf/limits.h"
 
 namespace simlab::mjcf {
 
@@ -216,6 +218,91 @@ void XmlElement::Orient(Orientation* alt) const {
     count++;
   }
   if (count > 1) Fail("multiple orientation specifiers are not allowed");
+}
+
+// ---------------------------------------------------------------- parsing
+
+namespace {
+
+// True if the start tag whose name begins at `offset` ends with "/>" (quoted attribute
+// values may hold '>' and '/').
+bool SelfClosed(const std::string& text, ptrdiff_t offset) {
+  char quote = 0, last = 0;
+  for (size_t i = static_cast<size_t>(offset); i < text.size(); i++) {
+    char c = text[i];
+    if (quote) {
+      if (c == quote) quote = 0;
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+    } else if (c == '>') {
+      return last == '/';
+    }
+    if (!std::isspace(static_cast<unsigned char>(c))) last = c;
+  }
+  return false;
+}
+
+// The first element (in document order) that MuJoCo's parser would refuse for its
+// depth: one on level kMaxXmlDepth - 1 with content (it is not self-closed), the root
+// being level 1. Elements deeper than that have such an ancestor, so the walk (a loop,
+// not a recursion) never goes below that level.
+pugi::xml_node TooDeep(pugi::xml_node root, const std::string& text) {
+  const int last_level = kMaxXmlDepth - 1;
+  pugi::xml_node node = root;
+  int level = 1;
+  while (true) {
+    // This element, then its first child element if it may have one.
+    if (level == last_level) {
+      ptrdiff_t offset = node.offset_debug();
+      bool closed = offset >= 0 ? SelfClosed(text, offset) : !node.first_child();
+      if (!closed) return node;
+    }
+    pugi::xml_node child = node.find_child([](pugi::xml_node n) {
+      return n.type() == pugi::node_element;
+    });
+    if (child && level < last_level) {
+      node = child;
+      level++;
+      continue;
+    }
+    // Else the next element after it: a sibling of it or of its nearest ancestor.
+    while (true) {
+      if (node == root) return pugi::xml_node();
+      pugi::xml_node next = node.next_sibling();
+      while (next && next.type() != pugi::node_element) next = next.next_sibling();
+      if (next) {
+        node = next;
+        break;
+      }
+      node = node.parent();
+      level--;
+    }
+  }
+}
+
+}  // namespace
+
+pugi::xml_node ParseXml(const std::string& text, const std::string& file,
+                        const LineIndex& lines, pugi::xml_document* doc) {
+  // Syntax: the line where pugixml stopped.
+  pugi::xml_parse_result result =
+      doc->load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!result) {
+    throw Error(file + ":" + std::to_string(lines.Line(result.offset)) +
+                ": malformed XML: " + result.description());
+  }
+  pugi::xml_node root = doc->document_element();
+  if (root.empty()) return root;
+
+  // Depth: MuJoCo's parser rule, before any recursive walk of the tree.
+  if (pugi::xml_node deep = TooDeep(root, text)) {
+    XmlElement(deep, file, lines)
+        .Fail("element nesting is too deep: MuJoCo's XML parser allows " +
+              std::to_string(kMaxXmlDepth) + " levels, the content of an element counting " +
+              "as one more level (so an element on level " + std::to_string(kMaxXmlDepth - 1) +
+              " must be self-closed)");
+  }
+  return root;
 }
 
 }  // namespace simlab::mjcf

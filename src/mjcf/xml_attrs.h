@@ -88,6 +88,12 @@ class XmlElement {
 // Parses a whole token as an int; false if it is not one or out of range.
 bool ParseInt(const std::string& token, int* out);
 
+// Parses the XML text of `file` into `doc` and returns its root element (empty if there
+// is none). A syntax error, or elements nested deeper than MuJoCo's parser allows (see
+// mjcf/limits.h), throw simlab::Error naming the file and line.
+pugi::xml_node ParseXml(const std::string& text, const std::string& file,
+                        const LineIndex& lines, pugi::xml_document* doc);
+
 }  // namespace simlab::mjcf
 
 #endif  // SIMLAB_MJCF_XML_ATTRS_H_
