@@ -208,8 +208,8 @@ TEST(AttachedKeyframes, PaddedWithTheScenesDefaults) {
   json golden = ReadJson("tests/compiler_goldens/gantry_gripper.json");
   int k = NameToId(m, kObjKey, "gripper/open");
   ASSERT_EQ(k, 1);
-  std::vector<double> qpos(&m.key_qpos[k * m.nq], &m.key_qpos[(k + 1) * m.nq]);
-  std::vector<double> ctrl(&m.key_ctrl[k * m.nu], &m.key_ctrl[(k + 1) * m.nu]);
+  std::vector<double> qpos(m.key_qpos.begin() + k * m.nq, m.key_qpos.begin() + (k + 1) * m.nq);
+  std::vector<double> ctrl(m.key_ctrl.begin() + k * m.nu, m.key_ctrl.begin() + (k + 1) * m.nu);
   EXPECT_EQ(qpos, GoldenRow(golden, "key_qpos", k, m.nq));
   EXPECT_EQ(ctrl, GoldenRow(golden, "key_ctrl", k, m.nu));
   for (int i = 0; i < m.nq; i++) {

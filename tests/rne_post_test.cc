@@ -89,8 +89,11 @@ double CheckCase(const RnePostCase& c) {
   double worst = 0;
   for (const nlohmann::json& dump : golden["dumps"]) {
     for (; step < dump["step"].get<int>(); step++) {
-      const std::vector<double>& row = controls[std::min<size_t>(step, controls.size() - 1)];
-      for (int u = 0; u < m.nu; u++) d.ctrl[u] = row[u];
+      // the step's control row, the last one held (a case without controls has none)
+      if (!controls.empty()) {
+        const std::vector<double>& row = controls[std::min<size_t>(step, controls.size() - 1)];
+        for (int u = 0; u < m.nu; u++) d.ctrl[u] = row[u];
+      }
       Step(m, d);
     }
     Forward(m, d);

@@ -1,7 +1,8 @@
 // Tactile sensor: the values of MuJoCo's definition checked on a scene simple enough to
 // work them out by hand (taxels sinking into the floor plane, whose signed distance is
 // the height), and the cases the goldens cannot show: mesh geoms are skipped (no
-// octree), a height field touching the sensor stops the step with an error.
+// octree), a height field touching the sensor is an engine error (Step turns it into
+// a warning and a reset: tests/warning_test.cc).
 #include <algorithm>
 #include <cmath>
 #include <string>

@@ -6,6 +6,7 @@
 #ifndef SIMLAB_DATA_H_
 #define SIMLAB_DATA_H_
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <utility>
@@ -15,11 +16,17 @@
 
 namespace simlab {
 
-// Kinds of warning the engine counts (MuJoCo's mjtWarning, same order).
+// Kinds of warning the engine counts: MuJoCo's mjtWarning, in its order, then simlab's
+// own two: the line search met a non-convex objective (MuJoCo prints that without
+// counting it), and an engine error inside Forward or a Step, such as an option set to a
+// value that does not exist (MuJoCo stops with an error; simlab resets the data, as for a
+// state that diverged, and keeps the message in Data::error).
 enum Warning : int {
   kWarnInertia = 0, kWarnContactFull, kWarnConstraintFull, kWarnVGeomFull, kWarnBadQpos,
-  kWarnBadQvel, kWarnBadQacc, kWarnBadCtrl, kNumWarnings
+  kWarnBadQvel, kWarnBadQacc, kWarnBadCtrl, kWarnLineSearch, kWarnEngineError, kNumWarnings
 };
+// MuJoCo's kinds are the first ones (its mjNWARNING).
+inline constexpr int kNumMujocoWarnings = kWarnLineSearch;
 
 // Kinds of constraint row (mjtConstraint) and states of a row in the solution
 // (mjtConstraintState), with MuJoCo's values.
@@ -194,6 +201,13 @@ struct Data {
   bool flg_energyvel = false;
   bool flg_subtreevel = false;
   bool flg_rnepost = false;
+  // The one warning channel. Every warning is counted in `warning` (number, lastinfo)
+  // and, if this is set, passed here as it is raised, with its text; the engine itself
+  // prints nothing (MuJoCo's mju_user_warning, here per Data).
+  std::function<void(const Data& d, Warning w, int info, const std::string& text)>
+      warning_callback;
+  // The message of the last engine error (kWarnEngineError), or "".
+  std::string error;
   // User sensors' callback (MuJoCo's mjcb_sensor, here per Data): called with the stage
   // (kStagePos/Vel/Acc) once per stage that has user sensors, after their outputs were
   // zeroed; it writes d.sensordata at their sensor_adr.
@@ -216,13 +230,30 @@ struct Data {
   BroadPhaseScratch broadphase;
   SolverScratch solver_scratch;
 
-  // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData.
+  // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData for
+  // the model's integrator (StackDoubles). A stage that finds it short takes the rest
+  // from the heap (stack_overflow doubles, now) and the stack grows to the peak seen
+  // (stack_peak) before the next public call.
   std::vector<double> stack;
   size_t stack_top = 0;
+  size_t stack_overflow = 0;
+  size_t stack_peak = 0;
 };
 
-// A Data sized for the model and reset to its default state.
+// Doubles of the stages' scratch stack that ResetData gives a Data for `m` (saturating):
+// enough for every stage of the model's integrator, the RNE derivative included only
+// for the implicit one.
+uint64_t StackDoubles(const Model& m);
+
+// A Data sized for the model and reset to its default state. Throws simlab::Error,
+// allocating nothing, if its arrays would take more than kMaxDataBytes.
 Data MakeData(const Model& m);
+
+// What the arrays of a Data for `m` take, in bytes (saturating), with the largest one
+// named, before any is allocated; MakeData refuses more than kMaxDataBytes (2 GiB).
+inline constexpr uint64_t kMaxDataBytes = uint64_t{2} << 30;
+uint64_t DataBytes(const Model& m, const char** largest = nullptr,
+                   uint64_t* largest_bytes = nullptr);
 
 // Every array of the data, in table order, shaped by the model.
 std::vector<FieldView> DataFields(const Model& m, Data& d);

@@ -5,10 +5,10 @@
 //   simlab::Forward(m, d);          // all derived quantities for the current state
 //   simlab::Step(m, d);             // advance by m.opt.timestep
 //
-// Loading throws simlab::Error (file, line, element, what is wrong). A diverging state
-// does not throw: it is reported in d.warning and the data is reset. Forward and the
-// Step functions throw simlab::Error only for options changed to values that do not
-// exist (an unknown opt.solver, opt.integrator, opt.cone or opt.jacobian).
+// Loading throws simlab::Error (file, line, element, what is wrong). Simulating never
+// throws: a diverging state, and an engine error inside Forward or a Step (an option set
+// to a value that does not exist, say), are counted in d.warning, passed to
+// d.warning_callback with their text, and the data is reset; the engine prints nothing.
 #ifndef SIMLAB_SIMLAB_H_
 #define SIMLAB_SIMLAB_H_
 
@@ -96,6 +96,11 @@ const char* ObjTypeName(int type);
 // The object type an MJCF keyword ("joint"), or MuJoCo's field prefix or Python view name
 // for it ("jnt", "cam", "eq", "keyframe"), names; kObjUnknown for none.
 ObjType ObjTypeFromName(const std::string& name);
+
+// What a warning means ("bad qacc (NaN or too large): simulation reset"), and the text
+// passed to Data::warning_callback: that, its info and the time.
+const char* WarningName(int warning);
+std::string WarningText(int warning, int info, double time);
 
 // The MuJoCo version whose semantics this engine follows.
 const char* ReferenceVersion();

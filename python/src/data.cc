@@ -148,9 +148,10 @@ struct PyWarningList {
   WarningStat* stats;
 };
 
-// A strided view of one member across the kNumWarnings entries.
+// A strided view of one member across MuJoCo's kNumMujocoWarnings entries (simlab's
+// own two kinds are not in Python's list: an engine error raises FatalError instead).
 py::array WarningColumn(const PyWarningList& l, int WarningStat::*member) {
-  return py::array(py::dtype::of<int>(), {static_cast<py::ssize_t>(kNumWarnings)},
+  return py::array(py::dtype::of<int>(), {static_cast<py::ssize_t>(kNumMujocoWarnings)},
                    {static_cast<py::ssize_t>(sizeof(WarningStat))}, &(l.stats[0].*member),
                    l.owner);
 }
@@ -164,9 +165,9 @@ void DefineWarnings(py::module_& m) {
       "lastinfo", [](const PyWarning& w) { return w.stat->lastinfo; },
       [](PyWarning& w, int v) { w.stat->lastinfo = v; });
   py::class_<PyWarningList> list(m, "MjWarningStatList");
-  list.def("__len__", [](const PyWarningList&) { return static_cast<int>(kNumWarnings); });
+  list.def("__len__", [](const PyWarningList&) { return static_cast<int>(kNumMujocoWarnings); });
   list.def("__getitem__", [](const PyWarningList& l, int i) {
-    if (i < 0 || i >= kNumWarnings) throw py::index_error("warning index out of range");
+    if (i < 0 || i >= kNumMujocoWarnings) throw py::index_error("warning index out of range");
     return PyWarning{l.owner, &l.stats[i]};
   });
   list.def_property_readonly("number", [](const PyWarningList& l) {

@@ -48,6 +48,15 @@ T* Output(py::handle a, py::ssize_t size, const char* name, bool allow_none) {
   return static_cast<T*>(arr.mutable_data());
 }
 
+// An engine error raised since d's engine-error count was `errors` (the engine turned it
+// into a warning and a reset): FatalError with its message, as MuJoCo's bindings raise
+// for the errors that stop MuJoCo.
+void RaiseEngineError(const char* function, const Data& d, int errors) {
+  if (d.warning[kWarnEngineError].number != errors) {
+    throw FatalError(std::string(function) + ": " + d.error);
+  }
+}
+
 // An object id in range, for functions that index arrays with it.
 int CheckedId(int id, int count, const char* what) {
   if (id < 0 || id >= count) {
@@ -63,10 +72,14 @@ void DefineSimulation(py::module_& m) {
   m.def("mj_step", [](const PyModel& mw, PyData& dw, int nstep) {
     CheckCompatible(mw, dw);
     const Model& model = *mw.model;
-    py::gil_scoped_release release;
-    OrFatal("mj_step", [&] {
-      for (int i = 0; i < nstep; i++) Step(model, dw.data);
-    });
+    const int errors = dw.data.warning[kWarnEngineError].number;
+    {
+      py::gil_scoped_release release;
+      for (int i = 0; i < nstep && dw.data.warning[kWarnEngineError].number == errors; i++) {
+        Step(model, dw.data);
+      }
+    }
+    RaiseEngineError("mj_step", dw.data, errors);
   }, py::arg("m"), py::arg("d"), py::arg("nstep") = 1,
   "Advances the simulation by one timestep of the model's integrator, nstep times "
   "(the GIL is released meanwhile).");
@@ -94,8 +107,12 @@ void DefineSimulation(py::module_& m) {
   for (const StageFunction& f : stages) {
     m.def(f.name, [stage = f.stage, name = f.name](const PyModel& mw, PyData& dw) {
       CheckCompatible(mw, dw);
-      py::gil_scoped_release release;
-      OrFatal(name, [&] { stage(*mw.model, dw.data); });
+      const int errors = dw.data.warning[kWarnEngineError].number;
+      {
+        py::gil_scoped_release release;
+        stage(*mw.model, dw.data);
+      }
+      RaiseEngineError(name, dw.data, errors);
     }, py::arg("m"), py::arg("d"), f.doc);
   }
   // For bench/python/python_overhead.py: a plain C++ loop of Step, timed in thread CPU

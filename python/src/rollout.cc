@@ -111,10 +111,15 @@ struct Batch {
   const double* control = nullptr;    // nbatch x nstep x ncontrol, or null: none
   double* state = nullptr;            // nbatch x nstep x nstate, or null
   double* sensordata = nullptr;       // nbatch x nstep x nsensordata, or null
+  // The first engine error of any rollout (they run on several threads).
+  std::mutex* error_mutex = nullptr;
+  std::string* error = nullptr;
 };
 
+// Whether a warning ends the rollout: MuJoCo's kinds, and an engine error.
 bool AnyWarning(const Data& d) {
-  return std::any_of(std::begin(d.warning), std::end(d.warning),
+  return d.warning[kWarnEngineError].number > 0 ||
+         std::any_of(d.warning, d.warning + kNumMujocoWarnings,
                      [](const WarningStat& w) { return w.number > 0; });
 }
 
@@ -159,6 +164,11 @@ void RollOut(const Model& m, Data& d, const Batch& b, size_t r) {
       Step(m, d);
     }
     Record(m, d, b, r, t);
+  }
+  // An engine error (now a warning) is reported to the caller.
+  if (d.warning[kWarnEngineError].number > 0) {
+    std::lock_guard<std::mutex> lock(*b.error_mutex);
+    if (b.error->empty()) *b.error = d.error;
   }
 }
 
@@ -213,8 +223,15 @@ class PyRollout {
             DataOf<double>(state, nbatch * steps * nstate, "state"),
             DataOf<double>(sensordata, nbatch * steps * m[0]->nsensordata, "sensordata")};
     if (!b.state0) throw py::value_error("initial_state is required");
-    py::gil_scoped_release release;
-    OrFatal("rollout", [&] { Run(m, d, b, chunk_size); });
+    std::mutex error_mutex;
+    std::string error;
+    b.error_mutex = &error_mutex;
+    b.error = &error;
+    {
+      py::gil_scoped_release release;
+      OrFatal("rollout", [&] { Run(m, d, b, chunk_size); });
+    }
+    if (!error.empty()) throw FatalError("rollout: " + error);
   }
 
  private:

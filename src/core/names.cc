@@ -1,5 +1,6 @@
 // Names of enum values as MJCF writes them (sensor element tags, object types), and
 // access to a sensor's output by its name (MuJoCo's data.sensor("name").data).
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -32,7 +33,31 @@ constexpr const char* kObjNames[] = {
     "material", "pair",    "exclude",  "equality", "tendon",  "actuator", "sensor",
     "numeric", "text",     "tuple",    "key",     "plugin"};
 
+// What each warning means, in mjtWarning order, then simlab's own.
+constexpr const char* kWarningNames[] = {
+    "inertia matrix is too close to singular",
+    "contact buffer is full",
+    "constraint buffer is full",
+    "visual geom buffer is full",
+    "bad qpos (NaN or too large): simulation reset",
+    "bad qvel (NaN or too large): simulation reset",
+    "bad qacc (NaN or too large): simulation reset",
+    "bad ctrl (NaN or too large): controls zeroed",
+    "line search objective is not convex",
+    "engine error: simulation reset"};
+static_assert(sizeof(kWarningNames) / sizeof(kWarningNames[0]) == kNumWarnings);
+
 }  // namespace
+
+const char* WarningName(int warning) {
+  return warning >= 0 && warning < kNumWarnings ? kWarningNames[warning] : "unknown warning";
+}
+
+std::string WarningText(int warning, int info, double time) {
+  char when[64];
+  std::snprintf(when, sizeof(when), " (info %d, time %.4f)", info, time);
+  return WarningName(warning) + std::string(when);
+}
 
 const char* SensorTypeName(int type) {
   constexpr int n = sizeof(kSensorTags) / sizeof(kSensorTags[0]);

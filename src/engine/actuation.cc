@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "engine/stack.h"
 
 namespace simlab {
@@ -153,7 +154,7 @@ void Actuation(const Model& m, Data& d) {
 
   // Joint space, clamped per joint to actuatorfrcrange.
   for (int i = 0; i < m.nu; i++) {
-    const double* moment = &d.actuator_moment[static_cast<size_t>(i) * m.nv];
+    const double* moment = RowOf(d.actuator_moment, i, m.nv);
     for (int v = 0; v < m.nv; v++) d.qfrc_actuator[v] += moment[v] * d.actuator_force[i];
   }
   AddActuatorGravcomp(m, d);

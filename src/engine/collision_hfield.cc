@@ -145,15 +145,24 @@ struct SubGrid {
   int cmin, cmax, rmin, rmax;
 };
 
+// A whole grid coordinate as an int, clamped to [lo, hi] first: a double outside int's
+// range (under a huge geom) or NaN has no int value. Starts are clamped to [0, n] and
+// ends to [-1, n - 1] for n grid points, so an empty sub-grid stays empty.
+int GridIndex(double whole, int lo, int hi) {
+  if (!(whole > lo)) return lo;  // NaN too
+  if (whole > hi) return hi;
+  return static_cast<int>(whole);
+}
+
 SubGrid CellsUnder(const HFieldGrid& grid, const Bounds& b) {
   const double* size = grid.size;
   auto scaled = [](double v, double half, int n) { return (v + half) / (2.0 * half) * (n - 1); };
   SubGrid s;
   int ncol = grid.ncol, nrow = grid.nrow;
-  s.cmin = std::max(0, static_cast<int>(std::floor(scaled(b.lo[0], size[0], ncol))));
-  s.cmax = std::min(ncol - 1, static_cast<int>(std::ceil(scaled(b.hi[0], size[0], ncol))));
-  s.rmin = std::max(0, static_cast<int>(std::floor(scaled(b.lo[1], size[1], nrow))));
-  s.rmax = std::min(nrow - 1, static_cast<int>(std::ceil(scaled(b.hi[1], size[1], nrow))));
+  s.cmin = GridIndex(std::floor(scaled(b.lo[0], size[0], ncol)), 0, ncol);
+  s.cmax = GridIndex(std::ceil(scaled(b.hi[0], size[0], ncol)), -1, ncol - 1);
+  s.rmin = GridIndex(std::floor(scaled(b.lo[1], size[1], nrow)), 0, nrow);
+  s.rmax = GridIndex(std::ceil(scaled(b.hi[1], size[1], nrow)), -1, nrow - 1);
   return s;
 }
 
@@ -210,6 +219,9 @@ int CollideHFieldConvex(const Model& m, const Data& d, Contact* con, int g1, int
   Bounds bounds = SupportBounds(&geom);
   if (BoundsMissBox(grid, bounds, margin)) return 0;
   SubGrid sub = CellsUnder(grid, bounds);
+  // no column under the geom (it overhangs an edge within the margin): no prism, and
+  // the walk's first points would lie outside the grid
+  if (sub.cmin > sub.cmax) return 0;
   geom.margin = margin;
 
   // walk the strip of each row pair: point (r+1, c) then (r, c) closes two prisms

@@ -140,9 +140,11 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
 
 // Copies a solved problem's results back into Data. Row states only with `states`: MuJoCo
 // copies an island's forces back but not its states, so after island solves efc_state
-// keeps the warm start's evaluation (at qacc_smooth or the warm start).
+// keeps the warm start's evaluation (at qacc_smooth or the warm start). A non-convex
+// line search becomes a warning (its info: how many points were not convex).
 void Scatter(const ConstraintProblem& p, const int* dofs, const int* rows, bool states,
              Data& d) {
+  if (p.nonconvex > 0) RaiseWarning(d, kWarnLineSearch, p.nonconvex);
   for (int i = 0; i < p.nv; i++) {
     d.qacc[dofs[i]] = p.qacc[i];
     d.qfrc_constraint[dofs[i]] = p.qfrc_constraint[i];
@@ -208,7 +210,7 @@ void ProjectConstraint(const Model& m, Data& d) {
   double* b = frame.Reals(static_cast<size_t>(nefc) * nv);
   for (int r = 0; r < nefc; r++) {
     double* x = &b[static_cast<size_t>(r) * nv];
-    std::copy_n(&d.efc_J[static_cast<size_t>(r) * nv], nv, x);
+    std::copy_n(d.efc_J.data() + static_cast<size_t>(r) * nv, nv, x);
     for (int i = nv - 1; i >= 0; i--) {
       if (x[i] == 0) continue;
       int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;

@@ -98,6 +98,7 @@ struct ConstraintProblem {
 
   double scale = 1;  // 1 / (total inertia): makes tolerances unit-free
   int niter = 0;     // iterations the solver used
+  int nonconvex = 0;  // line-search points where the objective was not convex
 
   RowSet Rows() const { return RowSet{ne, nf, nefc, D, R, frictionloss, type, id, contact}; }
 };

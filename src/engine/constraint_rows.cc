@@ -11,6 +11,7 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "engine/stack.h"
 #include "math/dot.h"
 #include "math/math.h"
@@ -146,7 +147,7 @@ void CouplingRow(const Model& m, Data& d, int eq, double* jac, double* jac1) {
     } else {
       value[j] = d.ten_length[ids[j]];
       ref[j] = m.tendon_length0[ids[j]];
-      std::copy_n(&d.ten_J[static_cast<size_t>(ids[j]) * nv], nv, jacs[j]);
+      std::copy_n(RowOf(d.ten_J, ids[j], nv), nv, jacs[j]);
     }
   }
   double err = value[0] - ref[0] - data[0];
@@ -189,7 +190,7 @@ void FrictionRows(const Model& m, Data& d) {
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (m.tendon_frictionloss[t] <= 0) continue;
-    AddRows(m, d, &d.ten_J[static_cast<size_t>(t) * m.nv], nullptr, 0,
+    AddRows(m, d, RowOf(d.ten_J, t, m.nv), nullptr, 0,
             m.tendon_frictionloss[t], 1, kCnstrFrictionTendon, t);
   }
 }
@@ -242,7 +243,7 @@ void LimitRows(const Model& m, Data& d) {
   for (int t = 0; t < m.ntendon; t++) {
     if (!m.tendon_limited[t]) continue;
     ScalarLimitRows(m, d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t],
-                    &d.ten_J[static_cast<size_t>(t) * m.nv], jac, kCnstrLimitTendon, t);
+                    RowOf(d.ten_J, t, m.nv), jac, kCnstrLimitTendon, t);
   }
 }
 
@@ -604,7 +605,7 @@ void MakeConstraint(const Model& m, Data& d) {
 void ReferenceConstraint(const Model& m, Data& d) {
   int nv = m.nv;
   for (int i = 0; i < d.nefc; i++) {
-    double vel = math::Dot(&d.efc_J[static_cast<size_t>(i) * nv], d.qvel.data(), nv);
+    double vel = math::Dot(d.efc_J.data() + static_cast<size_t>(i) * nv, d.qvel.data(), nv);
     d.efc_vel[i] = vel;
     const double* kbip = &d.efc_KBIP[4 * i];
     d.efc_aref[i] = -kbip[1] * vel - kbip[0] * kbip[2] * (d.efc_pos[i] - d.efc_margin[i]);

@@ -12,6 +12,7 @@
 #include <algorithm>
 
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "engine/stack.h"
 #include "math/math.h"
 
@@ -56,7 +57,7 @@ void ActuatorDerivative(const Model& m, Data& d) {
         b += gain_vel * act;
       }
     }
-    if (b != 0) AddJtBJ(m, d, &d.actuator_moment[static_cast<size_t>(i) * m.nv], b);
+    if (b != 0) AddJtBJ(m, d, RowOf(d.actuator_moment, i, m.nv), b);
   }
 }
 
@@ -73,7 +74,7 @@ void PassiveDerivative(const Model& m, Data& d) {
     double poly[kNPoly] = {0, 0};
     double damping = m.tendon_damping[i] + ActuatorDamping(m, true, i, poly);
     double slope = DampingSlope(damping, poly, d.ten_velocity[i]);
-    if (slope != 0) AddJtBJ(m, d, &d.ten_J[static_cast<size_t>(i) * m.nv], -slope);
+    if (slope != 0) AddJtBJ(m, d, RowOf(d.ten_J, i, m.nv), -slope);
   }
 }
 

@@ -5,6 +5,8 @@
 #ifndef SIMLAB_ENGINE_ENGINE_H_
 #define SIMLAB_ENGINE_ENGINE_H_
 
+#include <string>
+
 #include "simlab/data.h"
 #include "simlab/model.h"
 
@@ -172,8 +174,9 @@ void FluidDerivative(const Model& m, Data& d);
 // The pipeline; `skip_position` reuses the position stage (as mjSTAGE_POS).
 void ForwardSkip(const Model& m, Data& d, bool skip_position, bool skip_sensor);
 
-// Raises warning `w` with `info` (counts it; prints the first occurrence).
-void RaiseWarning(Data& d, Warning w, int info);
+// Raises warning `w` with `info`: counts it, and passes it with its text (default:
+// WarningText) to d.warning_callback. Prints nothing.
+void RaiseWarning(Data& d, Warning w, int info, const std::string& text = "");
 
 }  // namespace simlab
 

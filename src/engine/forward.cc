@@ -12,31 +12,55 @@
 // flag, the energies; quantities only some sensors need (cacc/cfrc, subtree velocities)
 // are computed on demand by those sensors, once per step.
 #include <cmath>
-#include <cstdio>
+#include <exception>
 #include <string>
 
 #include "engine/collision.h"
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/sensor.h"
+#include "engine/stack.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
 
 namespace {
 
-const char* const kWarningText[kNumWarnings] = {
-    "inertia matrix is too close to singular",
-    "contact buffer is full",
-    "constraint buffer is full",
-    "visual geom buffer is full",
-    "bad qpos (NaN or too large): simulation reset",
-    "bad qvel (NaN or too large): simulation reset",
-    "bad qacc (NaN or too large): simulation reset",
-    "bad ctrl (NaN or too large): controls zeroed",
-};
-
 bool IsBad(double x) { return std::isnan(x) || x > kMaxVal || x < -kMaxVal; }
+
+// The steps' pipelines, which the public functions run without letting errors escape
+// (inside them the pipeline is ForwardSkip, which may throw, not Forward).
+void StepPipeline(const Model& m, Data& d);
+void Step1Pipeline(const Model& m, Data& d);
+void Step2Pipeline(const Model& m, Data& d);
+
+// Runs a pipeline; an engine error inside it becomes the warning kWarnEngineError (its
+// message kept in d.error and given to the callback) and a reset of the data that keeps
+// that warning's count, as a state that diverged does. Nothing escapes.
+template <typename Run>
+void WithoutThrowing(const Model& m, Data& d, Run run) {
+  std::string message;
+  GrowStack(d);
+  try {
+    run();
+    return;
+  } catch (const std::exception& e) {
+    message = e.what();
+  } catch (...) {
+    message = "unknown error";
+  }
+  RaiseWarning(d, kWarnEngineError, 0, "engine error: " + message);
+  WarningStat kept = d.warning[kWarnEngineError];
+  try {
+    ResetData(m, d);
+  } catch (const std::exception&) {
+    // A model the reset itself fails on (history buffers with a timestep <= 0): the
+    // data stays as the error left it; the warning says so.
+  }
+  d.warning[kWarnEngineError] = kept;
+  d.error = message;
+  d.nreset++;
+}
 
 // One option outside its values: a clear error rather than undefined behaviour (the
 // options can be changed after compilation, from C++ or Python).
@@ -147,12 +171,12 @@ void FwdPosition(const Model& m, Data& d) {
   ProjectConstraint(m, d);
 }
 
-void RaiseWarning(Data& d, Warning w, int info) {
-  if (d.warning[w].number == 0) {
-    std::fprintf(stderr, "simlab warning: %s (index %d, time %g)\n", kWarningText[w], info, d.time);
-  }
+void RaiseWarning(Data& d, Warning w, int info, const std::string& text) {
   d.warning[w].number++;
   d.warning[w].lastinfo = info;
+  if (d.warning_callback) {
+    d.warning_callback(d, w, info, text.empty() ? WarningText(w, info, d.time) : text);
+  }
 }
 
 void SmoothAcceleration(const Model& m, Data& d) {
@@ -184,14 +208,30 @@ void ForwardSkip(const Model& m, Data& d, bool skip_position, bool skip_sensor) 
   }
 }
 
-void Forward(const Model& m, Data& d) { ForwardSkip(m, d, false, false); }
+void Forward(const Model& m, Data& d) {
+  WithoutThrowing(m, d, [&] { ForwardSkip(m, d, false, false); });
+}
 
 void Step(const Model& m, Data& d) {
+  WithoutThrowing(m, d, [&] { StepPipeline(m, d); });
+}
+
+void Step1(const Model& m, Data& d) {
+  WithoutThrowing(m, d, [&] { Step1Pipeline(m, d); });
+}
+
+void Step2(const Model& m, Data& d) {
+  WithoutThrowing(m, d, [&] { Step2Pipeline(m, d); });
+}
+
+namespace {
+
+void StepPipeline(const Model& m, Data& d) {
   CheckState(m, d, d.qpos, kWarnBadQpos);
   CheckState(m, d, d.qvel, kWarnBadQvel);
-  Forward(m, d);
+  ForwardSkip(m, d, false, false);
   if (CheckState(m, d, d.qacc, kWarnBadQacc) && !(m.opt.disableflags & kDisableAutoreset)) {
-    Forward(m, d);
+    ForwardSkip(m, d, false, false);
   }
   switch (m.opt.integrator) {
     case kIntegratorRK4: RungeKutta4(m, d); break;
@@ -201,7 +241,7 @@ void Step(const Model& m, Data& d) {
   }
 }
 
-void Step1(const Model& m, Data& d) {
+void Step1Pipeline(const Model& m, Data& d) {
   CheckOptions(m.opt);
   CheckState(m, d, d.qpos, kWarnBadQpos);
   CheckState(m, d, d.qvel, kWarnBadQvel);
@@ -213,7 +253,7 @@ void Step1(const Model& m, Data& d) {
   EnergyAfterVelocity(m, d);
 }
 
-void Step2(const Model& m, Data& d) {
+void Step2Pipeline(const Model& m, Data& d) {
   CheckOptions(m.opt);
   Actuation(m, d);
   SmoothAcceleration(m, d);
@@ -221,7 +261,7 @@ void Step2(const Model& m, Data& d) {
   d.flg_rnepost = false;
   SensorAcc(m, d);
   if (CheckState(m, d, d.qacc, kWarnBadQacc) && !(m.opt.disableflags & kDisableAutoreset)) {
-    Forward(m, d);
+    ForwardSkip(m, d, false, false);
   }
   // RK4 needs the whole step; split stepping integrates it with Euler, as MuJoCo does.
   if (m.opt.integrator == kIntegratorImplicit || m.opt.integrator == kIntegratorImplicitFast) {
@@ -230,5 +270,7 @@ void Step2(const Model& m, Data& d) {
     Euler(m, d);
   }
 }
+
+}  // namespace
 
 }  // namespace simlab

@@ -11,6 +11,7 @@
 // last dof first) creates no fill-in.
 #include "engine/actuator_target.h"
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "math/dot.h"
 #include "math/math.h"
 
@@ -26,7 +27,7 @@ void TendonArmature(const Model& m, Data& d) {
   for (int t = 0; t < m.ntendon; t++) {
     double armature = m.tendon_armature[t] + ActuatorArmature(m, true, t);
     if (armature == 0) continue;
-    const double* jac = &d.ten_J[static_cast<size_t>(t) * m.nv];
+    const double* jac = RowOf(d.ten_J, t, m.nv);
     for (int i = 0; i < m.nv; i++) {
       if (jac[i] == 0) continue;
       for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {

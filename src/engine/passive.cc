@@ -12,6 +12,7 @@
 
 #include "engine/actuator_target.h"
 #include "engine/engine.h"
+#include "engine/rows.h"
 
 #include "math/math.h"
 
@@ -62,7 +63,7 @@ void TendonSpringDamper(const Model& m, Data& d, int i, bool spring, bool damper
   }
   double vel = d.ten_velocity[i];
   double f_damper = -vel * DampingCoefficient(damping, poly, vel);
-  const double* jac = &d.ten_J[static_cast<size_t>(i) * m.nv];
+  const double* jac = RowOf(d.ten_J, i, m.nv);
   for (int v = 0; v < m.nv; v++) {
     if (f_spring != 0) d.qfrc_spring[v] += jac[v] * f_spring;
     if (f_damper != 0) d.qfrc_damper[v] += jac[v] * f_damper;

@@ -2,6 +2,7 @@
 // (MuJoCo mj_resetData, mj_resetDataKeyframe).
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "engine/engine.h"
 #include "simlab/simlab.h"
@@ -18,6 +19,13 @@ void ResetMocap(const Model& m, Data& d) {
     std::copy_n(&m.body_pos[3 * b], 3, &d.mocap_pos[3 * id]);
     std::copy_n(&m.body_quat[4 * b], 4, &d.mocap_quat[4 * id]);
   }
+}
+
+// Row `key` of a keyframe array with n numbers per key into `state`. Through
+// data() + offset: &array[offset] is undefined when the array is empty (no actuators,
+// activations or mocap bodies).
+void CopyKeyRow(const std::vector<double>& array, int key, int n, std::vector<double>& state) {
+  std::copy_n(array.data() + static_cast<size_t>(key) * n, n, state.begin());
 }
 
 }  // namespace
@@ -40,11 +48,12 @@ void ResetData(const Model& m, Data& d) {
   d.eq_active = m.eq_active0;
   // Delay and sampling buffers: zero samples before time 0.
   ResetHistory(m, d);
-  // Scratch memory for the stages: enough for the largest (the RNE derivative).
-  size_t block = static_cast<size_t>(6) * m.nv;
-  size_t need = 3 * m.nbody * block + m.nv * block + block + 16 * (m.nq + m.nv + m.na + m.nbody + m.nu) + 64;
+  // Scratch memory for the stages of the model's integrator (MakeData checked its size),
+  // or the peak a step has needed.
+  size_t need = std::max(static_cast<size_t>(StackDoubles(m)), d.stack_peak);
   if (d.stack.size() < need) d.stack.assign(need, 0.0);
   d.stack_top = 0;
+  d.stack_overflow = 0;
 }
 
 void ResetDataKeyframe(const Model& m, Data& d, int key) {
@@ -54,12 +63,12 @@ void ResetDataKeyframe(const Model& m, Data& d, int key) {
   }
   ResetData(m, d);
   d.time = m.key_time[key];
-  std::copy_n(&m.key_qpos[static_cast<size_t>(key) * m.nq], m.nq, d.qpos.begin());
-  std::copy_n(&m.key_qvel[static_cast<size_t>(key) * m.nv], m.nv, d.qvel.begin());
-  std::copy_n(&m.key_act[static_cast<size_t>(key) * m.na], m.na, d.act.begin());
-  std::copy_n(&m.key_ctrl[static_cast<size_t>(key) * m.nu], m.nu, d.ctrl.begin());
-  std::copy_n(&m.key_mpos[static_cast<size_t>(key) * 3 * m.nmocap], 3 * m.nmocap, d.mocap_pos.begin());
-  std::copy_n(&m.key_mquat[static_cast<size_t>(key) * 4 * m.nmocap], 4 * m.nmocap, d.mocap_quat.begin());
+  CopyKeyRow(m.key_qpos, key, m.nq, d.qpos);
+  CopyKeyRow(m.key_qvel, key, m.nv, d.qvel);
+  CopyKeyRow(m.key_act, key, m.na, d.act);
+  CopyKeyRow(m.key_ctrl, key, m.nu, d.ctrl);
+  CopyKeyRow(m.key_mpos, key, 3 * m.nmocap, d.mocap_pos);
+  CopyKeyRow(m.key_mquat, key, 4 * m.nmocap, d.mocap_quat);
 }
 
 }  // namespace simlab

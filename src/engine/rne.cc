@@ -7,6 +7,7 @@
 // -gravity so that gravity appears as an inertial force; body forces
 // f = I cacc + cvel x* (I cvel), accumulated leaves to root; qfrc = cdof . f.
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "engine/stack.h"
 #include "math/math.h"
 
@@ -71,9 +72,10 @@ void RneBodyStep(const Model& m, const Data& d, int body, bool flg_acc, double* 
                  double* cfrc_body) {
   double* a = cacc + 6 * body;
   for (int k = 0; k < 6; k++) a[k] = cacc[6 * m.body_parentid[body] + k];
+  // The body's dofs add their terms (a zero sum for a body without dofs).
   int adr = m.body_dofadr[body], num = m.body_dofnum[body];
-  AddDofVelocity(a, &d.cdof_dot[6 * adr], &d.qvel[adr], num);
-  if (flg_acc) AddDofVelocity(a, &d.cdof[6 * adr], &d.qacc[adr], num);
+  AddDofVelocity(a, DofRows(d.cdof_dot, adr, 6, num), DofRows(d.qvel, adr, 1, num), num);
+  if (flg_acc) AddDofVelocity(a, DofRows(d.cdof, adr, 6, num), DofRows(d.qacc, adr, 1, num), num);
   double momentum[6], gyro[6];
   MulInertVec(cfrc_body, &d.cinert[10 * body], a);
   MulInertVec(momentum, &d.cinert[10 * body], &d.cvel[6 * body]);
@@ -122,7 +124,7 @@ void TendonBias(const Model& m, Data& d, double* qfrc) {
     for (int v = 0; v < m.nv; v++) rate += jdot[v] * d.qvel[v];
     double coef = armature * rate;
     if (coef == 0) continue;
-    const double* jac = &d.ten_J[static_cast<size_t>(i) * m.nv];
+    const double* jac = RowOf(d.ten_J, i, m.nv);
     for (int v = 0; v < m.nv; v++) qfrc[v] += jac[v] * coef;
   }
 }

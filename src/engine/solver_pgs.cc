@@ -102,7 +102,7 @@ double CostChange(const double* A, double* force, const double* old, const doubl
     change = 0.5 * delta * delta * A[0] + delta * res[0];
   } else {
     // 0.5 delta^T A delta + delta . res, with MuJoCo's order of sums.
-    double delta[6];
+    double delta[6] = {};
     for (int j = 0; j < dim; j++) delta[j] = force[j] - old[j];
     double quadratic = 0;
     for (int j = 0; j < dim; j++) quadratic += delta[j] * Dot(A + j * dim, delta, dim);

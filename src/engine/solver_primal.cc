@@ -9,7 +9,6 @@
 // brackets the minimum with Newton steps on the one-dimensional derivative.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <initializer_list>
 
 #include "engine/constraint.h"
@@ -488,8 +487,9 @@ void EvalLine(Primal& s, LinePoint* point) {
   point->cost = cost + (alpha * alpha * total[2] + alpha * total[1] + total[0]);
   point->deriv[0] = deriv[0] + (2 * alpha * total[2] + total[1]);
   point->deriv[1] = deriv[1] + 2 * total[2];
+  // Not convex (should not occur): counted, reported by the caller as a warning.
   if (point->deriv[1] <= 0) {
-    std::fprintf(stderr, "simlab warning: line search objective is not convex\n");
+    s.p.nonconvex++;
     point->deriv[1] = kMinVal;
   }
   s.ls_iter++;

@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "engine/stack.h"
 #include "engine/tendon_wrap.h"
 #include "math/math.h"
@@ -212,7 +213,7 @@ void AddSegmentJacobianDot(const Model& m, Data& d, int site_a, int site_b, doub
 void Tendon(const Model& m, Data& d) {
   int count = 0;
   for (int i = 0; i < m.ntendon; i++) {
-    double* jac = &d.ten_J[static_cast<size_t>(i) * m.nv];
+    double* jac = RowOf(d.ten_J, i, m.nv);
     std::fill(jac, jac + m.nv, 0.0);
     d.ten_length[i] = 0;
     d.ten_wrapadr[i] = count;

@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "engine/stack.h"
 #include "math/math.h"
 
@@ -264,7 +265,7 @@ void BodyMoment(const Model& m, Data& d, int body, double* moment) {
   // moment = -(J^T weights + exclude) / count, summed row by row as MuJoCo does.
   for (int r = 0; r < d.nefc; r++) {
     if (weights[r] == 0) continue;
-    const double* row = &d.efc_J[static_cast<size_t>(r) * nv];
+    const double* row = d.efc_J.data() + static_cast<size_t>(r) * nv;
     for (int v = 0; v < nv; v++) moment[v] += row[v] * weights[r];
   }
   for (int v = 0; v < nv; v++) moment[v] = (moment[v] + exclude[v]) * (-1.0 / count);
@@ -274,7 +275,7 @@ void BodyMoment(const Model& m, Data& d, int body, double* moment) {
 
 void Transmission(const Model& m, Data& d) {
   for (int i = 0; i < m.nu; i++) {
-    double* moment = &d.actuator_moment[static_cast<size_t>(i) * m.nv];
+    double* moment = RowOf(d.actuator_moment, i, m.nv);
     std::fill(moment, moment + m.nv, 0.0);
     int id = m.actuator_trnid[2 * i];
     switch (m.actuator_trntype[i]) {
@@ -285,7 +286,7 @@ void Transmission(const Model& m, Data& d) {
       case kTrnTendon: {
         double gear = m.actuator_gear[6 * i];
         d.actuator_length[i] = d.ten_length[id] * gear;
-        const double* jac = &d.ten_J[static_cast<size_t>(id) * m.nv];
+        const double* jac = RowOf(d.ten_J, id, m.nv);
         for (int v = 0; v < m.nv; v++) moment[v] = jac[v] * gear;
         break;
       }
