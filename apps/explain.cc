@@ -365,12 +365,12 @@ int RunExplain(const std::string& path, std::ostream& out) {
   return 0;
 }
 
-void AddExplainCommand(CLI::App& app) {
+void AddExplainCommand(CLI::App& app, CommandIo& io) {
   auto path = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "explain", "read every actuator as an instance of p = a u + b0 + b1 l + b2 l'");
   cmd->add_option("model", *path, "MJCF file")->required();
-  cmd->callback([path] { std::exit(RunExplain(*path, std::cout)); });
+  cmd->callback([path, &io] { io.status = RunExplain(*path, *io.out); });
 }
 
 }  // namespace simlab::apps

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <string>
 
+#include "cli.h"
 #include "simlab/model.h"
 
 namespace CLI {
@@ -15,8 +16,8 @@ class App;
 
 namespace simlab::apps {
 
-// Registers the subcommand; its callback prints the explanation.
-void AddExplainCommand(CLI::App& app);
+// Registers the subcommand; its callback prints the explanation to io.out.
+void AddExplainCommand(CLI::App& app, CommandIo& io);
 
 // One readable block for actuator i.
 std::string ExplainActuator(const Model& m, int i);

@@ -49,6 +49,8 @@ constexpr size_t kMaxRequestHead = 16384;
 constexpr size_t kStreamChunk = 64 * 1024;
 // A peer that stops reading an answer for this long is dropped (frees its slot).
 constexpr time_t kSendTimeoutSeconds = 30;
+// How long the accept loop waits when the system is out of descriptors or memory.
+constexpr std::chrono::milliseconds kAcceptBackOff{50};
 
 using Clock = std::chrono::steady_clock;
 
@@ -238,8 +240,10 @@ void ServeTarget(const LabSite& site, int fd, const std::string& target, bool he
   // lesson.json: which lesson is served (the page's title comes from its name).
   const auto clean = CleanUrlPath(target);
   if (clean && *clean == "/lesson.json") {
+    // A name that is not UTF-8 still goes out: its bad bytes become U+FFFD.
     const nlohmann::json about = {{"file", site.lesson_file.filename().string()}};
-    SendAll(fd, TextResponse(200, "OK", "application/json", about.dump(), head_only));
+    const std::string body = about.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    SendAll(fd, TextResponse(200, "OK", "application/json", body, head_only));
     return;
   }
   const auto file = ResolveLabPath(site, target);
@@ -314,9 +318,9 @@ void CloseConnection(int fd) {
   ::close(fd);
 }
 
-// Reads one request head from a connection, answers it and closes it. A connection that
-// sent nothing before the deadline is closed without a word (like an idle preconnect).
-void HandleConnection(const ServeContext& context, int fd) {
+// Reads one request head from a connection and answers it. A connection that sent
+// nothing before the deadline gets no word (like an idle preconnect).
+void ServeConnection(const ServeContext& context, int fd) {
   const timeval send_timeout{kSendTimeoutSeconds, 0};
   ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &send_timeout, sizeof send_timeout);
   std::string head;
@@ -327,6 +331,16 @@ void HandleConnection(const ServeContext& context, int fd) {
     SendAll(fd, ErrorResponse(408, "Request Timeout", "the request head took too long"));
   } else if (!head.empty()) {
     SendAll(fd, ErrorResponse(400, "Bad Request", "incomplete or oversized request head"));
+  }
+}
+
+// A connection's whole life in its thread: served, then closed. No exception may leave
+// the thread (it would end the process): one that comes up drops this connection only.
+void HandleConnection(const ServeContext& context, int fd) noexcept {
+  try {
+    ServeConnection(context, fd);
+  } catch (...) {
+    // The answer may be half sent; closing is all that is left to do.
   }
   CloseConnection(fd);
 }
@@ -353,28 +367,40 @@ class ConnectionSlot {
 };
 
 // Answers 503 without reading the request, never blocking the accept loop, and closes.
-void RefuseBusy(int fd) {
-  const std::string reply =
-      ErrorResponse(503, "Service Unavailable", "too many open connections, try again");
-  ::send(fd, reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+void RefuseBusy(int fd) noexcept {
+  try {
+    const std::string reply =
+        ErrorResponse(503, "Service Unavailable", "too many open connections, try again");
+    ::send(fd, reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  } catch (...) {
+    // Out of memory for the answer: the connection is closed without one.
+  }
   CloseConnection(fd);
 }
 
 // Hands a new connection to a thread of its own, or refuses it at once when every slot is
-// taken (or no thread can be started).
+// taken (or no thread can be started: out of threads or memory).
 void Dispatch(const std::shared_ptr<const ServeContext>& context,
-              const std::shared_ptr<std::atomic<int>>& open, int fd) {
-  ConnectionSlot slot(open, context->limits.max_connections);
-  if (slot.held()) {
-    try {
+              const std::shared_ptr<std::atomic<int>>& open, int fd) noexcept {
+  try {
+    ConnectionSlot slot(open, context->limits.max_connections);
+    if (slot.held()) {
       std::thread([context, fd, slot = std::move(slot)] { HandleConnection(*context, fd); })
           .detach();
       return;
-    } catch (const std::system_error&) {
-      // the slot went back with the lambda; refuse below
     }
+  } catch (...) {
+    // the slot went back with the lambda; refuse below
   }
   RefuseBusy(fd);
+}
+
+// Says once per run of failures that accept() is failing and the server waits.
+void ReportAcceptTrouble(int error, bool& reported) {
+  if (reported) return;
+  reported = true;
+  std::cerr << "simlab lab: cannot accept connections (" << std::strerror(error)
+            << "); retrying every " << kAcceptBackOff.count() << " ms" << std::endl;
 }
 
 // Text of the last socket error, for messages.
@@ -397,19 +423,27 @@ std::optional<fs::path> SearchUpwards(fs::path start) {
   return std::nullopt;
 }
 
-// Serves until interrupted; returns the exit code.
-int RunLab(const std::string& lesson, int port, const std::string& root) {
-  const fs::path lesson_file = fs::absolute(lesson);
-  if (!fs::is_regular_file(lesson_file)) {
-    throw Error("lab: no lesson file " + lesson);
-  }
-  const fs::path repo = root.empty() ? FindLabRepoRoot() : fs::absolute(root);
-  if (!HasLessonPage(repo)) {
+// The lesson file as an absolute path; refused unless it is a regular file.
+fs::path LessonFile(const std::string& lesson) {
+  std::error_code ec;
+  const fs::path file = fs::absolute(lesson, ec);
+  if (ec) throw Error("lab: " + lesson + ": " + ec.message());
+  if (fs::is_directory(file, ec)) throw Error("lab: " + lesson + ": a folder, not a lesson file");
+  if (!fs::is_regular_file(file, ec)) throw Error("lab: no lesson file " + lesson);
+  return file;
+}
+
+// Serves until interrupted, printing the URL to `out`; returns the exit code.
+int RunLab(const std::string& lesson, int port, const std::string& root, std::ostream& out) {
+  const fs::path lesson_file = LessonFile(lesson);
+  std::error_code ec;
+  const fs::path repo = root.empty() ? FindLabRepoRoot() : fs::absolute(root, ec);
+  if (ec || !HasLessonPage(repo)) {
     throw Error("lab: " + repo.string() + " has no web/lesson/index.html");
   }
   LabServer server({repo, lesson_file}, port);
-  std::cout << "simlab lab: serving " << lesson_file.filename().string() << " at http://127.0.0.1:"
-            << server.port() << "/ (Ctrl-C stops)" << std::endl;
+  out << "simlab lab: serving " << lesson_file.filename().string() << " at http://127.0.0.1:"
+      << server.port() << "/ (Ctrl-C stops)" << std::endl;
   server.Serve();
   return 0;
 }
@@ -483,15 +517,58 @@ LabServer::~LabServer() {
   ::close(listen_fd_);
 }
 
+LabAcceptAction LabAcceptErrorAction(int error) {
+  switch (error) {
+    // A signal, a connection that died while queued, or a network error accept()
+    // passes on from the queued connection (accept(2) says to retry these at once).
+    case EINTR:
+    case ECONNABORTED:
+    case EAGAIN:
+    case EPROTO:
+    case EPERM:
+    case ENOPROTOOPT:
+    case ENETDOWN:
+    case ENETUNREACH:
+    case EHOSTDOWN:
+    case EHOSTUNREACH:
+    case ENONET:
+    case EOPNOTSUPP:
+      return LabAcceptAction::kRetry;
+    // The listening socket itself is gone (as after Stop()).
+    case EBADF:
+    case EINVAL:
+    case ENOTSOCK:
+    case EFAULT:
+      return LabAcceptAction::kStop;
+    // Out of descriptors or memory (EMFILE, ENFILE, ENOBUFS, ENOMEM: idle connections,
+    // other processes) and anything unforeseen: wait a little and try again; the
+    // pending connection stays queued meanwhile.
+    default:
+      return LabAcceptAction::kBackOff;
+  }
+}
+
 void LabServer::Serve() {
   const auto context = std::make_shared<const ServeContext>(ServeContext{site_, port_, limits_});
+  bool reported = false;
   while (!stopping_) {
     const int fd = ::accept(listen_fd_, nullptr, nullptr);
-    if (fd < 0) {
-      if (errno == EINTR || errno == ECONNABORTED) continue;
-      return;  // Stop() shut the socket down
+    if (fd >= 0) {
+      reported = false;
+      Dispatch(context, open_connections_, fd);
+      continue;
     }
-    Dispatch(context, open_connections_, fd);
+    // Failures: retry, back off and retry, or end (after Stop(), or with an error).
+    const int error = errno;
+    const LabAcceptAction action = LabAcceptErrorAction(error);
+    if (stopping_) return;
+    if (action == LabAcceptAction::kStop) {
+      throw Error("lab: the listening socket failed: " + std::string(std::strerror(error)));
+    }
+    if (action == LabAcceptAction::kBackOff) {
+      ReportAcceptTrouble(error, reported);
+      std::this_thread::sleep_for(kAcceptBackOff);
+    }
   }
 }
 
@@ -510,7 +587,7 @@ fs::path FindLabRepoRoot() {
               fs::current_path().string() + " or the simlab executable; pass --root");
 }
 
-void AddLabCommand(CLI::App& app) {
+void AddLabCommand(CLI::App& app, CommandIo& io) {
   auto lesson = std::make_shared<std::string>();
   auto port = std::make_shared<int>(8765);
   auto root = std::make_shared<std::string>();
@@ -518,7 +595,7 @@ void AddLabCommand(CLI::App& app) {
   cmd->add_option("lesson", *lesson, "lesson text file")->required();
   cmd->add_option("--port", *port, "TCP port on 127.0.0.1 (0 picks a free one)");
   cmd->add_option("--root", *root, "repository folder holding web/ and models/");
-  cmd->callback([lesson, port, root] { std::exit(RunLab(*lesson, *port, *root)); });
+  cmd->callback([lesson, port, root, &io] { io.status = RunLab(*lesson, *port, *root, *io.out); });
 }
 
 }  // namespace simlab::apps

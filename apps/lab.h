@@ -13,6 +13,8 @@
 #include <optional>
 #include <string>
 
+#include "cli.h"
+
 namespace CLI {
 class App;
 }
@@ -41,7 +43,18 @@ struct LabLimits {
   int max_connections = 64;
 };
 
-// A listening socket on 127.0.0.1 that serves `site`, one thread per connection.
+// What the accept loop does when accept() fails with an errno value.
+enum class LabAcceptAction {
+  kRetry,    // at once: EINTR, ECONNABORTED, network errors of the queued connection
+  kBackOff,  // after a short sleep: out of descriptors or memory (EMFILE, ENFILE, ENOBUFS,
+             // ENOMEM) or an error not foreseen
+  kStop,     // the listening socket is gone (EBADF, EINVAL after Stop())
+};
+LabAcceptAction LabAcceptErrorAction(int error);
+
+// A listening socket on 127.0.0.1 that serves `site`, one thread per connection. Nothing
+// thrown while serving a connection leaves its thread, and running out of descriptors or
+// memory only makes the server wait and try again.
 class LabServer {
  public:
   // Binds 127.0.0.1:port (0 = any free port). Throws simlab::Error when it cannot or
@@ -52,7 +65,8 @@ class LabServer {
   LabServer& operator=(const LabServer&) = delete;
 
   int port() const { return port_; }
-  // Accepts connections until Stop().
+  // Accepts connections until Stop(); throws simlab::Error only if the listening socket
+  // fails without Stop().
   void Serve();
   // Makes Serve() return (from any thread).
   void Stop();
@@ -71,8 +85,8 @@ class LabServer {
 // directory or the executable's location; throws simlab::Error when there is none.
 std::filesystem::path FindLabRepoRoot();
 
-// Registers the subcommand.
-void AddLabCommand(CLI::App& app);
+// Registers the subcommand; it prints the URL to io.out and serves until interrupted.
+void AddLabCommand(CLI::App& app, CommandIo& io);
 
 }  // namespace simlab::apps
 

@@ -2,15 +2,20 @@
 // lesson page, the WebAssembly engine as application/wasm, the lesson text and models,
 // and answers 404 for paths that climb out of its roots. It answers only requests whose
 // Host names it (421 otherwise), cuts off slow request heads (408), answers 503 beyond its
-// connection cap, streams large files intact and answers 500 for unreadable ones.
+// connection cap, streams large files intact and answers 500 for unreadable ones. It
+// survives a lesson file name that is not UTF-8 and running out of file descriptors.
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -43,17 +48,28 @@ struct Reply {
 // The Host value the server accepts.
 std::string HostOf(int port) { return "127.0.0.1:" + std::to_string(port); }
 
-// A client socket connected to 127.0.0.1:port; reads give up after 5 s so a server that
-// never answers fails the test instead of hanging it.
-int Connect(int port) {
+// A client socket whose reads give up after 5 s, so a server that never answers fails
+// the test instead of hanging it.
+int ClientSocket() {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  const timeval timeout{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  return fd;
+}
+
+// Connects a client socket to 127.0.0.1:port.
+void ConnectTo(int fd, int port) {
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   address.sin_port = htons(static_cast<uint16_t>(port));
   EXPECT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-  const timeval timeout{5, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+}
+
+// A client socket connected to 127.0.0.1:port.
+int Connect(int port) {
+  const int fd = ClientSocket();
+  ConnectTo(fd, port);
   return fd;
 }
 
@@ -341,6 +357,100 @@ TEST_F(LabServerTest, UnreadableFileAnswers500) {
   EXPECT_EQ(Get(site.port(), "/").status, 200);
 }
 
+// A lesson whose file name is not UTF-8 is still named in /lesson.json (its bad bytes
+// as U+FFFD) and served; the server lives on.
+TEST_F(LabServerTest, LessonNameThatIsNotUtf8IsServed) {
+  const fs::path odd = scratch_ / "lesson-\xff\xfe.txt";
+  std::ofstream(odd) << "odd name\n";
+  RunningServer site(LabSite{kRepo, odd});
+  const Reply about = Get(site.port(), "/lesson.json");
+  EXPECT_EQ(about.status, 200);
+  EXPECT_EQ(about.type, "application/json");
+  EXPECT_EQ(about.body, "{\"file\":\"lesson-\xef\xbf\xbd\xef\xbf\xbd.txt\"}");
+  EXPECT_EQ(Head(site.port(), "/lesson.json").length, static_cast<long long>(about.body.size()));
+  EXPECT_EQ(Get(site.port(), "/lesson.txt").body, "odd name\n");
+  EXPECT_EQ(Get(site.port(), "/").status, 200);
+}
+
+// The number one past the highest open file descriptor of this process.
+int DescriptorsInUse() {
+  int highest = 2;
+  for (const auto& entry : fs::directory_iterator("/proc/self/fd")) {
+    highest = std::max(highest, std::stoi(entry.path().filename().string()));
+  }
+  return highest + 1;
+}
+
+// While alive, this process has no free file descriptor: RLIMIT_NOFILE lowered a little
+// above those in use and every free one below it taken by /dev/null (as idle connections
+// would take them). The destructor gives them back and restores the limit.
+class DescriptorExhaustion {
+ public:
+  DescriptorExhaustion() {
+    ::getrlimit(RLIMIT_NOFILE, &saved_);
+    rlimit low = saved_;
+    low.rlim_cur = std::min<rlim_t>(saved_.rlim_cur, DescriptorsInUse() + 16);
+    ::setrlimit(RLIMIT_NOFILE, &low);
+    for (int fd; (fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC)) >= 0;) fillers_.push_back(fd);
+    full_ = errno == EMFILE;
+  }
+  ~DescriptorExhaustion() {
+    for (const int fd : fillers_) ::close(fd);
+    ::setrlimit(RLIMIT_NOFILE, &saved_);
+  }
+  DescriptorExhaustion(const DescriptorExhaustion&) = delete;
+  DescriptorExhaustion& operator=(const DescriptorExhaustion&) = delete;
+  bool full() const { return full_; }
+
+ private:
+  rlimit saved_{};
+  std::vector<int> fillers_;
+  bool full_ = false;
+};
+
+// accept() failing with EMFILE (no descriptor left) makes the server back off and try
+// again, not stop: a connection made while the process is out of descriptors waits in
+// the queue and is answered once some come back.
+TEST_F(LabServerTest, KeepsAcceptingAfterRunningOutOfDescriptors) {
+  RunningServer site(LabSite{kRepo, lesson()});
+  ASSERT_EQ(Get(site.port(), "/lesson.json").status, 200);  // now waiting in accept()
+  const int first = ClientSocket();
+  const int second = ClientSocket();
+  const std::string request = "GET /lesson.json HTTP/1.1\r\nHost: " + HostOf(site.port()) +
+                              "\r\n\r\n";
+  {
+    DescriptorExhaustion exhausted;
+    ASSERT_TRUE(exhausted.full());
+    // The first connection takes the descriptor the waiting accept() had; the next
+    // accept() finds none, so the second connection cannot be taken in.
+    ConnectTo(first, site.port());
+    std::this_thread::sleep_for(100ms);
+    ConnectTo(second, site.port());
+    ::send(second, request.data(), request.size(), MSG_NOSIGNAL);
+    EXPECT_FALSE(Readable(second, 300ms));
+  }
+  // Descriptors are back: both connections are answered, and new ones too.
+  ::send(first, request.data(), request.size(), MSG_NOSIGNAL);
+  EXPECT_EQ(ParseReply(ReadAll(first)).status, 200);
+  EXPECT_EQ(ParseReply(ReadAll(second)).status, 200);
+  ::close(first);
+  ::close(second);
+  EXPECT_EQ(Get(site.port(), "/lesson.txt").status, 200);
+}
+
+// Running out of descriptors or memory backs off; a failed queued connection or a
+// signal retries at once; only a listening socket that is gone ends the loop.
+TEST(LabServer, AcceptErrorsBackOffOrRetry) {
+  for (const int error : {EMFILE, ENFILE, ENOBUFS, ENOMEM}) {
+    EXPECT_EQ(LabAcceptErrorAction(error), LabAcceptAction::kBackOff) << error;
+  }
+  for (const int error : {EINTR, ECONNABORTED, EAGAIN, EPROTO, ENETDOWN, EHOSTUNREACH, EPERM}) {
+    EXPECT_EQ(LabAcceptErrorAction(error), LabAcceptAction::kRetry) << error;
+  }
+  for (const int error : {EBADF, EINVAL, ENOTSOCK}) {
+    EXPECT_EQ(LabAcceptErrorAction(error), LabAcceptAction::kStop) << error;
+  }
+}
 
 TEST(LabServer, PortInUseIsAClearError) {
   LabServer first({kRepo, kRepo / "README.md"}, 0);
