@@ -307,6 +307,14 @@ class Simulation {
   val Statistic() const;
   // Scalars of Data: ncon, nefc, ne, nf, nl, nisland, solver_niter, nreset, energy.
   val Counts() const;
+  // The warnings counted since the last reset: [{kind, name, number, lastinfo, message}]
+  // (message: an engine error's text), and their total, cheap to poll every frame.
+  val Warnings() const;
+  int WarningTotal() const {
+    int total = 0;
+    for (const WarningStat& w : d_.warning) total += w.number;
+    return total;
+  }
   int NameToId(const std::string& kind, const std::string& name) const {
     return Guarded([&] {
       NamesOfKindOrThrow(m_, kind);  // a known kind
@@ -456,6 +464,19 @@ val Simulation::Counts() const {
   return counts;
 }
 
+val Simulation::Warnings() const {
+  val list = val::array();
+  for (int w = 0; w < kNumWarnings; w++) {
+    if (d_.warning[w].number == 0) continue;
+    val one = NumbersObject({{"kind", w}, {"number", d_.warning[w].number},
+                             {"lastinfo", d_.warning[w].lastinfo}});
+    one.set("name", std::string(WarningName(w)));
+    one.set("message", w == kWarnEngineError ? d_.error : std::string());
+    list.call<void>("push", one);
+  }
+  return list;
+}
+
 val Simulation::Contacts() const {
   val contacts = val::array();
   double row[kContactStride];
@@ -515,6 +536,8 @@ EMSCRIPTEN_BINDINGS(simlab) {
       .function("option", &Simulation::Option)
       .function("statistic", &Simulation::Statistic)
       .function("counts", &Simulation::Counts)
+      .function("warnings", &Simulation::Warnings)
+      .function("warningTotal", &Simulation::WarningTotal)
       .function("nameToId", &Simulation::NameToId)
       .function("idToName", &Simulation::IdToName)
       .function("contacts", &Simulation::Contacts)

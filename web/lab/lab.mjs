@@ -102,6 +102,7 @@ const kStyle = `
 .simlab-lab-canvas { display: block; width: 100%; border-radius: 4px; cursor: grab; }
 .simlab-lab-toolbar { display: flex; gap: 10px; align-items: center; flex-wrap: wrap; margin: 6px 0; }
 .simlab-lab-stats { margin-left: auto; font-variant-numeric: tabular-nums; color: #555; }
+.simlab-lab-warning { color: #a15c00; }
 .simlab-lab-control { display: grid; grid-template-columns: 16em 1fr 7em; gap: 8px; align-items: center; }
 .simlab-lab-readouts { display: grid; grid-template-columns: repeat(auto-fill, minmax(13em, 1fr));
   gap: 2px 16px; margin: 6px 0; font-variant-numeric: tabular-nums; }
@@ -248,6 +249,7 @@ class Lab {
       label.append(` ${name}`);
     }
     this.errorText = bar.appendChild(make('span', 'simlab-lab-error'));
+    this.warningText = bar.appendChild(make('span', 'simlab-lab-warning'));
     this.statsText = bar.appendChild(make('span', 'simlab-lab-stats'));
     this.updatePlayButton();
   }
@@ -443,7 +445,20 @@ class Lab {
     // whenever it is on screen (the camera may have moved).
     if (this.changed || this.sim.time !== timeBefore) this.draw();
     else if (this.onScreen) this.drawScene();
+    this.showWarnings();
     this.countFrame(now);
+  }
+
+  // The engine's warnings since the last reset (a state that diverged and was reset, an
+  // engine error...), in the toolbar; looked up only when their count changes.
+  showWarnings() {
+    const total = this.sim.warningTotal();
+    if (total === this.warningTotal) return;
+    this.warningTotal = total;
+    const text = this.sim.warnings()
+      .map((w) => `${w.message ? `engine error: ${w.message}` : w.name} (${w.number}x)`)
+      .join('; ');
+    this.warningText.textContent = text ? `warning: ${text}` : '';
   }
 
   countFrame(now) {

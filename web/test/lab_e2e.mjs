@@ -498,6 +498,12 @@ async function testAllGeoms(session) {
   const message = await page.locator('.simlab-lab-control', { has: bad }).locator('.simlab-lab-error').textContent();
   check(await bad.isDisabled() && /ctrl\[7\]: index out of range/.test(message), `bad control target: "${message}"`);
   await page.screenshot({ path: path.join(options.shots, 'lab_all_geoms.png'), fullPage: true });
+  // A state that diverges is reset by the engine and shown as a warning in the toolbar.
+  await page.evaluate(() => { window.lab.sim.setDataAt('qvel', 0, 1e300); window.lab.sim.step(); });
+  await page.waitForTimeout(300);
+  const warned = await page.locator('.simlab-lab-toolbar .simlab-lab-warning').textContent();
+  check(/^warning: bad qvel \(NaN or too large\): simulation reset \(1x\)$/.test(warned),
+        `a diverging state shows "${warned}"`);
   // An error while stepping stops the lab and says so in its toolbar; the page lives on.
   await page.evaluate(() => { window.lab.sim.step = () => { throw new Error('the engine failed'); }; });
   await page.waitForTimeout(500);
