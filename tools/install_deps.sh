@@ -11,6 +11,9 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest
   # the browser lab: the engine in WebAssembly, and a headless browser for its tests
   emscripten chromium
+  # the fuzzer (tools/fuzz.sh: clang's libFuzzer and sanitizer runtimes) and a compiler
+  # cache for the extra sanitizer and fuzzer builds
+  clang-14 libclang-rt-14-dev ccache
 
 )
 

@@ -8,4 +8,11 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSIMLAB_REQUIRE_BROWSER_TESTS=ON
 cmake --build build -j2
 # The engine in WebAssembly (web/dist), which ctest compares with the native build.
 bash tools/build_wasm.sh
-cd build && ctest --output-on-failure -j2
+(cd build && ctest --output-on-failure -j2)
+# The native suite again under AddressSanitizer, UndefinedBehaviorSanitizer and
+# libstdc++'s assertions (build-sanitize). On a fresh 2-core machine it takes about as
+# long as everything above; the budget stops it (as a failure) before CI's 90 minutes.
+bash tools/sanitize.sh --budget 40
+# The loader and the engine under libFuzzer (clang, ASan, UBSan; build-fuzz) for 60 s,
+# from the seed corpus of the project's models.
+bash tools/fuzz.sh 60
