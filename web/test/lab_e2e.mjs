@@ -504,6 +504,7 @@ async function testAllGeoms(session) {
   const warned = await page.locator('.simlab-lab-toolbar .simlab-lab-warning').textContent();
   check(/^warning: bad qvel \(NaN or too large\): simulation reset \(1x\)$/.test(warned),
         `a diverging state shows "${warned}"`);
+  await page.locator('.simlab-lab-toolbar').first().screenshot({ path: path.join(options.shots, 'lab_warning.png') });
   // An error while stepping stops the lab and says so in its toolbar; the page lives on.
   await page.evaluate(() => { window.lab.sim.step = () => { throw new Error('the engine failed'); }; });
   await page.waitForTimeout(500);
