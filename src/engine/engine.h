@@ -34,6 +34,8 @@ void LocalToGlobal(const Data& d, double* xpos, double* xmat, const double* pos,
 void CameraFixedPose(const Model& m, Data& d, int i);
 // ten_length, ten_J, ten_wrapadr, ten_wrapnum, wrap_obj, wrap_xpos (tendon.cc).
 void Tendon(const Model& m, Data& d);
+// ten_velocity = ten_J qvel (tendon.cc).
+void TendonVelocity(const Model& m, Data& d);
 // jdot (nv) = d ten_J(i) / dt; zero for fixed tendons (tendon.cc).
 void TendonJacobianDot(const Model& m, Data& d, int i, double* jdot);
 // qfrc += ten_J^T armature (d ten_J/dt . qvel): the bias of tendon armature (rne.cc).
@@ -55,6 +57,8 @@ void FactorInertia(const Model& m, Data& d);
 // actuator_length, actuator_moment (transmission.cc). Body transmissions (adhesion)
 // read the contacts and their constraint rows: run after MakeConstraint.
 void Transmission(const Model& m, Data& d);
+// actuator_velocity = actuator_moment qvel, zero with actuation disabled (transmission.cc).
+void ActuatorVelocity(const Model& m, Data& d);
 
 // ------------------------------------------------------------ Jacobians (jacobian.cc)
 
@@ -118,7 +122,7 @@ double MuscleGainVelocity(double len, double vel, const double* lengthrange, dou
                           const double* prm);
 double MuscleBias(double len, const double* lengthrange, double acc0, const double* prm);
 double MuscleDynamics(double ctrl, double act, const double* prm);
-// qfrc_smooth, qacc_smooth (forward.cc).
+// qfrc_smooth, qacc_smooth (acceleration.cc).
 void SmoothAcceleration(const Model& m, Data& d);
 // qfrc_constraint, qacc (constraint.cc).
 void Constraint(const Model& m, Data& d);
@@ -171,12 +175,23 @@ void FluidDerivative(const Model& m, Data& d);
 
 // ------------------------------------------------------------ forward (forward.cc)
 
-// The pipeline; `skip_position` reuses the position stage (as mjSTAGE_POS).
-void ForwardSkip(const Model& m, Data& d, bool skip_position, bool skip_sensor);
+// Whether the pipeline computes the sensors (MuJoCo's skipsensor).
+enum class Sensors { kCompute, kSkip };
+
+// The pipeline from the stage after `skip` on (MuJoCo mj_forwardSkip: kStageNone runs
+// every stage, kStagePos reuses the position stage, kStageVel the velocity stage too).
+// May throw simlab::Error; the public Forward and Step catch it.
+void ForwardSkip(const Model& m, Data& d, Stage skip, Sensors sensors);
+
+// ------------------------------------------------------------ warnings (warning.cc)
 
 // Raises warning `w` with `info`: counts it, and passes it with its text (default:
 // WarningText) to d.warning_callback. Prints nothing.
 void RaiseWarning(Data& d, Warning w, int info, const std::string& text = "");
+// Raises `w` when `values` (qpos, qvel or qacc) hold a NaN or a magnitude over kMaxVal,
+// and then resets the data unless autoreset is disabled (the warning's count is kept);
+// returns whether it raised it.
+bool WarnAndResetIfBad(const Model& m, Data& d, const std::vector<double>& values, Warning w);
 
 }  // namespace simlab
 

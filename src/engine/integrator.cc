@@ -125,7 +125,7 @@ void RungeKutta4(const Model& m, Data& d) {
     std::copy(X[i] + nq, X[i] + nq + nv, d.qvel.begin());
     std::copy(X[i] + nq + nv, X[i] + nq + nv + na, d.act.begin());
     d.time = time0 + a[i - 1] * h;
-    ForwardSkip(m, d, false, true);
+    ForwardSkip(m, d, kStageNone, Sensors::kSkip);
     std::copy(d.qacc.begin(), d.qacc.end(), F[i]);
     std::copy(d.act_dot.begin(), d.act_dot.end(), F[i] + nv);
   }

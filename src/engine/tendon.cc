@@ -243,4 +243,13 @@ void TendonJacobianDot(const Model& m, Data& d, int i, double* jdot) {
   }
 }
 
+void TendonVelocity(const Model& m, Data& d) {
+  for (int i = 0; i < m.ntendon; i++) {
+    const double* jac = RowOf(d.ten_J, i, m.nv);
+    double s = 0;
+    for (int v = 0; v < m.nv; v++) s += jac[v] * d.qvel[v];
+    d.ten_velocity[i] = s;
+  }
+}
+
 }  // namespace simlab

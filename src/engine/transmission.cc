@@ -308,4 +308,14 @@ void Transmission(const Model& m, Data& d) {
   }
 }
 
+void ActuatorVelocity(const Model& m, Data& d) {
+  bool actuation = !(m.opt.disableflags & kDisableActuation);
+  for (int i = 0; i < m.nu; i++) {
+    const double* moment = RowOf(d.actuator_moment, i, m.nv);
+    double s = 0;
+    for (int v = 0; v < m.nv && actuation; v++) s += moment[v] * d.qvel[v];
+    d.actuator_velocity[i] = s;
+  }
+}
+
 }  // namespace simlab
