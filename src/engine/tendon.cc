@@ -148,7 +148,7 @@ void JacobianDot(const Model& m, const Data& d, double* jdot, const double* poin
   int weld = m.body_weldid[body];
   if (weld == 0) return;
   for (int i = m.body_dofadr[weld] + m.body_dofnum[weld] - 1; i >= 0; i = m.dof_parentid[i]) {
-    double cdof_dot[6];
+    double cdof_dot[6] = {};
     const double* cdof = &d.cdof[6 * i];
     int jnt = m.dof_jntid[i];
     bool rotation = m.jnt_type[jnt] == kJointBall ||

@@ -1,4 +1,4 @@
-// Implementations of the small math in math.h.
+// The larger functions of math.h (the small, hot ones are inline there).
 #include "math/math.h"
 
 #include <cmath>
@@ -7,115 +7,7 @@
 
 namespace simlab::math {
 
-namespace {
-constexpr double kTiny = 1e-15;  // below this a norm counts as zero (mjMINVAL)
-}  // namespace
-
-// ---------------------------------------------------------------- vectors, matrices
-
-double Normalize3(double* a) {
-  double norm = Norm3(a);
-  if (norm < kTiny) {
-    a[0] = 1;
-    a[1] = a[2] = 0;
-  } else {
-    double inv = 1 / norm;
-    a[0] *= inv;
-    a[1] *= inv;
-    a[2] *= inv;
-  }
-  return norm;
-}
-
-void MulMat3(double* r, const double* a, const double* b) {
-  for (int i = 0; i < 3; i++) {
-    for (int j = 0; j < 3; j++) {
-      r[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
-    }
-  }
-}
-
-void MulMatTMat3(double* r, const double* a, const double* b) {
-  for (int i = 0; i < 3; i++) {
-    for (int j = 0; j < 3; j++) {
-      r[3 * i + j] = a[i] * b[j] + a[3 + i] * b[3 + j] + a[6 + i] * b[6 + j];
-    }
-  }
-}
-
-void MulMatMatT3(double* r, const double* a, const double* b) {
-  for (int i = 0; i < 3; i++) {
-    for (int j = 0; j < 3; j++) {
-      r[3 * i + j] = a[3 * i] * b[3 * j] + a[3 * i + 1] * b[3 * j + 1] +
-                     a[3 * i + 2] * b[3 * j + 2];
-    }
-  }
-}
-
 // ---------------------------------------------------------------- quaternions
-
-double NormalizeQuat(double* q) {
-  double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  if (norm < kTiny) {
-    SetIdentityQuat(q);
-  } else if (std::abs(norm - 1) > kTiny) {
-    double inv = 1 / norm;
-    for (int i = 0; i < 4; i++) q[i] *= inv;
-  }
-  return norm;
-}
-
-void MulQuat(double* r, const double* a, const double* b) {
-  double w = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
-  double x = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
-  double y = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
-  double z = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
-  r[0] = w;
-  r[1] = x;
-  r[2] = y;
-  r[3] = z;
-}
-
-void RotVecQuat(double* r, const double* v, const double* q) {
-  // Zero vector or identity rotation: nothing to rotate.
-  if (v[0] == 0 && v[1] == 0 && v[2] == 0) {
-    Zero3(r);
-    return;
-  }
-  if (q[0] == 1 && q[1] == 0 && q[2] == 0 && q[3] == 0) {
-    Copy3(r, v);
-    return;
-  }
-  // t = w v + u x v;  r = v + 2 u x t, with u the vector part of q.
-  double t[3] = {q[0] * v[0] + q[2] * v[2] - q[3] * v[1],
-                 q[0] * v[1] + q[3] * v[0] - q[1] * v[2],
-                 q[0] * v[2] + q[1] * v[1] - q[2] * v[0]};
-  double x = v[0] + 2 * (q[2] * t[2] - q[3] * t[1]);
-  double y = v[1] + 2 * (q[3] * t[0] - q[1] * t[2]);
-  double z = v[2] + 2 * (q[1] * t[1] - q[2] * t[0]);
-  r[0] = x;
-  r[1] = y;
-  r[2] = z;
-}
-
-void QuatToMat(double* m, const double* q) {
-  if (q[0] == 1 && q[1] == 0 && q[2] == 0 && q[3] == 0) {
-    for (int i = 0; i < 9; i++) m[i] = (i % 4 == 0) ? 1 : 0;
-    return;
-  }
-  double ww = q[0] * q[0], wx = q[0] * q[1], wy = q[0] * q[2], wz = q[0] * q[3];
-  double xx = q[1] * q[1], xy = q[1] * q[2], xz = q[1] * q[3];
-  double yy = q[2] * q[2], yz = q[2] * q[3], zz = q[3] * q[3];
-  m[0] = ww + xx - yy - zz;
-  m[4] = ww - xx + yy - zz;
-  m[8] = ww - xx - yy + zz;
-  m[1] = 2 * (xy - wz);
-  m[2] = 2 * (xz + wy);
-  m[3] = 2 * (xy + wz);
-  m[5] = 2 * (yz - wx);
-  m[6] = 2 * (xz - wy);
-  m[7] = 2 * (yz + wx);
-}
 
 void MatToQuat(double* q, const double* m) {
   // Pick the largest of the four components to divide by (numerically safest).
@@ -200,46 +92,7 @@ void QuatZ2Vec(double* q, const double* vec) {
   AxisAngleToQuat(q, axis, std::atan2(s, Dot3(vn, z)));
 }
 
-// ---------------------------------------------------------------- frames
-
-void MulPose(double* pos, double* quat, const double* pos1, const double* quat1,
-             const double* pos2, const double* quat2) {
-  double p[3], q[4];
-  RotVecQuat(p, pos2, quat1);
-  Add3(p, p, pos1);
-  MulQuat(q, quat1, quat2);
-  Copy3(pos, p);
-  CopyQuat(quat, q);
-}
-
 // ---------------------------------------------------------------- spatial algebra
-
-void MulInertVec(double* r, const double* i, const double* v) {
-  r[0] = i[0] * v[0] + i[3] * v[1] + i[4] * v[2] - i[8] * v[4] + i[7] * v[5];
-  r[1] = i[3] * v[0] + i[1] * v[1] + i[5] * v[2] + i[8] * v[3] - i[6] * v[5];
-  r[2] = i[4] * v[0] + i[5] * v[1] + i[2] * v[2] - i[7] * v[3] + i[6] * v[4];
-  r[3] = i[8] * v[1] - i[7] * v[2] + i[9] * v[3];
-  r[4] = i[6] * v[2] - i[8] * v[0] + i[9] * v[4];
-  r[5] = i[7] * v[0] - i[6] * v[1] + i[9] * v[5];
-}
-
-void CrossMotion(double* r, const double* v, const double* m) {
-  r[0] = -v[2] * m[1] + v[1] * m[2];
-  r[1] = v[2] * m[0] - v[0] * m[2];
-  r[2] = -v[1] * m[0] + v[0] * m[1];
-  r[3] = -v[2] * m[4] + v[1] * m[5] - v[5] * m[1] + v[4] * m[2];
-  r[4] = v[2] * m[3] - v[0] * m[5] + v[5] * m[0] - v[3] * m[2];
-  r[5] = -v[1] * m[3] + v[0] * m[4] - v[4] * m[0] + v[3] * m[1];
-}
-
-void CrossForce(double* r, const double* v, const double* f) {
-  r[0] = -v[2] * f[1] + v[1] * f[2] - v[5] * f[4] + v[4] * f[5];
-  r[1] = v[2] * f[0] - v[0] * f[2] + v[5] * f[3] - v[3] * f[5];
-  r[2] = -v[1] * f[0] + v[0] * f[1] - v[4] * f[3] + v[3] * f[4];
-  r[3] = -v[2] * f[4] + v[1] * f[5];
-  r[4] = v[2] * f[3] - v[0] * f[5];
-  r[5] = -v[1] * f[3] + v[0] * f[4];
-}
 
 void InertCom(double* res, const double* inert, const double* mat, const double* dif,
               double mass) {
