@@ -7,6 +7,7 @@
 #include <new>
 #include <string>
 
+#include "bench.h"
 #include "explain.h"
 #include "lab.h"
 #include "rollout.h"
@@ -33,6 +34,7 @@ int ParseAndRun(int argc, const char* const* argv, std::ostream& out, std::ostre
   app.require_subcommand(1);
   CommandIo io{&out, &err};
   AddRolloutCommand(app, io);
+  AddBenchCommand(app, io);
   AddExplainCommand(app, io);
   AddLabCommand(app, io);
   try {

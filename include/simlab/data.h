@@ -86,6 +86,20 @@ struct WarningStat {
   int number = 0;    // how many times it was raised
 };
 
+// The profiler's timers (mjtTimer, MuJoCo's order and meaning): the whole step and
+// forward pass, the stages, the parts of the position stage and of collision.
+enum Timer : int {
+  kTimerStep = 0, kTimerForward, kTimerInverse, kTimerPosition, kTimerVelocity,
+  kTimerActuation, kTimerConstraint, kTimerAdvance, kTimerPosKinematics, kTimerPosInertia,
+  kTimerPosCollision, kTimerPosMake, kTimerPosProject, kTimerColBroad, kTimerColNarrow,
+  kNumTimers
+};
+
+struct TimerStat {
+  double duration = 0;  // total time, in the unit of Data::timer_clock
+  int number = 0;       // how many times it ran
+};
+
 // X(type, name, rows, cols), rows and cols being members of Model (or numbers).
 #define SIMLAB_DATA_FIELDS(X)                   \
   /* state and inputs */                        \
@@ -194,6 +208,11 @@ struct Data {
   int nl = 0;                 // limit rows (after the friction rows; contacts follow)
   int nisland = 0;            // constraint islands of the last solve
   WarningStat warning[kNumWarnings];
+  // The profiler (MuJoCo's d->timer with mjcb_time, here per Data): when timer_clock is
+  // set, each timed part of the pipeline adds its time to timer[kind]; ResetData clears
+  // them. simlab bench sets a thread CPU clock in microseconds.
+  TimerStat timer[kNumTimers];
+  double (*timer_clock)() = nullptr;
   int nreset = 0;             // resets after a divergence (bad qpos, qvel or qacc)
   // Quantities computed on demand, once per step (MuJoCo's lazy-evaluation flags):
   // energy[0], energy[1], subtree_linvel/angmom, cacc/cfrc_int/cfrc_ext.

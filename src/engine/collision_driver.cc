@@ -14,6 +14,7 @@
 #include "engine/collision.h"
 #include "engine/engine.h"
 #include "engine/stack.h"
+#include "engine/timer.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -433,7 +434,11 @@ void Collision(const Model& m, Data& d) {
   d.ncon = 0;
   if (Disabled(m, kDisableConstraint) || Disabled(m, kDisableContact) || m.nbody < 2) return;
 
-  BroadPhase(m, d);
+  {
+    StageTimer timer(d, kTimerColBroad);
+    BroadPhase(m, d);
+  }
+  StageTimer timer(d, kTimerColNarrow);
   int pairadr = 0, exadr = 0;
   for (int signature : d.broadphase.pairs) {
     // Explicit pairs up to this signature come first.

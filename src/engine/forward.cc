@@ -20,6 +20,7 @@
 #include "engine/engine.h"
 #include "engine/sensor.h"
 #include "engine/stack.h"
+#include "engine/timer.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -93,15 +94,20 @@ void EnergyAfterVelocity(const Model& m, Data& d) {
 
 // Poses, tendons and the factored inertia: the position stage before collisions.
 void KinematicsAndInertia(const Model& m, Data& d) {
-  Kinematics(m, d);
-  ComPos(m, d);
-  CamLight(m, d);
-  Tendon(m, d);
+  {
+    StageTimer timer(d, kTimerPosKinematics);
+    Kinematics(m, d);
+    ComPos(m, d);
+    CamLight(m, d);
+    Tendon(m, d);
+  }
+  StageTimer timer(d, kTimerPosInertia);
   MakeInertia(m, d);
   FactorInertia(m, d);
 }
 
 void FwdVelocity(const Model& m, Data& d) {
+  StageTimer timer(d, kTimerVelocity);
   // What the sensors compute on demand is stale from here on.
   d.flg_subtreevel = false;
   d.flg_energyvel = false;
@@ -130,9 +136,15 @@ void VelocityStage(const Model& m, Data& d, Sensors sensors) {
 
 // The acceleration stage and its sensors.
 void AccelerationStage(const Model& m, Data& d, Sensors sensors) {
-  Actuation(m, d);
+  {
+    StageTimer timer(d, kTimerActuation);
+    Actuation(m, d);
+  }
   SmoothAcceleration(m, d);
-  Constraint(m, d);
+  {
+    StageTimer timer(d, kTimerConstraint);
+    Constraint(m, d);
+  }
   if (sensors == Sensors::kCompute) {
     d.flg_rnepost = false;
     SensorAcc(m, d);
@@ -150,6 +162,7 @@ void RedoIfBadAcceleration(const Model& m, Data& d) {
 }
 
 void StepPipeline(const Model& m, Data& d) {
+  StageTimer timer(d, kTimerStep);
   WarnAndResetIfBad(m, d, d.qpos, kWarnBadQpos);
   WarnAndResetIfBad(m, d, d.qvel, kWarnBadQvel);
   ForwardSkip(m, d, kStageNone, Sensors::kCompute);
@@ -192,15 +205,24 @@ void FwdPositionSmooth(const Model& m, Data& d) {
 }
 
 void FwdPosition(const Model& m, Data& d) {
+  StageTimer timer(d, kTimerPosition);
   d.flg_energypos = false;
   KinematicsAndInertia(m, d);
-  Collision(m, d);
-  MakeConstraint(m, d);
+  {
+    StageTimer part(d, kTimerPosCollision);
+    Collision(m, d);
+  }
+  {
+    StageTimer part(d, kTimerPosMake);
+    MakeConstraint(m, d);
+  }
   Transmission(m, d);
+  StageTimer part(d, kTimerPosProject);
   ProjectConstraint(m, d);
 }
 
 void ForwardSkip(const Model& m, Data& d, Stage skip, Sensors sensors) {
+  StageTimer timer(d, kTimerForward);
   CheckOptions(m.opt);
   if (skip < kStagePos) PositionStage(m, d, sensors);
   if (skip < kStageVel) VelocityStage(m, d, sensors);

@@ -13,6 +13,7 @@
 
 #include "engine/engine.h"
 #include "engine/stack.h"
+#include "engine/timer.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -66,6 +67,7 @@ void Advance(const Model& m, Data& d, const double* act_dot, const double* qacc,
 }  // namespace
 
 void Euler(const Model& m, Data& d) {
+  StageTimer timer(d, kTimerAdvance);
   StackFrame frame(d);
   double* qacc = frame.Alloc(m.nv);
   bool damping = false;
@@ -131,6 +133,7 @@ void RungeKutta4(const Model& m, Data& d) {
   }
 
   // Weighted average of the stage derivatives, applied from the initial state.
+  StageTimer timer(d, kTimerAdvance);
   std::fill(dx, dx + 2 * nv + na, 0.0);
   for (int j = 0; j < kStages; j++) {
     for (int k = 0; k < nv; k++) dx[k] += b[j] * X[j][nq + k];
@@ -198,6 +201,7 @@ void SolveImplicitFast(const Model& m, Data& d, const double* qfrc, double* qacc
 }  // namespace
 
 void ImplicitIntegrate(const Model& m, Data& d) {
+  StageTimer timer(d, kTimerAdvance);
   StackFrame frame(d);
   double* qfrc = frame.Alloc(m.nv);
   double* qacc = frame.Alloc(m.nv);

@@ -41,6 +41,7 @@ void ResetData(const Model& m, Data& d) {
   d.ncon = d.nefc = d.solver_niter = 0;
   d.ne = d.nf = d.nl = d.nisland = 0;
   for (auto& w : d.warning) w = WarningStat{};
+  for (auto& t : d.timer) t = TimerStat{};
   // ...except the configuration and the mocap poses, which come from the model.
   d.qpos = m.qpos0;
   ResetMocap(m, d);

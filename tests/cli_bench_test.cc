@@ -1,0 +1,122 @@
+// `simlab bench`: testspeed's control noise (Halton sequence, ranges), the start
+// keyframe, the report's counts (checked against the same rollout run here) and its
+// profiler, and the profiler's timers in Data.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench.h"
+#include "cli.h"
+#include "simlab/simlab.h"
+
+namespace simlab::apps {
+namespace {
+
+std::string Source(const std::string& relative) {
+  return std::string(SIMLAB_SOURCE_DIR) + "/" + relative;
+}
+
+// The number after `label :` in a report.
+double Value(const std::string& report, const std::string& label) {
+  std::smatch match;
+  std::regex pattern(label + R"( +: +(-?[0-9.]+))");
+  EXPECT_TRUE(std::regex_search(report, match, pattern)) << label << " in\n" << report;
+  return match.empty() ? -1 : std::stod(match[1]);
+}
+
+TEST(Bench, HaltonSequence) {
+  EXPECT_EQ(Halton(0, 2), 0.0);
+  EXPECT_EQ(Halton(1, 2), 0.5);
+  EXPECT_EQ(Halton(2, 2), 0.25);
+  EXPECT_EQ(Halton(3, 2), 0.75);
+  EXPECT_DOUBLE_EQ(Halton(1, 3), 1.0 / 3);
+  EXPECT_DOUBLE_EQ(Halton(5, 3), 2.0 / 3 + 1.0 / 9);
+}
+
+// Limited controls vary around the middle of their range by ctrlnoise times the
+// half-range; unlimited ones around 0 by ctrlnoise.
+TEST(Bench, ControlNoiseFollowsTheRanges) {
+  Model m = LoadXmlString(R"(<mujoco><worldbody><body><joint name="j"/><geom size=".1"/>
+    </body></worldbody><actuator><motor joint="j" ctrlrange="1 3"/><motor joint="j"/>
+    </actuator></mujoco>)");
+  std::vector<double> ctrl = ControlNoise(m, 3, 0.5);
+  ASSERT_EQ(ctrl.size(), 6u);
+  for (int s = 0; s < 3; s++) {
+    EXPECT_DOUBLE_EQ(ctrl[2 * s], 2 + 0.5 * (2 * Halton(s, 2) - 1));
+    EXPECT_DOUBLE_EQ(ctrl[2 * s + 1], 0.5 * (2 * Halton(s, 3) - 1));
+  }
+}
+
+// The report's contacts and rows per step are the rollout's, from keyframe "test".
+TEST(Bench, ReportsTheRolloutsCounts) {
+  const std::string model = Source("tests/conformance/contact/models/humanoid.xml");
+  BenchOptions options;
+  options.model = model;
+  options.steps = 300;
+  std::ostringstream out;
+  ASSERT_EQ(RunBench(options, out), kExitOk);
+  const std::string report = out.str();
+
+  Model m = LoadXml(model);
+  Data d = MakeData(m);
+  int key = m.NameToId(kObjKey, "test");
+  if (key >= 0) ResetDataKeyframe(m, d, key);
+  std::vector<double> ctrl = ControlNoise(m, 300, 0.01);
+  double contacts = 0, rows = 0;
+  for (int s = 0; s < 300; s++) {
+    std::copy_n(ctrl.begin() + s * m.nu, m.nu, d.ctrl.begin());
+    Step(m, d);
+    contacts += d.ncon;
+    rows += d.nefc;
+  }
+  EXPECT_NEAR(Value(report, "Contacts per step"), contacts / 300, 0.005);
+  EXPECT_NEAR(Value(report, "Constraints per step"), rows / 300, 0.005);
+  EXPECT_EQ(Value(report, "Degrees of freedom"), m.nv);
+  EXPECT_GT(Value(report, "Steps per second"), 0);
+  // The profile: the step's stages, the position stage's parts.
+  for (const char* stage : {"step", "forward", "position", "velocity", "actuation",
+                            "constraint", "advance", "other", "position total",
+                            "kinematics", "inertia", "collision", "broadphase",
+                            "narrowphase", "make", "project"}) {
+    EXPECT_GE(Value(report, stage), 0) << stage;
+  }
+}
+
+TEST(Bench, ThreadsReportTheirTotal) {
+  std::ostringstream out, err;
+  const std::string model = Source("models/actuator_bench.xml");
+  const char* argv[] = {"simlab", "bench", model.c_str(), "--steps", "200", "--threads", "2"};
+  ASSERT_EQ(RunSimlab(7, argv, out, err), kExitOk) << err.str();
+  EXPECT_GT(Value(out.str(), "Total steps per second"), 0);
+}
+
+TEST(Bench, BadKeyframeIsOneLine) {
+  std::ostringstream out, err;
+  const std::string model = Source("models/actuator_bench.xml");
+  const char* argv[] = {"simlab", "bench", model.c_str(), "--key", "99"};
+  EXPECT_EQ(RunSimlab(5, argv, out, err), kExitError);
+  EXPECT_NE(err.str().find("bench: keyframe 99 does not exist"), std::string::npos) << err.str();
+}
+
+// Without a clock the timers stay at zero; with one, every step counts once.
+TEST(Profiler, TimersCountWithAClockOnly) {
+  Model m = LoadXml(Source("models/gantry_gripper.xml"));
+  Data d = MakeData(m);
+  Step(m, d);
+  EXPECT_EQ(d.timer[kTimerStep].number, 0);
+  d.timer_clock = [] { return 1.0; };
+  for (int i = 0; i < 5; i++) Step(m, d);
+  EXPECT_EQ(d.timer[kTimerStep].number, 5);
+  EXPECT_EQ(d.timer[kTimerPosition].number, 5);
+  EXPECT_EQ(d.timer[kTimerAdvance].number, 5);
+  EXPECT_EQ(d.timer[kTimerStep].duration, 0);
+  ResetData(m, d);
+  EXPECT_EQ(d.timer[kTimerStep].number, 0);
+}
+
+}  // namespace
+}  // namespace simlab::apps
