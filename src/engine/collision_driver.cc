@@ -9,6 +9,7 @@
 // with its single-precision ends, so that even touching boxes pair up as in MuJoCo.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "engine/collision.h"
@@ -332,13 +333,21 @@ void BodyBox(const Model& m, const Data& d, int b, const double* frame, double* 
 template <typename Add>
 void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
   constexpr int kEnd = 0x10000;
+  // (a NaN bound sorts last, so that the order stays a strict weak one)
+  auto key = [](double x) {
+    return std::isnan(x) ? std::numeric_limits<float>::infinity() : static_cast<float>(x);
+  };
   s.ends.clear();
   for (int b : s.bodies) {
-    s.ends.emplace_back(static_cast<float>(boxes[6 * b]), b);
-    s.ends.emplace_back(static_cast<float>(boxes[6 * b + 3]), b + kEnd);
+    s.ends.emplace_back(key(boxes[6 * b]), b);
+    s.ends.emplace_back(key(boxes[6 * b + 3]), b + kEnd);
   }
-  std::stable_sort(s.ends.begin(), s.ends.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Stably by value: ties in the order the ends were added (by body, its lower end
+  // first), by std::sort, which unlike std::stable_sort takes no buffer from the heap.
+  auto added = [](int id) { return 2 * (id % kEnd) + (id >= kEnd ? 1 : 0); };
+  std::sort(s.ends.begin(), s.ends.end(), [&](const auto& a, const auto& b) {
+    return a.first < b.first || (a.first == b.first && added(a.second) < added(b.second));
+  });
   s.open.clear();
   for (const auto& [value, id] : s.ends) {
     if (id >= kEnd) {
