@@ -25,6 +25,24 @@ std::string WithIntegrator(const std::string& integrator, const std::string& bod
   return "<mujoco>\n  <option integrator=\"" + integrator + "\"/>" + body + "\n</mujoco>";
 }
 
+// A world site and a site on a body without joints (nv = 0) joined by the spatial tendon
+// "t" with `attributes`, sqrt(5) long.
+std::string TendonWithoutDofs(const std::string& attributes) {
+  return R"(
+  <worldbody>
+    <site name="a" pos="0 0 0"/>
+    <body name="post" pos="1 0 0">
+      <site name="b" pos="0 2 0"/>
+    </body>
+  </worldbody>
+  <tendon>
+    <spatial name="t" )" + attributes + R"(>
+      <site site="a"/>
+      <site site="b"/>
+    </spatial>
+  </tendon>)";
+}
+
 // A pendulum whose keyframe gives qpos and qvel only: key_act, key_ctrl, key_mpos and
 // key_mquat are empty arrays.
 constexpr char kKeyframeOnlyState[] = R"(
@@ -115,20 +133,9 @@ TEST(UbRegression, BodyWithoutDofs) {
 TEST(UbRegression, TendonWithoutDofs) {
   for (const char* integrator : kIntegrators) {
     SCOPED_TRACE(integrator);
-    Model m = LoadXmlString(WithIntegrator(integrator, R"(
-  <worldbody>
-    <site name="a" pos="0 0 0"/>
-    <body name="post" pos="1 0 0">
-      <site name="b" pos="0 2 0"/>
-    </body>
-  </worldbody>
-  <tendon>
-    <spatial name="t" limited="true" range="0 1" stiffness="3" damping="1" armature="0.1"
-             frictionloss="0.5">
-      <site site="a"/>
-      <site site="b"/>
-    </spatial>
-  </tendon>
+    Model m = LoadXmlString(WithIntegrator(
+        integrator, TendonWithoutDofs(R"(limited="true" range="0 1" stiffness="3" damping="1"
+                                         armature="0.1" frictionloss="0.5")") + R"(
   <sensor>
     <tendonpos tendon="t"/>
   </sensor>
@@ -149,19 +156,7 @@ TEST(UbRegression, TendonWithoutDofs) {
 TEST(UbRegression, ActuatorWithoutDofs) {
   for (const char* integrator : kIntegrators) {
     SCOPED_TRACE(integrator);
-    Model m = LoadXmlString(WithIntegrator(integrator, R"(
-  <worldbody>
-    <site name="a" pos="0 0 0"/>
-    <body name="post" pos="1 0 0">
-      <site name="b" pos="0 2 0"/>
-    </body>
-  </worldbody>
-  <tendon>
-    <spatial name="t" damping="1">
-      <site site="a"/>
-      <site site="b"/>
-    </spatial>
-  </tendon>
+    Model m = LoadXmlString(WithIntegrator(integrator, TendonWithoutDofs(R"(damping="1")") + R"(
   <actuator>
     <motor name="pull" tendon="t"/>
     <velocity name="damp" tendon="t" kv="2"/>

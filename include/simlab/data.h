@@ -273,6 +273,9 @@ Data MakeData(const Model& m);
 inline constexpr uint64_t kMaxDataBytes = uint64_t{2} << 30;
 uint64_t DataBytes(const Model& m, const char** largest = nullptr,
                    uint64_t* largest_bytes = nullptr);
+// Why a Data for `m` is over kMaxDataBytes ("sensordata too large: the model's Data would
+// need ..."), or "" when it is within.
+std::string DataOverBudget(const Model& m);
 
 // Every array of the data, in table order, shaped by the model.
 std::vector<FieldView> DataFields(const Model& m, Data& d);

@@ -82,14 +82,8 @@ void CheckBodyCount(const mjcf::ModelSpec& spec, const CompileState& state) {
 // The Data the model will need, within the budget of one Data (MakeData refuses more;
 // here the message names the model's file). Before the constants, which make a Data.
 void CheckDataBudget(const mjcf::ModelSpec& spec, const Model& m) {
-  const char* largest = "";
-  uint64_t largest_bytes = 0, total = DataBytes(m, &largest, &largest_bytes);
-  if (total <= kMaxDataBytes) return;
-  mjcf::ThrowAt({spec.file, 0, "", ""},
-                std::string(largest) + " too large: the model's Data would need " +
-                    mjcf::ByteSize(total) + " (" + largest + " " +
-                    mjcf::ByteSize(largest_bytes) + "), over the " +
-                    mjcf::ByteSize(kMaxDataBytes) + " budget of one Data");
+  std::string over = DataOverBudget(m);
+  if (!over.empty()) mjcf::ThrowAt({spec.file, 0, "", ""}, over);
 }
 
 }  // namespace

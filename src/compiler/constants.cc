@@ -12,6 +12,7 @@
 
 #include "compiler/compiler.h"
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "math/dot.h"
 #include "math/math.h"
 
@@ -97,7 +98,7 @@ void ComputeConstants(Model* m) {
   // Actuators: length0, acc0 = |M^-1 moment| and the dampratio damping.
   std::vector<double> acc(m->nv);
   for (int i = 0; i < m->nu; i++) {
-    const double* moment = d.actuator_moment.data() + static_cast<size_t>(i) * m->nv;
+    const double* moment = RowOf(d.actuator_moment, i, m->nv);
     m->actuator_length0[i] = d.actuator_length[i];
     std::copy(moment, moment + m->nv, acc.begin());
     SolveSparse(*m, d.qLD.data(), d.qLDiagInv.data(), acc.data());

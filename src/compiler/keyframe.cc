@@ -6,6 +6,7 @@
 
 #include "compiler/compiler.h"
 #include "compiler/orientation.h"
+#include "engine/rows.h"
 #include "math/math.h"
 #include "mjcf/compose.h"
 #include "mjcf/error.h"
@@ -82,13 +83,6 @@ RawReference MakeRawReference(const CompileState& state, const Model& m) {
   return raw;
 }
 
-// Row k of a keyframe array with n numbers per key. data() + offset rather than
-// &array[offset], which is undefined for an empty array (a model without actuators,
-// activations or mocap bodies has empty key_ctrl, key_act, key_mpos).
-double* KeyRow(std::vector<double>& array, int k, int n) {
-  return array.data() + static_cast<size_t>(k) * n;
-}
-
 // ---------------------------------------------------------------- attached keyframes
 
 template <typename T>
@@ -132,12 +126,12 @@ void OverlayAttachedKey(const mjcf::AttachedKey& key, const CompileState& state,
   std::function<int(int)> ctrladr = [](int a) { return a; };
   std::function<int(BodyPtr)> mposadr = [&](BodyPtr b) { return mocap(b) < 0 ? -1 : 3 * mocap(b); };
   std::function<int(BodyPtr)> mquatadr = [&](BodyPtr b) { return mocap(b) < 0 ? -1 : 4 * mocap(b); };
-  Overlay(key.qpos, qposadr, KeyRow(m->key_qpos, k, m->nq));
-  Overlay(key.qvel, dofadr, KeyRow(m->key_qvel, k, m->nv));
-  Overlay(key.act, actadr, KeyRow(m->key_act, k, m->na));
-  Overlay(key.ctrl, ctrladr, KeyRow(m->key_ctrl, k, m->nu));
-  Overlay(key.mpos, mposadr, KeyRow(m->key_mpos, k, 3 * m->nmocap));
-  Overlay(key.mquat, mquatadr, KeyRow(m->key_mquat, k, 4 * m->nmocap));
+  Overlay(key.qpos, qposadr, RowOf(m->key_qpos, k, m->nq));
+  Overlay(key.qvel, dofadr, RowOf(m->key_qvel, k, m->nv));
+  Overlay(key.act, actadr, RowOf(m->key_act, k, m->na));
+  Overlay(key.ctrl, ctrladr, RowOf(m->key_ctrl, k, m->nu));
+  Overlay(key.mpos, mposadr, RowOf(m->key_mpos, k, 3 * m->nmocap));
+  Overlay(key.mquat, mquatadr, RowOf(m->key_mquat, k, 4 * m->nmocap));
 }
 
 }  // namespace
@@ -161,16 +155,16 @@ void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     m->key_names[k] = key.src.name;
     m->key_time[k] = key.time;
     FillRow(key, "qpos", key.qpos, m->nq, m->qpos0.data(), raw.qpos.data(),
-            KeyRow(m->key_qpos, k, m->nq));
-    FillRow(key, "qvel", key.qvel, m->nv, nullptr, nullptr, KeyRow(m->key_qvel, k, m->nv));
-    FillRow(key, "act", key.act, m->na, nullptr, nullptr, KeyRow(m->key_act, k, m->na));
-    FillRow(key, "ctrl", key.ctrl, m->nu, nullptr, nullptr, KeyRow(m->key_ctrl, k, m->nu));
+            RowOf(m->key_qpos, k, m->nq));
+    FillRow(key, "qvel", key.qvel, m->nv, nullptr, nullptr, RowOf(m->key_qvel, k, m->nv));
+    FillRow(key, "act", key.act, m->na, nullptr, nullptr, RowOf(m->key_act, k, m->na));
+    FillRow(key, "ctrl", key.ctrl, m->nu, nullptr, nullptr, RowOf(m->key_ctrl, k, m->nu));
     FillRow(key, "mpos", key.mpos, 3 * nm, mpos.data(), raw.mpos.data(),
-            KeyRow(m->key_mpos, k, 3 * nm));
+            RowOf(m->key_mpos, k, 3 * nm));
     FillRow(key, "mquat", key.mquat, 4 * nm, mquat.data(), raw.mquat.data(),
-            KeyRow(m->key_mquat, k, 4 * nm));
+            RowOf(m->key_mquat, k, 4 * nm));
     if (key.attached) OverlayAttachedKey(*key.attached, state, k, m);
-    NormalizeQuats(*m, KeyRow(m->key_qpos, k, m->nq));
+    NormalizeQuats(*m, RowOf(m->key_qpos, k, m->nq));
   }
 }
 

@@ -16,6 +16,7 @@
 
 #include "compiler/compiler.h"
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "math/dot.h"
 #include "mjcf/error.h"
 #include "simlab/simlab.h"
@@ -60,7 +61,7 @@ double PushStep(const Model& m, Data& d, const mjcf::LengthRangeSpec& opt, int i
   Step1(m, d);
 
   // qfrc_applied along the moment, scaled so that M^-1 qfrc has norm accel.
-  const double* moment = d.actuator_moment.data() + static_cast<size_t>(i) * nv;
+  const double* moment = RowOf(d.actuator_moment, i, nv);
   std::copy(moment, moment + nv, d.qfrc_applied.begin());
   SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qfrc_applied.data());
   auto norm_of_applied = [&d, nv] {

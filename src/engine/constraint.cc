@@ -15,6 +15,7 @@
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/island.h"
+#include "engine/rows.h"
 #include "engine/stack.h"
 #include "math/dot.h"
 
@@ -210,7 +211,7 @@ void ProjectConstraint(const Model& m, Data& d) {
   double* b = frame.Reals(static_cast<size_t>(nefc) * nv);
   for (int r = 0; r < nefc; r++) {
     double* x = &b[static_cast<size_t>(r) * nv];
-    std::copy_n(d.efc_J.data() + static_cast<size_t>(r) * nv, nv, x);
+    std::copy_n(RowOf(d.efc_J, r, nv), nv, x);
     for (int i = nv - 1; i >= 0; i--) {
       if (x[i] == 0) continue;
       int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;

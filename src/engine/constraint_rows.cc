@@ -605,7 +605,7 @@ void MakeConstraint(const Model& m, Data& d) {
 void ReferenceConstraint(const Model& m, Data& d) {
   int nv = m.nv;
   for (int i = 0; i < d.nefc; i++) {
-    double vel = math::Dot(d.efc_J.data() + static_cast<size_t>(i) * nv, d.qvel.data(), nv);
+    double vel = math::Dot(RowOf(d.efc_J, i, nv), d.qvel.data(), nv);
     d.efc_vel[i] = vel;
     const double* kbip = &d.efc_KBIP[4 * i];
     d.efc_aref[i] = -kbip[1] * vel - kbip[0] * kbip[2] * (d.efc_pos[i] - d.efc_margin[i]);

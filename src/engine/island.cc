@@ -8,6 +8,7 @@
 
 #include "engine/constraint.h"
 #include "engine/island.h"
+#include "engine/rows.h"
 
 namespace simlab {
 
@@ -39,7 +40,7 @@ int RowTrees(const Model& m, const Data& d, int r, int* trees) {
     trees[1] = m.body_treeid[EqualityBody(m, id, 1)];
     return 2;
   }
-  const double* row = d.efc_J.data() + static_cast<size_t>(r) * m.nv;
+  const double* row = RowOf(d.efc_J, r, m.nv);
   int n = 0;
   for (int v = 0; v < m.nv; v++) {
     int tree = m.dof_treeid[v];

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -21,11 +22,10 @@ void ResetMocap(const Model& m, Data& d) {
   }
 }
 
-// Row `key` of a keyframe array with n numbers per key into `state`. Through
-// data() + offset: &array[offset] is undefined when the array is empty (no actuators,
-// activations or mocap bodies).
+// Row `key` of a keyframe array with n numbers per key into `state` (rows of arrays
+// that may be empty: no actuators, activations or mocap bodies).
 void CopyKeyRow(const std::vector<double>& array, int key, int n, std::vector<double>& state) {
-  std::copy_n(array.data() + static_cast<size_t>(key) * n, n, state.begin());
+  std::copy_n(RowOf(array, key, n), n, state.begin());
 }
 
 }  // namespace
