@@ -56,12 +56,15 @@ std::string TypeName(const std::type_info& type) {
   std::abort();
 }
 
-// Runs `body`; an exception escaping it is a finding for `phase`.
+// Runs `body`; an exception escaping it is a finding for `phase`, except a
+// simlab::Error when `refusal_ok` (the loader's answer to a bad file): then returns false.
 template <typename F>
-void Guarded(const char* phase, F&& body) {
+bool Guarded(const char* phase, F&& body, bool refusal_ok = false) {
   try {
     body();
+    return true;
   } catch (const simlab::Error& e) {
+    if (refusal_ok) return false;
     Finding(phase, "simlab::Error", e.what());
   } catch (const std::exception& e) {
     Finding(phase, TypeName(typeid(e)), e.what());
@@ -81,30 +84,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, size_t size) {
   if (size > kMaxInputBytes) return -1;
   const std::string xml(reinterpret_cast<const char*>(bytes), size);
 
-  // Load: simlab::Error is the loader's answer to a bad file, and fine.
+  // Load: simlab::Error is the loader's answer to a bad file, and fine; so is a refusal
+  // of MakeData, for a model too large to simulate.
   std::optional<simlab::Model> model;
-  try {
-    model.emplace(simlab::LoadXmlString(xml, kFileName));
-  } catch (const simlab::Error&) {
-    return 0;
-  } catch (const std::exception& e) {
-    Finding("LoadXmlString", TypeName(typeid(e)), e.what());
-  } catch (...) {
-    Finding("LoadXmlString", "an exception of unknown type", "");
-  }
+  auto load = [&] { model.emplace(simlab::LoadXmlString(xml, kFileName)); };
+  if (!Guarded("LoadXmlString", load, true)) return 0;
   const simlab::Model& m = *model;
-
-  // Data: a simlab::Error here refuses a model too large to simulate, and is fine.
   std::optional<simlab::Data> data;
-  try {
-    data.emplace(simlab::MakeData(m));
-  } catch (const simlab::Error&) {
-    return 0;
-  } catch (const std::exception& e) {
-    Finding("MakeData", TypeName(typeid(e)), e.what());
-  } catch (...) {
-    Finding("MakeData", "an exception of unknown type", "");
-  }
+  if (!Guarded("MakeData", [&] { data.emplace(simlab::MakeData(m)); }, true)) return 0;
   simlab::Data& d = *data;
 
   // Simulate, reset to the default state, simulate again; then, when the model has
