@@ -155,18 +155,29 @@ double Halton(int index, int base) {
   return h;
 }
 
-std::vector<double> ControlNoise(const Model& m, int steps, double ctrlnoise) {
+std::vector<double> ControlNoise(const Model& m, int steps, const NoiseOptions& noise,
+                                 int key) {
+  // The discrete-time Ornstein-Uhlenbeck process: each step keeps `rate` of the last
+  // control and moves the rest towards the centre; the noise is scaled to keep its
+  // stationary deviation at noise.std half-ranges.
+  const double rate = std::exp(-m.opt.timestep / noise.rate);
+  const double scale = noise.std * std::sqrt(1 - rate * rate);
   std::vector<double> ctrl;
   ctrl.reserve(static_cast<size_t>(steps) * m.nu);
   for (int s = 0; s < steps; s++) {
     for (int i = 0; i < m.nu; i++) {
-      double center = 0, radius = 1;
+      double centre = 0, halfrange = 1;
+      const double* range = &m.actuator_ctrlrange[2 * i];
       if (m.actuator_ctrllimited[i]) {
-        const double* range = &m.actuator_ctrlrange[2 * i];
-        center = (range[1] + range[0]) / 2;
-        radius = (range[1] - range[0]) / 2;
+        centre = (range[1] + range[0]) / 2;
+        halfrange = (range[1] - range[0]) / 2;
       }
-      ctrl.push_back(center + radius * ctrlnoise * (2 * Halton(s, i + 2) - 1));
+      if (key >= 0) centre = m.key_ctrl[static_cast<size_t>(key) * m.nu + i];
+      double u = s > 0 ? rate * ctrl[static_cast<size_t>(s - 1) * m.nu + i] + (1 - rate) * centre
+                       : centre;
+      u += scale * halfrange * (2 * Halton(s, i + 2) - 1);
+      if (m.actuator_ctrllimited[i]) u = std::clamp(u, range[0], range[1]);
+      ctrl.push_back(u);
     }
   }
   return ctrl;
@@ -175,8 +186,7 @@ std::vector<double> ControlNoise(const Model& m, int steps, double ctrlnoise) {
 int RunBench(const BenchOptions& o, std::ostream& out) {
   Model m = LoadXml(o.model);
   int key = StartKey(m, o.key);
-  double noise = std::clamp(o.ctrlnoise, 0.0, 1.0);
-  std::vector<double> ctrl = ControlNoise(m, o.steps, noise);
+  std::vector<double> ctrl = ControlNoise(m, o.steps, o.noise, key);
 
   // One Data per thread, each at the start state.
   std::vector<std::unique_ptr<Rollout>> rollouts;
@@ -187,7 +197,7 @@ int RunBench(const BenchOptions& o, std::ostream& out) {
   out << "Rolling out " << o.steps << " steps" << (o.threads > 1 ? " per thread" : "")
       << " at dt = " << m.opt.timestep
       << (key >= 0 ? ", from keyframe " + std::to_string(key) : "") << ", control noise "
-      << noise << "\n\n";
+      << o.noise.std << " (rate " << o.noise.rate << " s)\n\n";
 
   // The rollouts, on threads of their own when there are several.
   auto start = std::chrono::steady_clock::now();
@@ -215,8 +225,11 @@ void AddBenchCommand(CLI::App& app, CommandIo& io) {
   cmd->add_option("--steps", options->steps, "steps per rollout (default 10000)")->check(kCount);
   cmd->add_option("--key", options->key, "start from this keyframe (default: \"test\" if any)")
       ->check(CLI::Range(0, std::numeric_limits<int>::max()));
-  cmd->add_option("--ctrlnoise", options->ctrlnoise,
+  cmd->add_option("--noisestd,--ctrlnoise", options->noise.std,
                   "control noise, a share of each control's half-range (default 0.01)");
+  cmd->add_option("--noiserate", options->noise.rate,
+                  "time constant of the noise's return to the centre, s (default 0.1)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", options->threads, "independent rollouts at once (default 1)")
       ->check(CLI::Range(1, 512));
   cmd->callback([options, &io] { io.status = RunBench(*options, *io.out); });

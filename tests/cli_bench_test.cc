@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -37,18 +38,31 @@ TEST(Bench, HaltonSequence) {
   EXPECT_DOUBLE_EQ(Halton(5, 3), 2.0 / 3 + 1.0 / 9);
 }
 
-// Limited controls vary around the middle of their range by ctrlnoise times the
-// half-range; unlimited ones around 0 by ctrlnoise.
-TEST(Bench, ControlNoiseFollowsTheRanges) {
-  Model m = LoadXmlString(R"(<mujoco><worldbody><body><joint name="j"/><geom size=".1"/>
-    </body></worldbody><actuator><motor joint="j" ctrlrange="1 3"/><motor joint="j"/>
-    </actuator></mujoco>)");
-  std::vector<double> ctrl = ControlNoise(m, 3, 0.5);
-  ASSERT_EQ(ctrl.size(), 6u);
-  for (int s = 0; s < 3; s++) {
-    EXPECT_DOUBLE_EQ(ctrl[2 * s], 2 + 0.5 * (2 * Halton(s, 2) - 1));
-    EXPECT_DOUBLE_EQ(ctrl[2 * s + 1], 0.5 * (2 * Halton(s, 3) - 1));
+// The noise process of MuJoCo 3.12's testspeed: step 0 at the centre (the middle of the
+// range; 0 when unlimited; the keyframe's control when one is given), then each step
+// relaxes towards the centre at the rate and adds the scaled Halton noise, clamped to
+// the range.
+TEST(Bench, ControlNoiseIsTestspeedsProcess) {
+  Model m = LoadXmlString(R"(<mujoco><option timestep="0.01"/><worldbody><body>
+    <joint name="j"/><geom size=".1"/></body></worldbody><actuator>
+    <motor joint="j" ctrlrange="1 3"/><motor joint="j"/></actuator>
+    <keyframe><key ctrl="2.5 -4"/></keyframe></mujoco>)");
+  NoiseOptions noise{0.5, 0.05};
+  const double r = std::exp(-0.01 / 0.05), scale = 0.5 * std::sqrt(1 - r * r);
+  std::vector<double> ctrl = ControlNoise(m, 4, noise, -1);
+  ASSERT_EQ(ctrl.size(), 8u);
+  EXPECT_DOUBLE_EQ(ctrl[0], 2 + scale * (2 * Halton(0, 2) - 1));
+  EXPECT_DOUBLE_EQ(ctrl[1], 0 + scale * (2 * Halton(0, 3) - 1));
+  for (int s = 1; s < 4; s++) {
+    double limited = r * ctrl[2 * (s - 1)] + (1 - r) * 2 + scale * (2 * Halton(s, 2) - 1);
+    EXPECT_DOUBLE_EQ(ctrl[2 * s], std::clamp(limited, 1.0, 3.0));
+    EXPECT_DOUBLE_EQ(ctrl[2 * s + 1], r * ctrl[2 * s - 1] + scale * (2 * Halton(s, 3) - 1));
   }
+  // From the keyframe: its controls are the centres (the range still scales the noise).
+  std::vector<double> keyed = ControlNoise(m, 2, noise, 0);
+  EXPECT_DOUBLE_EQ(keyed[0], 2.5 + scale * (2 * Halton(0, 2) - 1));
+  EXPECT_DOUBLE_EQ(keyed[1], -4 + scale * (2 * Halton(0, 3) - 1));
+  EXPECT_DOUBLE_EQ(keyed[3], r * keyed[1] + (1 - r) * -4 + scale * (2 * Halton(1, 3) - 1));
 }
 
 // The report's contacts and rows per step are the rollout's, from keyframe "test".
@@ -65,7 +79,7 @@ TEST(Bench, ReportsTheRolloutsCounts) {
   Data d = MakeData(m);
   int key = m.NameToId(kObjKey, "test");
   if (key >= 0) ResetDataKeyframe(m, d, key);
-  std::vector<double> ctrl = ControlNoise(m, 300, 0.01);
+  std::vector<double> ctrl = ControlNoise(m, 300, NoiseOptions{}, key);
   double contacts = 0, rows = 0;
   for (int s = 0; s < 300; s++) {
     std::copy_n(ctrl.begin() + s * m.nu, m.nu, d.ctrl.begin());

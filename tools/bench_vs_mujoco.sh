@@ -1,52 +1,115 @@
 #!/usr/bin/env bash
-# Steps per second of simlab beside MuJoCo on the same models, in one run, same machine.
+# Steps per second of simlab beside MuJoCo 3.12 (and Debian's 2.2.2) on the same models,
+# interleaved in one run on one machine, and the ratio simlab / MuJoCo.
 #
-#   tools/bench_vs_mujoco.sh [BUILD_DIR]
+#   tools/bench_vs_mujoco.sh [--rounds R] [--only NAME] [BUILD_DIR]
 #
-# MuJoCo's numbers come from Debian's MuJoCo 2.2.2 (`mujoco-testspeed` from the package
-# libmujoco-samples: one thread, control noise 0.01, starting from keyframe "test" when
-# the model has one); ours from build/simlab_bench (Google Benchmark, the same control
-# noise and start). Prints both and the ratio ours / MuJoCo for each model:
-#   humanoid (contacts off)  tests/models/humanoid_nocontact.xml, 20000 steps
-#   humanoid (contacts on)   MuJoCo's humanoid.xml, falling and lying down, 20000 steps
-#   gantry holding the cube  tests/models/bench_gantry_holding.xml, runs of 1000 steps
-#                            (the soft grip creeps: the cube would slip out after ~1300)
+# Both engines run the same workload: MuJoCo's own `testspeed` (built from source by
+# ../shared/oracle/native/build.sh into $MUJOCO_NATIVE, default /work/mujoco-native) and
+# `simlab bench`, which follows testspeed 3.12 exactly (start keyframe "test", the same
+# Ornstein-Uhlenbeck control noise; contacts and rows per step agree). Time is the CPU
+# time of each process (user + system, from the kernel), not wall time: the machine is
+# shared. Loading a model is taken out by running every command twice, with N steps and
+# with N0 = N/10 steps: steps/s = (N - N0) / (cpu(N) - cpu(N0)), each cpu the median of
+# the rounds. The commands of one round run one after the other, both engines in turn.
+#
+# Debian's MuJoCo 2.2.2 (`mujoco-testspeed`, package libmujoco-samples) is the third
+# column when installed; its control noise is the older process (no relaxation to the
+# centre), so its workload differs slightly, and it cannot load 3.x-only models (-).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$here/build}
-
-if ! command -v mujoco-testspeed >/dev/null; then
-  echo "installing Debian's MuJoCo 2.2.2 (libmujoco-samples) for the comparison"
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO=sudo
-  $SUDO apt-get install -y -qq libmujoco-dev libmujoco-samples >/dev/null
+rounds=5 only="" build=$here/build
+while [ $# -gt 0 ]; do
+  case $1 in
+    --rounds) rounds=$2; shift 2 ;;
+    --only) only=$2; shift 2 ;;
+    *) build=$1; shift ;;
+  esac
+done
+native=${MUJOCO_NATIVE:-/work/mujoco-native}
+testspeed=$native/build/bin/testspeed
+if [ ! -x "$testspeed" ]; then
+  cat >&2 <<EOF
+MuJoCo 3.12's testspeed is missing ($testspeed). Build it from source:
+  fetch github:google-deepmind/mujoco and its pinned dependencies (the header of
+  $here/../shared/oracle/native/build.sh lists them), then
+  bash ../shared/oracle/native/build.sh MIRROR/google-deepmind+mujoco/repo MIRROR $native
+EOF
+  exit 2
 fi
+[ -x "$build/simlab" ] || { echo "no $build/simlab: build the project first" >&2; exit 2; }
 
-# MuJoCo: median of RUNS runs of `mujoco-testspeed MODEL NSTEP NTHREAD CTRLNOISE`.
-mujoco_sps() {
-  local model="$1" steps="$2" runs="$3" i
-  for ((i = 0; i < runs; i++)); do
-    mujoco-testspeed "$model" "$steps" 1 0.01 | awk '/Steps per second/ {print $5}'
-  done | sort -n | sed -n "$(((runs + 1) / 2))p"
+# Models from MuJoCo's source tree (exported by build.sh into $native/src); the cube with
+# multiccd off, as MuJoCo 3.5.1 and simlab default to (3.8 turned it on).
+src=$native/src
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp -r "$src/model/cube" "$work/cube"
+sed -i 's|<option \([^/]*\)/>|<option \1><flag multiccd="disable"/></option>|' "$work/cube/cube_3x3x3.xml"
+grep -q 'multiccd="disable"' "$work/cube/cube_3x3x3.xml" || { echo "cube: could not set multiccd" >&2; exit 1; }
+
+# name|model|steps
+models="humanoid|$here/tests/conformance/contact/models/humanoid.xml|20000
+humanoid-nocontact|$here/tests/models/humanoid_nocontact.xml|20000
+gantry-holding|$here/tests/models/bench_gantry_holding.xml|1000
+actuator-bench|$here/models/actuator_bench.xml|20000
+shadow-hand|$src/mjx/mujoco/mjx/test_data/shadow_hand/scene_right.xml|10000
+cube-3x3x3|$work/cube/cube_3x3x3.xml|2000
+22-humanoids|$src/model/humanoid/22_humanoids.xml|600"
+
+old=$(command -v mujoco-testspeed || true)
+echo "simlab: $build/simlab ($(git -C "$here" rev-parse --short HEAD))"
+echo "MuJoCo: $testspeed ($(basename "$(readlink -f "$native/build/lib/libmujoco.so")"))"
+echo "Debian MuJoCo 2.2.2: ${old:-not installed (apt-get install libmujoco-samples)}"
+echo "rounds: $rounds, CPU time per process"
+echo
+
+python3 - "$build/simlab" "$testspeed" "$old" "$rounds" "$only" <<PY
+import os, resource, statistics, subprocess, sys
+simlab, testspeed, old, rounds, only = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), sys.argv[5]
+models = [line.split("|") for line in """$models""".splitlines()]
+
+def cpu(cmd, cwd):
+    """CPU seconds of one command (None when it fails)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    done = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode != 0 or "rror" in done.stdout:
+        return None
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+engines = {
+    "simlab": lambda f, n: [simlab, "bench", f, "--steps", str(n)],
+    "mujoco": lambda f, n: [testspeed, f, f"--nstep={n}"],
 }
+if old:
+    engines["2.2.2"] = lambda f, n: [old, f, str(n), "1", "0.01"]
 
-# simlab: median of three repetitions of one benchmark.
-simlab_sps() {
-  "$build/simlab_bench" --benchmark_filter="^BM_Step$1/" --benchmark_repetitions=3 \
-      --benchmark_report_aggregates_only=true --benchmark_format=json 2>/dev/null |
-    python3 -c 'import json,sys; b=json.load(sys.stdin)["benchmarks"]; print([x for x in b if x["aggregate_name"]=="median"][0]["steps_per_second"])'
-}
-
-report() {
-  python3 - "$1" "$2" "$3" <<'PY'
-import sys
-name, mj, ours = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
-print(f"{name:26s} MuJoCo 2.2.2: {mj:9.0f} steps/s   simlab: {ours:9.0f} steps/s   ratio simlab/MuJoCo: {ours/mj:.2f}")
+print(f"{'model':20s} {'simlab':>10s} {'MuJoCo 3.12':>12s} {'ratio':>6s}   {'2.2.2':>9s} {'ratio':>6s}")
+for name, path, steps in models:
+    if only and name != only:
+        continue
+    n = int(steps); n0 = n // 10
+    times = {e: {n: [], n0: []} for e in engines}
+    for r in range(rounds):
+        order = list(engines) if r % 2 == 0 else list(reversed(engines))
+        for count in (n, n0):
+            for e in order:
+                times[e][count].append(cpu(engines[e](path, count), os.path.dirname(path)))
+    sps = {}
+    for e in engines:
+        if any(t is None for t in times[e][n] + times[e][n0]):
+            sps[e] = None
+            continue
+        dt = statistics.median(times[e][n]) - statistics.median(times[e][n0])
+        sps[e] = (n - n0) / dt if dt > 0 else None
+    def fmt(x, w):
+        return f"{x:{w}.0f}" if x else f"{'-':>{w}s}"
+    ratio = sps["simlab"] / sps["mujoco"] if sps["simlab"] and sps["mujoco"] else None
+    line = f"{name:20s} {fmt(sps['simlab'], 10)} {fmt(sps['mujoco'], 12)} "
+    line += f"{ratio:6.2f}" if ratio else f"{'-':>6s}"
+    if old:
+        r2 = sps["simlab"] / sps["2.2.2"] if sps["simlab"] and sps["2.2.2"] else None
+        line += f"   {fmt(sps['2.2.2'], 9)} " + (f"{r2:6.2f}" if r2 else f"{'-':>6s}")
+    print(line, flush=True)
 PY
-}
-
-report "humanoid (contacts off)" \
-  "$(mujoco_sps "$here/tests/models/humanoid_nocontact.xml" 20000 3)" "$(simlab_sps HumanoidNoContact)"
-report "humanoid (contacts on)" \
-  "$(mujoco_sps "$here/tests/conformance/contact/models/humanoid.xml" 20000 3)" "$(simlab_sps Humanoid)"
-report "gantry holding the cube" \
-  "$(mujoco_sps "$here/tests/models/bench_gantry_holding.xml" 1000 15)" "$(simlab_sps GantryHolding)"

@@ -357,7 +357,7 @@ class Simulation {
   static void WriteAll(const FieldView& f, const std::vector<double>& values);
 
   // The constraint-row arrays (efc_*), counted from the table.
-  static constexpr size_t kRowFieldCount = 0
+  static constexpr size_t kRowFieldCount = 2  // efc_J, efc_J_colind
 #define SIMLAB_X(type, name, cols) +1
       SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
@@ -406,14 +406,16 @@ int Simulation::KeyIndex(const val& key) const {
 }
 
 // Points the efc_* entries of the Data table at the current rows (nefc of them; efc_J
-// has nv columns). Plain stores: nothing is allocated.
+// and efc_J_colind have nJ entries: nefc x nv below 60 dofs, compressed rows from 60 on).
+// Plain stores: nothing is allocated.
 void Simulation::RefreshRowFields() {
   size_t at = first_row_field_;
 #define SIMLAB_X(type, name, cols) \
-  data_fields_[at++] = MakeFieldView(#name, "nefc", (cols) == 0 ? "nv" : #cols, d_.name, \
-                                     d_.nefc, (cols) == 0 ? m_.nv : (cols));
+  data_fields_[at++] = MakeFieldView(#name, "nefc", #cols, d_.name, d_.nefc, (cols));
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+  data_fields_[at++] = MakeFieldView("efc_J", "nJ", "1", d_.efc_J, d_.nJ, 1);
+  data_fields_[at++] = MakeFieldView("efc_J_colind", "nJ", "1", d_.efc_J_colind, d_.nJ, 1);
 }
 
 void Simulation::CheckIndex(const FieldView& f, int index) {

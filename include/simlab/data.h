@@ -178,11 +178,12 @@ struct TimerStat {
   X(double, qH, nM, 1)                          \
   X(double, qHDiagInv, nv, 1)
 
-// Constraint rows: X(type, name, cols), nefc rows each (cols = 0 means nv columns).
+// Constraint rows: X(type, name, cols), nefc rows each.
 #define SIMLAB_DATA_EFC_FIELDS(X)                                                   \
   X(int, efc_type, 1)           /* mjtConstraint: equality, friction, limit, contact */ \
   X(int, efc_id, 1)             /* id of the element that made the row */             \
-  X(double, efc_J, 0)           /* constraint Jacobian, dense nefc x nv */            \
+  X(int, efc_J_rownnz, 1)       /* entries of the row in efc_J */                     \
+  X(int, efc_J_rowadr, 1)       /* where the row starts in efc_J and efc_J_colind */  \
   X(double, efc_pos, 1)         /* position (distance or error) */                    \
   X(double, efc_margin, 1)      /* inclusion margin */                                \
   X(double, efc_frictionloss, 1)/* friction loss of friction rows */                 \
@@ -240,6 +241,14 @@ struct Data {
 #define SIMLAB_X(type, name, cols) std::vector<type> name;
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+  // The constraint Jacobian in compressed rows, nJ entries: row r has efc_J_rownnz[r]
+  // entries from efc_J_rowadr[r] on, in the dofs efc_J_colind (ascending). As MuJoCo's
+  // (mj_isSparse): with jacobian="sparse", or "auto" and 60 dofs or more, a row holds the
+  // dofs that can move what it constrains; otherwise every row holds all nv dofs, so
+  // efc_J is the dense nefc x nv matrix.
+  int nJ = 0;
+  std::vector<double> efc_J;
+  std::vector<int> efc_J_colind;
   std::vector<double> efc_AR;  // nefc x nefc: J M^-1 J^T + diag(R), for the PGS solver
 
   // Contacts of the last collision stage: the first ncon entries (capacity grows as needed).

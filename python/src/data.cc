@@ -208,15 +208,31 @@ void DefineDataBasics(py::class_<PyData>& cls) {
   });
 }
 
-// Constraint rows (nefc of them; efc_J has nv columns): read-only copies.
+// Constraint rows (nefc of them): read-only copies. efc_J is given as the dense nefc x nv
+// matrix whatever its layout in Data (compressed rows from 60 dofs on); efc_J_colind and
+// the rows' efc_J_rownnz/rowadr give the layout.
 void DefineConstraintRows(py::class_<PyData>& cls) {
 #define SIMLAB_X(type, name, cols)                                                    \
   cls.def_property_readonly(#name, [](const PyData& d) {                             \
-    const int c = (cols) == 0 ? d.model->nv : (cols);                                 \
-    return ReadOnlyCopy<type>(d.data.name.data(), d.data.nefc, c, (cols) == 1);       \
+    return ReadOnlyCopy<type>(d.data.name.data(), d.data.nefc, (cols), (cols) == 1);  \
   });
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+  cls.def_property_readonly("efc_J", [](const PyData& d) {
+    const Data& data = d.data;
+    const int nv = d.model->nv;
+    std::vector<double> dense(static_cast<size_t>(data.nefc) * nv, 0.0);
+    for (int r = 0; r < data.nefc; r++) {
+      for (int k = data.efc_J_rowadr[r]; k < data.efc_J_rowadr[r] + data.efc_J_rownnz[r]; k++) {
+        dense[static_cast<size_t>(r) * nv + data.efc_J_colind[k]] = data.efc_J[k];
+      }
+    }
+    return ReadOnlyCopy<double>(dense.data(), data.nefc, nv, false);
+  });
+  cls.def_property_readonly("efc_J_colind", [](const PyData& d) {
+    return ReadOnlyCopy<int>(d.data.efc_J_colind.data(), d.data.nJ, 1, true);
+  });
+  cls.def_property_readonly("nJ", [](const PyData& d) { return d.data.nJ; });
 }
 
 }  // namespace

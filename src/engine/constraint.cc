@@ -42,7 +42,7 @@ void WarmStart(const Model& m, Data& d) {
   StackFrame frame(d);
   double* jar = frame.Alloc(nefc);
   d.qacc = d.qacc_warmstart;
-  math::MulMatVec(jar, d.efc_J.data(), d.qacc_warmstart.data(), nefc, nv);
+  EfcMulVec(m, d, d.qacc_warmstart.data(), jar);
   for (int r = 0; r < nefc; r++) jar[r] -= d.efc_aref[r];
   double cost_warm = UpdateAll(d, jar);
 
@@ -88,6 +88,7 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
   p.nv = nv;
   p.nefc = nefc;
   int* local = frame.Ints(m.nv);
+  std::fill(local, local + m.nv, -1);
   int nnz = 0;
   for (int i = 0; i < nv; i++) {
     local[dofs[i]] = i;
@@ -125,8 +126,10 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
     int e = rows[r];
     if (d.efc_type[e] == kCnstrEquality) p.ne++;
     if (d.efc_type[e] == kCnstrFrictionDof || d.efc_type[e] == kCnstrFrictionTendon) p.nf++;
-    for (int i = 0; i < nv; i++) {
-      p.J[static_cast<size_t>(r) * nv + i] = d.efc_J[static_cast<size_t>(e) * m.nv + dofs[i]];
+    double* row = p.J + static_cast<size_t>(r) * nv;
+    for (int k = d.efc_J_rowadr[e]; k < d.efc_J_rowadr[e] + d.efc_J_rownnz[e]; k++) {
+      int i = local[d.efc_J_colind[k]];
+      if (i >= 0) row[i] = d.efc_J[k];
     }
   }
   Gather(d.efc_D, rows, nefc, p.D);
@@ -211,7 +214,7 @@ void ProjectConstraint(const Model& m, Data& d) {
   double* b = frame.Reals(static_cast<size_t>(nefc) * nv);
   for (int r = 0; r < nefc; r++) {
     double* x = &b[static_cast<size_t>(r) * nv];
-    std::copy_n(RowOf(d.efc_J, r, nv), nv, x);
+    EfcRowDense(m, d, r, x);
     for (int i = nv - 1; i >= 0; i--) {
       if (x[i] == 0) continue;
       int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
@@ -242,7 +245,7 @@ void Constraint(const Model& m, Data& d) {
   }
 
   // efc_b = J qacc_smooth - aref.
-  math::MulMatVec(d.efc_b.data(), d.efc_J.data(), d.qacc_smooth.data(), d.nefc, m.nv);
+  EfcMulVec(m, d, d.qacc_smooth.data(), d.efc_b.data());
   for (int r = 0; r < d.nefc; r++) d.efc_b[r] -= d.efc_aref[r];
 
   if (!(m.opt.disableflags & kDisableIsland)) FindIslands(m, d);

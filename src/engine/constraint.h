@@ -26,6 +26,20 @@ int EqualityBody(const Model& m, int eq, int j);
 // The impedance of solimp at position `pos` with `margin`, and its derivative.
 void Impedance(const double* solimp, double pos, double margin, double* imp, double* slope);
 
+// ---------------------------------------------------------------- efc_J (constraint_jacobian.cc)
+
+// Does MuJoCo build this model's constraint Jacobian sparse (jacobian="sparse", or "auto"
+// with 60 dofs or more: mj_isSparse)? Its rows then hold only the dofs they can move.
+bool SparseJacobian(const Model& m);
+// Row r of efc_J times vec (nv entries).
+double EfcRowDot(const Model& m, const Data& d, int r, const double* vec);
+// res (nefc) = efc_J vec.
+void EfcMulVec(const Model& m, const Data& d, const double* vec, double* res);
+// res (nv) = efc_J^T f: rows added in order, rows whose f is zero skipped.
+void EfcMulTVec(const Model& m, const Data& d, const double* f, double* res);
+// Row r of efc_J as nv numbers.
+void EfcRowDense(const Model& m, const Data& d, int r, double* dense);
+
 // The rows a cost update reads: their counts (the first ne rows are equalities, the next
 // nf friction losses), softness, kinds, and for elliptic contact rows the contacts they
 // belong to (efc_id indexes `contact`; its mu, friction and dim shape the cone, and the

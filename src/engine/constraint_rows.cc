@@ -25,26 +25,40 @@ constexpr double kMaxImp = 0.9999;  // mjMAXIMP
 
 // ---------------------------------------------------------------- adding rows
 
-// Grows every efc array by `size` rows.
-void GrowRows(const Model& m, Data& d, int size) {
-  size_t n = static_cast<size_t>(d.nefc + size);
-#define SIMLAB_X(type, name, cols) d.name.resize(n * ((cols) == 0 ? m.nv : (cols)));
+// Grows every efc array by `size` rows of `width` Jacobian entries each.
+void GrowRows(Data& d, int size, int width) {
+  size_t rows = static_cast<size_t>(d.nefc + size);
+#define SIMLAB_X(type, name, cols) d.name.resize(rows * (cols));
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+  size_t entries = static_cast<size_t>(d.nJ) + static_cast<size_t>(size) * width;
+  d.efc_J.resize(entries);
+  d.efc_J_colind.resize(entries);
 }
 
-// Appends `size` rows with Jacobian `jac` (size x nv). Rows other than contacts whose
-// Jacobian is all zero are skipped: they cannot act on anything (MuJoCo does the same).
-void AddRows(const Model& m, Data& d, const double* jac, const double* pos, double margin,
+// The columns of a group of rows: the dofs `dof` (ascending), `n` of them.
+struct Columns {
+  const int* dof;
+  int n;
+};
+
+// Appends `size` rows whose Jacobian `jac` (size x cols.n) holds the columns `cols`.
+// Rows other than contacts whose Jacobian is all zero are skipped: they cannot act on
+// anything (MuJoCo does the same).
+void AddRows(Data& d, const double* jac, Columns cols, const double* pos, double margin,
              double frictionloss, int size, ConstraintType type, int id) {
-  int nv = m.nv;
   bool contact = type >= kCnstrContactFrictionless;
-  if (!contact && std::all_of(jac, jac + size * nv, [](double x) { return x == 0; })) return;
+  const double* end = jac + static_cast<size_t>(size) * cols.n;
+  if (!contact && std::all_of(jac, end, [](double x) { return x == 0; })) return;
 
   int first = d.nefc;
-  GrowRows(m, d, size);
-  std::copy(jac, jac + size * nv, d.efc_J.begin() + static_cast<size_t>(first) * nv);
+  GrowRows(d, size, cols.n);
+  std::copy(jac, end, d.efc_J.begin() + d.nJ);
   for (int r = 0; r < size; r++) {
+    d.efc_J_rownnz[first + r] = cols.n;
+    d.efc_J_rowadr[first + r] = d.nJ;
+    std::copy_n(cols.dof, cols.n, d.efc_J_colind.begin() + d.nJ);
+    d.nJ += cols.n;
     d.efc_pos[first + r] = pos ? pos[r] : 0;
     d.efc_margin[first + r] = margin;
     d.efc_frictionloss[first + r] = frictionloss;
@@ -55,6 +69,36 @@ void AddRows(const Model& m, Data& d, const double* jac, const double* pos, doub
   if (type == kCnstrEquality) d.ne += size;
   if (type == kCnstrFrictionDof || type == kCnstrFrictionTendon) d.nf += size;
   if (type == kCnstrLimitJoint || type == kCnstrLimitTendon) d.nl += size;
+}
+
+// Appends rows given as dense size x nv Jacobians: with a sparse Jacobian only the columns
+// that are nonzero in some row are kept (in place: `jac` is overwritten); `index` has
+// room for nv dofs.
+void AddDenseRows(const Model& m, Data& d, double* jac, int* index, const double* pos,
+                  double margin, double frictionloss, int size, ConstraintType type, int id) {
+  int nv = m.nv, n = 0;
+  bool sparse = SparseJacobian(m);
+  for (int v = 0; v < nv; v++) {
+    bool used = !sparse;
+    for (int r = 0; r < size && !used; r++) used = jac[r * nv + v] != 0;
+    if (used) index[n++] = v;
+  }
+  if (sparse) {
+    for (int r = 0; r < size; r++) {
+      for (int k = 0; k < n; k++) jac[r * n + k] = jac[r * nv + index[k]];
+    }
+  }
+  AddRows(d, jac, Columns{index, n}, pos, margin, frictionloss, size, type, id);
+}
+
+// The columns of rows that move bodies b0 and b1: every dof with a dense Jacobian, else
+// the dofs of both bodies' chains (MuJoCo mj_mergeChain); `index` has room for nv.
+Columns BodyPairColumns(const Model& m, int b0, int b1, int* index) {
+  if (!SparseJacobian(m)) {
+    for (int v = 0; v < m.nv; v++) index[v] = v;
+    return Columns{index, m.nv};
+  }
+  return Columns{index, MergedDofChain(m, b0, b1, index)};
 }
 
 // ---------------------------------------------------------------- equality rows
@@ -74,7 +118,7 @@ int EqualityPoint(const Model& m, const Data& d, int eq, int j, const double* an
 }
 
 // Connect: the two anchor points coincide (3 rows).
-void ConnectRows(const Model& m, Data& d, int eq, double* jac, double* jac1) {
+void ConnectRows(const Model& m, Data& d, int eq, double* jac, double* jac1, int* index) {
   const double* data = &m.eq_data[kNEqData * eq];
   double pos[2][3];
   int body0 = EqualityPoint(m, d, eq, 0, data, pos[0]);
@@ -83,15 +127,15 @@ void ConnectRows(const Model& m, Data& d, int eq, double* jac, double* jac1) {
   math::Sub3(err, pos[0], pos[1]);
 
   // J = J(body0 at point0) - J(body1 at point1)
-  Jacobian(m, d, jac, nullptr, pos[0], body0);
-  Jacobian(m, d, jac1, nullptr, pos[1], body1);
-  for (int k = 0; k < 3 * m.nv; k++) jac[k] -= jac1[k];
-  AddRows(m, d, jac, err, 0, 0, 3, kCnstrEquality, eq);
+  Columns cols = BodyPairColumns(m, body0, body1, index);
+  JacobianOnDofs(m, d, cols.dof, cols.n, jac, nullptr, pos[0], body0);
+  JacobianOnDofs(m, d, cols.dof, cols.n, jac1, nullptr, pos[1], body1);
+  for (int k = 0; k < 3 * cols.n; k++) jac[k] -= jac1[k];
+  AddRows(d, jac, cols, err, 0, 0, 3, kCnstrEquality, eq);
 }
 
 // Weld: the two frames coincide, up to relpose (3 translation + 3 rotation rows).
-void WeldRows(const Model& m, Data& d, int eq, double* jac, double* jac1) {
-  int nv = m.nv;
+void WeldRows(const Model& m, Data& d, int eq, double* jac, double* jac1, int* index) {
   const double* data = &m.eq_data[kNEqData * eq];
   double pos[2][3];
   int body0 = EqualityPoint(m, d, eq, 0, data + 3, pos[0]);
@@ -100,8 +144,10 @@ void WeldRows(const Model& m, Data& d, int eq, double* jac, double* jac1) {
   math::Sub3(err, pos[0], pos[1]);
 
   // Translation and rotation Jacobian differences, rows 0-2 and 3-5.
-  Jacobian(m, d, jac, jac + 3 * nv, pos[0], body0);
-  Jacobian(m, d, jac1, jac1 + 3 * nv, pos[1], body1);
+  Columns cols = BodyPairColumns(m, body0, body1, index);
+  int nv = cols.n;
+  JacobianOnDofs(m, d, cols.dof, nv, jac, jac + 3 * nv, pos[0], body0);
+  JacobianOnDofs(m, d, cols.dof, nv, jac1, jac1 + 3 * nv, pos[1], body1);
   for (int k = 0; k < 6 * nv; k++) jac[k] -= jac1[k];
 
   // Orientation error: the vector part of conj(q1) * q0 (* relpose in the body form).
@@ -126,11 +172,11 @@ void WeldRows(const Model& m, Data& d, int eq, double* jac, double* jac1) {
     math::MulQuat(rot, tmp, q0);
     for (int k = 0; k < 3; k++) jac[(3 + k) * nv + v] = 0.5 * rot[1 + k] * torquescale;
   }
-  AddRows(m, d, jac, err, 0, 0, 6, kCnstrEquality, eq);
+  AddRows(d, jac, cols, err, 0, 0, 6, kCnstrEquality, eq);
 }
 
 // Joint or tendon coupling: x1 - x1_0 = poly(x2 - x2_0), or x1 = x1_0 + data[0] alone.
-void CouplingRow(const Model& m, Data& d, int eq, double* jac, double* jac1) {
+void CouplingRow(const Model& m, Data& d, int eq, double* jac, double* jac1, int* index) {
   int nv = m.nv;
   const double* data = &m.eq_data[kNEqData * eq];
   bool joint = m.eq_type[eq] == kEqJoint;
@@ -157,7 +203,7 @@ void CouplingRow(const Model& m, Data& d, int eq, double* jac, double* jac1) {
     double slope = data[1] + x * (2 * data[2] + x * (3 * data[3] + x * 4 * data[4]));
     for (int v = 0; v < nv; v++) jac[v] -= slope * jac1[v];
   }
-  AddRows(m, d, jac, &err, 0, 0, 1, kCnstrEquality, eq);
+  AddDenseRows(m, d, jac, index, &err, 0, 0, 1, kCnstrEquality, eq);
 }
 
 void EqualityRows(const Model& m, Data& d) {
@@ -165,12 +211,14 @@ void EqualityRows(const Model& m, Data& d) {
   StackFrame frame(d);
   double* jac = frame.Alloc(6 * m.nv);
   double* jac1 = frame.Alloc(6 * m.nv);
+  SolverFrame ints(d.solver_scratch);
+  int* index = ints.Ints(m.nv);
   for (int eq = 0; eq < m.neq; eq++) {
     if (!d.eq_active[eq]) continue;
     switch (m.eq_type[eq]) {
-      case kEqConnect: ConnectRows(m, d, eq, jac, jac1); break;
-      case kEqWeld: WeldRows(m, d, eq, jac, jac1); break;
-      default: CouplingRow(m, d, eq, jac, jac1); break;
+      case kEqConnect: ConnectRows(m, d, eq, jac, jac1, index); break;
+      case kEqWeld: WeldRows(m, d, eq, jac, jac1, index); break;
+      default: CouplingRow(m, d, eq, jac, jac1, index); break;
     }
   }
 }
@@ -182,33 +230,36 @@ void FrictionRows(const Model& m, Data& d) {
   if (m.opt.disableflags & kDisableFrictionloss) return;
   StackFrame frame(d);
   double* jac = frame.Alloc(m.nv);
+  SolverFrame ints(d.solver_scratch);
+  int* index = ints.Ints(m.nv);
   for (int v = 0; v < m.nv; v++) {
     if (m.dof_frictionloss[v] == 0) continue;
     std::fill(jac, jac + m.nv, 0.0);
     jac[v] = 1;
-    AddRows(m, d, jac, nullptr, 0, m.dof_frictionloss[v], 1, kCnstrFrictionDof, v);
+    AddDenseRows(m, d, jac, index, nullptr, 0, m.dof_frictionloss[v], 1, kCnstrFrictionDof, v);
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (m.tendon_frictionloss[t] <= 0) continue;
-    AddRows(m, d, RowOf(d.ten_J, t, m.nv), nullptr, 0,
-            m.tendon_frictionloss[t], 1, kCnstrFrictionTendon, t);
+    std::copy_n(RowOf(d.ten_J, t, m.nv), m.nv, jac);
+    AddDenseRows(m, d, jac, index, nullptr, 0, m.tendon_frictionloss[t], 1,
+                 kCnstrFrictionTendon, t);
   }
 }
 
 // Lower and upper limit of a scalar quantity with Jacobian `grad`: a row for each side
 // closer than the margin, pointing into the allowed range.
 void ScalarLimitRows(const Model& m, Data& d, double value, const double* range, double margin,
-                     const double* grad, double* jac, ConstraintType type, int id) {
+                     const double* grad, double* jac, int* index, ConstraintType type, int id) {
   for (int side = -1; side <= 1; side += 2) {
     double dist = side * (range[(side + 1) / 2] - value);
     if (dist >= margin) continue;
     for (int v = 0; v < m.nv; v++) jac[v] = -side * grad[v];
-    AddRows(m, d, jac, &dist, margin, 0, 1, type, id);
+    AddDenseRows(m, d, jac, index, &dist, margin, 0, 1, type, id);
   }
 }
 
 // Ball joint limit: the rotation angle stays below the larger range value.
-void BallLimitRow(const Model& m, Data& d, int j, double* jac) {
+void BallLimitRow(const Model& m, Data& d, int j, double* jac, int* index) {
   int adr = m.jnt_qposadr[j];
   double quat[4];
   math::CopyQuat(quat, &d.qpos[adr]);
@@ -221,7 +272,7 @@ void BallLimitRow(const Model& m, Data& d, int j, double* jac) {
   if (dist >= margin) return;
   std::fill(jac, jac + m.nv, 0.0);
   math::Scale3(jac + m.jnt_dofadr[j], axis, -1);
-  AddRows(m, d, jac, &dist, margin, 0, 1, kCnstrLimitJoint, j);
+  AddDenseRows(m, d, jac, index, &dist, margin, 0, 1, kCnstrLimitJoint, j);
 }
 
 void LimitRows(const Model& m, Data& d) {
@@ -229,46 +280,43 @@ void LimitRows(const Model& m, Data& d) {
   StackFrame frame(d);
   double* jac = frame.Alloc(m.nv);
   double* unit = frame.Alloc(m.nv);
+  SolverFrame ints(d.solver_scratch);
+  int* index = ints.Ints(m.nv);
   for (int j = 0; j < m.njnt; j++) {
     if (!m.jnt_limited[j]) continue;
     int type = m.jnt_type[j];
-    if (type == kJointBall) BallLimitRow(m, d, j, jac);
+    if (type == kJointBall) BallLimitRow(m, d, j, jac, index);
     if (type != kJointSlide && type != kJointHinge) continue;
     int dof = m.jnt_dofadr[j];
     unit[dof] = 1;
     ScalarLimitRows(m, d, d.qpos[m.jnt_qposadr[j]], &m.jnt_range[2 * j], m.jnt_margin[j], unit,
-                    jac, kCnstrLimitJoint, j);
+                    jac, index, kCnstrLimitJoint, j);
     unit[dof] = 0;
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (!m.tendon_limited[t]) continue;
     ScalarLimitRows(m, d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t],
-                    RowOf(d.ten_J, t, m.nv), jac, kCnstrLimitTendon, t);
+                    RowOf(d.ten_J, t, m.nv), jac, index, kCnstrLimitTendon, t);
   }
 }
 
 // ---------------------------------------------------------------- contact rows
 
-// Does MuJoCo build this model's constraint Jacobian sparse (jacobian="sparse", or
-// "auto" with 60 dofs or more)? It then skips contacts that move no dof.
-bool SparseJacobian(const Model& m) {
-  return m.opt.jacobian == kJacobianSparse || (m.opt.jacobian == kJacobianAuto && m.nv >= 60);
-}
-
 // Contact rows in the contact frame: the normal (and tangents for dim > 1) from the
 // translation Jacobian difference at the contact point, torsion and rolling (dim > 3)
-// from the rotation difference. `jac` receives dim x nv.
-void ContactJacobian(const Model& m, Data& d, const Contact& c, double* jac, double* scratch) {
-  int nv = m.nv;
+// from the rotation difference. `jac` receives dim x cols.n.
+void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, double* jac,
+                     double* scratch) {
+  int n = cols.n;
   double* jac1p = scratch;
-  double* jac2p = jac1p + 3 * nv;
-  double* jac1r = jac2p + 3 * nv;
-  double* jac2r = jac1r + 3 * nv;
+  double* jac2p = jac1p + 3 * n;
+  double* jac1r = jac2p + 3 * n;
+  double* jac2r = jac1r + 3 * n;
   int b1 = m.geom_bodyid[c.geom[0]], b2 = m.geom_bodyid[c.geom[1]];
   bool rotation = c.dim > 3;
-  Jacobian(m, d, jac1p, rotation ? jac1r : nullptr, c.pos, b1);
-  Jacobian(m, d, jac2p, rotation ? jac2r : nullptr, c.pos, b2);
-  for (int k = 0; k < 3 * nv; k++) {
+  JacobianOnDofs(m, d, cols.dof, n, jac1p, rotation ? jac1r : nullptr, c.pos, b1);
+  JacobianOnDofs(m, d, cols.dof, n, jac2p, rotation ? jac2r : nullptr, c.pos, b2);
+  for (int k = 0; k < 3 * n; k++) {
     jac1p[k] = jac2p[k] - jac1p[k];
     if (rotation) jac1r[k] = jac2r[k] - jac1r[k];
   }
@@ -277,38 +325,40 @@ void ContactJacobian(const Model& m, Data& d, const Contact& c, double* jac, dou
   for (int r = 0; r < c.dim; r++) {
     const double* axis = c.frame + 3 * (r < translation_rows ? r : r - 3);
     const double* dif = r < translation_rows ? jac1p : jac1r;
-    double* row = jac + r * nv;
-    for (int v = 0; v < nv; v++) row[v] = 0;
+    double* row = jac + r * n;
+    for (int v = 0; v < n; v++) row[v] = 0;
     for (int k = 0; k < 3; k++) {
-      for (int v = 0; v < nv; v++) row[v] += axis[k] * dif[k * nv + v];
+      for (int v = 0; v < n; v++) row[v] += axis[k] * dif[k * n + v];
     }
   }
 }
 
 // One contact's rows: frictionless (1 row), a pyramid (a pair of opposing edges per
 // friction direction: normal +- mu_k tangent_k) or an elliptic cone (dim rows).
-void ContactRowsOf(const Model& m, Data& d, int i, double* jac, double* edges,
-                   double* scratch) {
+void ContactRowsOf(const Model& m, Data& d, int i, double* jac, double* edges, double* scratch,
+                   int* index) {
   Contact& c = d.contact[i];
-  int nv = m.nv;
-  ContactJacobian(m, d, c, jac, scratch);
+  Columns cols =
+      BodyPairColumns(m, m.geom_bodyid[c.geom[0]], m.geom_bodyid[c.geom[1]], index);
+  int n = cols.n;
+  ContactJacobian(m, d, c, cols, jac, scratch);
   if (c.dim == 1) {
-    AddRows(m, d, jac, &c.dist, c.includemargin, 0, 1, kCnstrContactFrictionless, i);
+    AddRows(d, jac, cols, &c.dist, c.includemargin, 0, 1, kCnstrContactFrictionless, i);
   } else if (m.opt.cone == kConePyramidal) {
     double pos[2] = {c.dist, c.dist};
     for (int k = 1; k < c.dim; k++) {
       double mu = c.friction[k - 1];
-      for (int v = 0; v < nv; v++) {
-        edges[v] = jac[v] + mu * jac[k * nv + v];
-        edges[nv + v] = jac[v] - mu * jac[k * nv + v];
+      for (int v = 0; v < n; v++) {
+        edges[v] = jac[v] + mu * jac[k * n + v];
+        edges[n + v] = jac[v] - mu * jac[k * n + v];
       }
-      AddRows(m, d, edges, pos, c.includemargin, 0, 2, kCnstrContactPyramidal, i);
+      AddRows(d, edges, cols, pos, c.includemargin, 0, 2, kCnstrContactPyramidal, i);
     }
   } else {
     // Only the normal row has a distance and a margin.
     double pos[6] = {c.dist, 0, 0, 0, 0, 0};
     int first = d.nefc;
-    AddRows(m, d, jac, pos, 0, 0, c.dim, kCnstrContactElliptic, i);
+    AddRows(d, jac, cols, pos, 0, 0, c.dim, kCnstrContactElliptic, i);
     d.efc_margin[first] = c.includemargin;
   }
 }
@@ -320,6 +370,8 @@ void ContactRows(const Model& m, Data& d) {
   double* jac = frame.Alloc(6 * static_cast<size_t>(m.nv));
   double* edges = frame.Alloc(2 * static_cast<size_t>(m.nv));
   double* scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
+  SolverFrame ints(d.solver_scratch);
+  int* index = ints.Ints(m.nv);
   bool sparse = SparseJacobian(m);
   for (int i = 0; i < d.ncon; i++) {
     Contact& c = d.contact[i];
@@ -332,7 +384,7 @@ void ContactRows(const Model& m, Data& d) {
       continue;
     }
     c.efc_address = d.nefc;
-    ContactRowsOf(m, d, i, jac, edges, scratch);
+    ContactRowsOf(m, d, i, jac, edges, scratch, index);
   }
 }
 
@@ -590,8 +642,8 @@ void MakeImpedance(const Model& m, Data& d) {
 }  // namespace
 
 void MakeConstraint(const Model& m, Data& d) {
-  d.ne = d.nf = d.nl = d.nefc = 0;
-  GrowRows(m, d, 0);
+  d.ne = d.nf = d.nl = d.nefc = d.nJ = 0;
+  GrowRows(d, 0, 0);
   if (m.opt.disableflags & kDisableConstraint) return;
   EqualityRows(m, d);
   FrictionRows(m, d);
@@ -603,9 +655,8 @@ void MakeConstraint(const Model& m, Data& d) {
 }
 
 void ReferenceConstraint(const Model& m, Data& d) {
-  int nv = m.nv;
   for (int i = 0; i < d.nefc; i++) {
-    double vel = math::Dot(RowOf(d.efc_J, i, nv), d.qvel.data(), nv);
+    double vel = EfcRowDot(m, d, i, d.qvel.data());
     d.efc_vel[i] = vel;
     const double* kbip = &d.efc_KBIP[4 * i];
     d.efc_aref[i] = -kbip[1] * vel - kbip[0] * kbip[2] * (d.efc_pos[i] - d.efc_margin[i]);

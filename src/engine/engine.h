@@ -66,6 +66,13 @@ void ActuatorVelocity(const Model& m, Data& d);
 // jacr (either may be null), from cdof along the body's dof chain (MuJoCo mj_jac).
 void Jacobian(const Model& m, const Data& d, double* jacp, double* jacr, const double* point,
               int body);
+// The same Jacobians on the columns of the dofs `dofs` only (ascending, n of them; they
+// hold every dof that moves `body`, as MergedDofChain gives): 3 x n each.
+void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, double* jacp,
+                    double* jacr, const double* point, int body);
+// The dofs that move body b0 or b1 (their chains to the root), ascending, into `dofs`
+// (room for nv); returns their count (MuJoCo mj_mergeChain).
+int MergedDofChain(const Model& m, int b0, int b1, int* dofs);
 // Jacobian of site `site`'s position and rotation (MuJoCo mj_jacSite).
 void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site);
 // Translation Jacobian of a point and the Jacobian of a unit axis turning with `body`.

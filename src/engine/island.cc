@@ -40,11 +40,10 @@ int RowTrees(const Model& m, const Data& d, int r, int* trees) {
     trees[1] = m.body_treeid[EqualityBody(m, id, 1)];
     return 2;
   }
-  const double* row = RowOf(d.efc_J, r, m.nv);
   int n = 0;
-  for (int v = 0; v < m.nv; v++) {
-    int tree = m.dof_treeid[v];
-    if (row[v] != 0 && (n == 0 || trees[n - 1] != tree)) trees[n++] = tree;
+  for (int k = d.efc_J_rowadr[r]; k < d.efc_J_rowadr[r] + d.efc_J_rownnz[r]; k++) {
+    int tree = m.dof_treeid[d.efc_J_colind[k]];
+    if (d.efc_J[k] != 0 && (n == 0 || trees[n - 1] != tree)) trees[n++] = tree;
   }
   return n;
 }

@@ -15,6 +15,31 @@
 
 namespace simlab {
 
+namespace {
+
+// Column of dof i in the Jacobians at `offset` from the tree's centre of mass: rotation
+// cdof[0:3] into jacr[k * stride + col], translation cdof[3:6] + w x offset into jacp.
+inline void JacobianColumn(const double* cdof, const double* offset, double* jacp,
+                           double* jacr, int col, int stride) {
+  if (jacr) {
+    for (int k = 0; k < 3; k++) jacr[k * stride + col] = cdof[k];
+  }
+  if (jacp) {
+    double w_cross[3];
+    math::Cross3(w_cross, cdof, offset);
+    for (int k = 0; k < 3; k++) jacp[k * stride + col] = cdof[3 + k] + w_cross[k];
+  }
+}
+
+// The last dof that moves `body` (of its welded ancestor), -1 for the world's bodies.
+int LastDof(const Model& m, int body) {
+  body = m.body_weldid[body];
+  if (body == 0) return -1;
+  return m.body_dofadr[body] + m.body_dofnum[body] - 1;
+}
+
+}  // namespace
+
 void Jacobian(const Model& m, const Data& d, double* jacp, double* jacr, const double* point,
               int body) {
   int nv = m.nv;
@@ -25,22 +50,47 @@ void Jacobian(const Model& m, const Data& d, double* jacp, double* jacr, const d
   }
   if (jacr) std::fill(jacr, jacr + 3 * nv, 0.0);
 
-  // The welded ancestor carries the dofs; a body welded to the world does not move.
-  body = m.body_weldid[body];
-  if (body == 0) return;
-
   // Walk the dof chain up from the last dof that moves the body.
-  for (int i = m.body_dofadr[body] + m.body_dofnum[body] - 1; i >= 0; i = m.dof_parentid[i]) {
-    const double* cdof = &d.cdof[6 * i];
-    if (jacr) {
-      for (int k = 0; k < 3; k++) jacr[k * nv + i] = cdof[k];
-    }
-    if (jacp) {
-      double w_cross[3];
-      math::Cross3(w_cross, cdof, offset);
-      for (int k = 0; k < 3; k++) jacp[k * nv + i] = cdof[3 + k] + w_cross[k];
-    }
+  for (int i = LastDof(m, body); i >= 0; i = m.dof_parentid[i]) {
+    JacobianColumn(&d.cdof[6 * i], offset, jacp, jacr, i, nv);
   }
+}
+
+void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, double* jacp,
+                    double* jacr, const double* point, int body) {
+  double offset[3] = {0, 0, 0};
+  if (jacp) {
+    std::fill(jacp, jacp + 3 * n, 0.0);
+    math::Sub3(offset, point, &d.subtree_com[3 * m.body_rootid[body]]);
+  }
+  if (jacr) std::fill(jacr, jacr + 3 * n, 0.0);
+
+  // The chain runs down the dof indices and `dofs` up them: one pass from the end.
+  int col = n - 1;
+  for (int i = LastDof(m, body); i >= 0; i = m.dof_parentid[i]) {
+    while (col >= 0 && dofs[col] > i) col--;
+    if (col < 0) break;
+    JacobianColumn(&d.cdof[6 * i], offset, jacp, jacr, col, n);
+  }
+}
+
+int MergedDofChain(const Model& m, int b0, int b1, int* dofs) {
+  // Both chains walked up together (descending dof indices), shared ancestors once:
+  // first to count, then to fill the list from its end.
+  auto walk = [&m, b0, b1](auto&& visit) {
+    int i0 = LastDof(m, b0), i1 = LastDof(m, b1);
+    while (i0 >= 0 || i1 >= 0) {
+      int next = std::max(i0, i1);
+      visit(next);
+      if (i0 == next) i0 = m.dof_parentid[i0];
+      if (i1 == next) i1 = m.dof_parentid[i1];
+    }
+  };
+  int n = 0;
+  walk([&n](int) { n++; });
+  int at = n;
+  walk([dofs, &at](int dof) { dofs[--at] = dof; });
+  return n;
 }
 
 void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site) {

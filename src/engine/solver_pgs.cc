@@ -226,7 +226,7 @@ void RunDualSweeps(const Model& m, Data& d, int maxiter, double tolerance,
   d.solver_niter += iter;
 
   // Back to joint space: qfrc_constraint = J^T f, qacc = qacc_smooth + M^-1 qfrc_constraint.
-  math::MulMatTVec(d.qfrc_constraint.data(), d.efc_J.data(), d.efc_force.data(), d.nefc, m.nv);
+  EfcMulTVec(m, d, d.efc_force.data(), d.qfrc_constraint.data());
   d.qacc = d.qfrc_constraint;
   SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qacc.data());
   for (int v = 0; v < m.nv; v++) d.qacc[v] += d.qacc_smooth[v];

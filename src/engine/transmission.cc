@@ -265,8 +265,9 @@ void BodyMoment(const Model& m, Data& d, int body, double* moment) {
   // moment = -(J^T weights + exclude) / count, summed row by row as MuJoCo does.
   for (int r = 0; r < d.nefc; r++) {
     if (weights[r] == 0) continue;
-    const double* row = RowOf(d.efc_J, r, nv);
-    for (int v = 0; v < nv; v++) moment[v] += row[v] * weights[r];
+    for (int k = d.efc_J_rowadr[r]; k < d.efc_J_rowadr[r] + d.efc_J_rownnz[r]; k++) {
+      moment[d.efc_J_colind[k]] += d.efc_J[k] * weights[r];
+    }
   }
   for (int v = 0; v < nv; v++) moment[v] = (moment[v] + exclude[v]) * (-1.0 / count);
 }
