@@ -241,6 +241,11 @@ struct Data {
 #define SIMLAB_X(type, name, cols) std::vector<type> name;
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+  // The dofs where each actuator's row of actuator_moment may be nonzero (set by the
+  // transmission stage): moment_rownnz[i] of them, ascending, from moment_colind[i * nv] on.
+  std::vector<int> moment_rownnz;
+  std::vector<int> moment_colind;
+
   // The constraint Jacobian in compressed rows, nJ entries: row r has efc_J_rownnz[r]
   // entries from efc_J_rowadr[r] on, in the dofs efc_J_colind (ascending). As MuJoCo's
   // (mj_isSparse): with jacobian="sparse", or "auto" and 60 dofs or more, a row holds the

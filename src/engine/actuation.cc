@@ -155,7 +155,10 @@ void Actuation(const Model& m, Data& d) {
   // Joint space, clamped per joint to actuatorfrcrange.
   for (int i = 0; i < m.nu; i++) {
     const double* moment = RowOf(d.actuator_moment, i, m.nv);
-    for (int v = 0; v < m.nv; v++) d.qfrc_actuator[v] += moment[v] * d.actuator_force[i];
+    const int* cols = RowOf(d.moment_colind, i, m.nv);
+    for (int k = 0; k < d.moment_rownnz[i]; k++) {
+      d.qfrc_actuator[cols[k]] += moment[cols[k]] * d.actuator_force[i];
+    }
   }
   AddActuatorGravcomp(m, d);
   for (int j = 0; j < m.njnt; j++) {

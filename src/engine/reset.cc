@@ -35,6 +35,8 @@ void ResetData(const Model& m, Data& d) {
 #define SIMLAB_X(type, name, rows, cols) std::fill(d.name.begin(), d.name.end(), type{});
   SIMLAB_DATA_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+  std::fill(d.moment_rownnz.begin(), d.moment_rownnz.end(), 0);  // actuator_moment is zero
+  d.nJ = 0;
   d.time = 0;
   d.energy[0] = d.energy[1] = 0;
   d.flg_energypos = d.flg_energyvel = d.flg_subtreevel = d.flg_rnepost = false;

@@ -272,12 +272,37 @@ void BodyMoment(const Model& m, Data& d, int body, double* moment) {
   for (int v = 0; v < nv; v++) moment[v] = (moment[v] + exclude[v]) * (-1.0 / count);
 }
 
+// Clears actuator i's row of actuator_moment where it may be nonzero (its last pattern).
+void ClearMomentRow(const Model& m, Data& d, int i) {
+  double* moment = RowOf(d.actuator_moment, i, m.nv);
+  const int* cols = RowOf(d.moment_colind, i, m.nv);
+  for (int k = 0; k < d.moment_rownnz[i]; k++) moment[cols[k]] = 0;
+}
+
+// Records where actuator i's row may be nonzero: a joint's dofs, else the nonzeros.
+void SetMomentPattern(const Model& m, Data& d, int i) {
+  const double* moment = RowOf(d.actuator_moment, i, m.nv);
+  int* cols = RowOf(d.moment_colind, i, m.nv);
+  int n = 0, id = m.actuator_trnid[2 * i];
+  int trntype = m.actuator_trntype[i];
+  if (trntype == kTrnJoint || trntype == kTrnJointInParent) {
+    int type = m.jnt_type[id];
+    int dofs = type == kJointFree ? 6 : type == kJointBall ? 3 : 1;
+    for (; n < dofs; n++) cols[n] = m.jnt_dofadr[id] + n;
+  } else {
+    for (int v = 0; v < m.nv; v++) {
+      if (moment[v] != 0) cols[n++] = v;
+    }
+  }
+  d.moment_rownnz[i] = n;
+}
+
 }  // namespace
 
 void Transmission(const Model& m, Data& d) {
   for (int i = 0; i < m.nu; i++) {
+    ClearMomentRow(m, d, i);
     double* moment = RowOf(d.actuator_moment, i, m.nv);
-    std::fill(moment, moment + m.nv, 0.0);
     int id = m.actuator_trnid[2 * i];
     switch (m.actuator_trntype[i]) {
       case kTrnJoint:
@@ -306,6 +331,7 @@ void Transmission(const Model& m, Data& d) {
         d.actuator_length[i] = 0;
         BodyMoment(m, d, id, moment);
     }
+    SetMomentPattern(m, d, i);
   }
 }
 
@@ -313,8 +339,9 @@ void ActuatorVelocity(const Model& m, Data& d) {
   bool actuation = !(m.opt.disableflags & kDisableActuation);
   for (int i = 0; i < m.nu; i++) {
     const double* moment = RowOf(d.actuator_moment, i, m.nv);
+    const int* cols = RowOf(d.moment_colind, i, m.nv);
     double s = 0;
-    for (int v = 0; v < m.nv && actuation; v++) s += moment[v] * d.qvel[v];
+    for (int k = 0; k < d.moment_rownnz[i] && actuation; k++) s += moment[cols[k]] * d.qvel[cols[k]];
     d.actuator_velocity[i] = s;
   }
 }
