@@ -36,7 +36,7 @@ void WarmStart(const Model& m, Data& d) {
   int nv = m.nv, nefc = d.nefc;
   if (m.opt.disableflags & kDisableWarmstart) {
     d.qacc = d.qacc_smooth;
-    std::fill(d.efc_force.begin(), d.efc_force.end(), 0.0);
+    std::fill_n(d.efc_force.begin(), d.nefc, 0.0);
     return;
   }
   StackFrame frame(d);
@@ -52,7 +52,7 @@ void WarmStart(const Model& m, Data& d) {
     math::MulMatVec(arf, d.efc_AR.data(), d.efc_force.data(), nefc, nefc);
     double dual = math::Dot(d.efc_force.data(), d.efc_b.data(), nefc) +
                   0.5 * math::Dot(d.efc_force.data(), arf, nefc);
-    if (dual > 0) std::fill(d.efc_force.begin(), d.efc_force.end(), 0.0);
+    if (dual > 0) std::fill_n(d.efc_force.begin(), d.nefc, 0.0);
   } else {
     // Primal cost: Gauss term plus constraint cost, against that of qacc_smooth.
     double* ma = frame.Alloc(nv);

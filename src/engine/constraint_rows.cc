@@ -25,15 +25,23 @@ constexpr double kMaxImp = 0.9999;  // mjMAXIMP
 
 // ---------------------------------------------------------------- adding rows
 
-// Grows every efc array by `size` rows of `width` Jacobian entries each.
+// Makes room in `array` for `needed` entries: the arrays keep their size from step to
+// step (nefc and nJ say how much is in use), growing by half again when short, so that
+// steady steps neither allocate nor clear what the rows overwrite.
+template <typename T>
+void Reserve(std::vector<T>& array, size_t needed) {
+  if (array.size() < needed) array.resize(std::max(needed, array.size() + array.size() / 2));
+}
+
+// Room in every efc array for `size` more rows of `width` Jacobian entries each.
 void GrowRows(Data& d, int size, int width) {
   size_t rows = static_cast<size_t>(d.nefc + size);
-#define SIMLAB_X(type, name, cols) d.name.resize(rows * (cols));
+#define SIMLAB_X(type, name, cols) Reserve(d.name, rows * (cols));
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
   size_t entries = static_cast<size_t>(d.nJ) + static_cast<size_t>(size) * width;
-  d.efc_J.resize(entries);
-  d.efc_J_colind.resize(entries);
+  Reserve(d.efc_J, entries);
+  Reserve(d.efc_J_colind, entries);
 }
 
 // The columns of a group of rows: the dofs `dof` (ascending), `n` of them.
@@ -246,16 +254,29 @@ void FrictionRows(const Model& m, Data& d) {
   }
 }
 
-// Lower and upper limit of a scalar quantity with Jacobian `grad`: a row for each side
-// closer than the margin, pointing into the allowed range.
-void ScalarLimitRows(const Model& m, Data& d, double value, const double* range, double margin,
-                     const double* grad, double* jac, int* index, ConstraintType type, int id) {
+// Lower and upper limit of a scalar quantity with Jacobian `grad` on the columns `cols`:
+// a row for each side closer than the margin, pointing into the allowed range.
+void ScalarLimitRows(Data& d, double value, const double* range, double margin,
+                     const double* grad, Columns cols, double* jac, ConstraintType type, int id) {
   for (int side = -1; side <= 1; side += 2) {
     double dist = side * (range[(side + 1) / 2] - value);
     if (dist >= margin) continue;
-    for (int v = 0; v < m.nv; v++) jac[v] = -side * grad[v];
-    AddDenseRows(m, d, jac, index, &dist, margin, 0, 1, type, id);
+    for (int k = 0; k < cols.n; k++) jac[k] = -side * grad[k];
+    AddRows(d, jac, cols, &dist, margin, 0, 1, type, id);
   }
+}
+
+// The columns of a dense row `row` (nv): all dofs with a dense Jacobian, else its nonzeros,
+// whose values go to `values`.
+Columns RowColumns(const Model& m, const double* row, int* index, double* values) {
+  bool sparse = SparseJacobian(m);
+  int n = 0;
+  for (int v = 0; v < m.nv; v++) {
+    if (sparse && row[v] == 0) continue;
+    index[n] = v;
+    values[n++] = row[v];
+  }
+  return Columns{index, n};
 }
 
 // Ball joint limit: the rotation angle stays below the larger range value.
@@ -280,23 +301,28 @@ void LimitRows(const Model& m, Data& d) {
   StackFrame frame(d);
   double* jac = frame.Alloc(m.nv);
   double* unit = frame.Alloc(m.nv);
+  double* grad = frame.Alloc(m.nv);
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
+  bool sparse = SparseJacobian(m);
   for (int j = 0; j < m.njnt; j++) {
     if (!m.jnt_limited[j]) continue;
     int type = m.jnt_type[j];
     if (type == kJointBall) BallLimitRow(m, d, j, jac, index);
     if (type != kJointSlide && type != kJointHinge) continue;
+    // The joint's own dof: one column when sparse, a unit row when dense.
     int dof = m.jnt_dofadr[j];
     unit[dof] = 1;
-    ScalarLimitRows(m, d, d.qpos[m.jnt_qposadr[j]], &m.jnt_range[2 * j], m.jnt_margin[j], unit,
-                    jac, index, kCnstrLimitJoint, j);
+    Columns cols = sparse ? Columns{&dof, 1} : RowColumns(m, unit, index, grad);
+    ScalarLimitRows(d, d.qpos[m.jnt_qposadr[j]], &m.jnt_range[2 * j], m.jnt_margin[j],
+                    sparse ? unit + dof : grad, cols, jac, kCnstrLimitJoint, j);
     unit[dof] = 0;
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (!m.tendon_limited[t]) continue;
-    ScalarLimitRows(m, d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t],
-                    RowOf(d.ten_J, t, m.nv), jac, index, kCnstrLimitTendon, t);
+    Columns cols = RowColumns(m, RowOf(d.ten_J, t, m.nv), index, grad);
+    ScalarLimitRows(d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t], grad, cols,
+                    jac, kCnstrLimitTendon, t);
   }
 }
 
@@ -643,7 +669,6 @@ void MakeImpedance(const Model& m, Data& d) {
 
 void MakeConstraint(const Model& m, Data& d) {
   d.ne = d.nf = d.nl = d.nefc = d.nJ = 0;
-  GrowRows(d, 0, 0);
   if (m.opt.disableflags & kDisableConstraint) return;
   EqualityRows(m, d);
   FrictionRows(m, d);
