@@ -82,13 +82,12 @@ void Gather(const std::vector<T>& src, const int* index, int n, T* dst) {
 }
 
 // The problem over the given dofs (ascending) and rows (ascending), in arrays of `frame`.
+// `local` (m.nv entries, -1 outside the problem) receives each dof's index in the problem.
 ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, const int* rows,
-                              int nefc, SolverFrame& frame) {
+                              int nefc, int* local, SolverFrame& frame) {
   ConstraintProblem p;
   p.nv = nv;
   p.nefc = nefc;
-  int* local = frame.Ints(m.nv);
-  std::fill(local, local + m.nv, -1);
   int nnz = 0;
   for (int i = 0; i < nv; i++) {
     local[dofs[i]] = i;
@@ -160,25 +159,41 @@ void Scatter(const ConstraintProblem& p, const int* dofs, const int* rows, bool 
   d.solver_niter += p.niter;
 }
 
-// The indices i < n with label[i] == wanted, into `out`; returns their count.
-int Select(const int* label, int n, int wanted, int* out) {
-  int count = 0;
+// The indices i < n grouped by label (0..nlabel-1; other labels left out), ascending
+// within each group: group g is order[start[g]] .. order[start[g + 1] - 1].
+void GroupByLabel(const int* label, int n, int nlabel, int* start, int* order) {
+  std::fill(start, start + nlabel + 1, 0);
   for (int i = 0; i < n; i++) {
-    if (label[i] == wanted) out[count++] = i;
+    if (label[i] >= 0 && label[i] < nlabel) start[label[i] + 1]++;
   }
-  return count;
+  for (int g = 0; g < nlabel; g++) start[g + 1] += start[g];
+  for (int i = 0; i < n; i++) {
+    if (label[i] >= 0 && label[i] < nlabel) order[start[label[i]]++] = i;
+  }
+  for (int g = nlabel; g > 0; g--) start[g] = start[g - 1];
+  start[0] = 0;
 }
 
 // Newton or CG on each island; the scale is the island's total dof inertia.
 void SolveIslands(const Model& m, Data& d) {
   bool newton = m.opt.solver == kSolverNewton;
+  SolverFrame groups(d.solver_scratch);
+  int* dof_start = groups.Ints(d.nisland + 1);
+  int* dof_order = groups.Ints(m.nv);
+  int* row_start = groups.Ints(d.nisland + 1);
+  int* row_order = groups.Ints(d.nefc);
+  int* local = groups.Ints(m.nv);
+  GroupByLabel(d.dof_island.data(), m.nv, d.nisland, dof_start, dof_order);
+  GroupByLabel(d.efc_island.data(), d.nefc, d.nisland, row_start, row_order);
+  std::fill(local, local + m.nv, -1);
   for (int island = 0; island < d.nisland; island++) {
     SolverFrame frame(d.solver_scratch);
-    int* dofs = frame.Ints(m.nv);
-    int* rows = frame.Ints(d.nefc);
-    int nv = Select(d.dof_island.data(), m.nv, island, dofs);
-    int nefc = Select(d.efc_island.data(), d.nefc, island, rows);
-    ConstraintProblem p = MakeProblem(m, d, dofs, nv, rows, nefc, frame);
+    const int* dofs = dof_order + dof_start[island];
+    const int* rows = row_order + row_start[island];
+    int nv = dof_start[island + 1] - dof_start[island];
+    int nefc = row_start[island + 1] - row_start[island];
+    ConstraintProblem p = MakeProblem(m, d, dofs, nv, rows, nefc, local, frame);
+    for (int i = 0; i < nv; i++) local[dofs[i]] = -1;
     double inertia = 0;
     for (int i = 0; i < p.nv; i++) inertia += p.M[p.M_rowadr[i] + p.M_rownnz[i] - 1];
     p.scale = 1 / inertia;
@@ -192,9 +207,10 @@ void SolveWhole(const Model& m, Data& d) {
   SolverFrame frame(d.solver_scratch);
   int* dofs = frame.Ints(m.nv);
   int* rows = frame.Ints(d.nefc);
+  int* local = frame.Ints(m.nv);
   for (int v = 0; v < m.nv; v++) dofs[v] = v;
   for (int r = 0; r < d.nefc; r++) rows[r] = r;
-  ConstraintProblem p = MakeProblem(m, d, dofs, m.nv, rows, d.nefc, frame);
+  ConstraintProblem p = MakeProblem(m, d, dofs, m.nv, rows, d.nefc, local, frame);
   p.scale = 1 / (m.stat.meaninertia * std::max(1, m.nv));
   SolvePrimal(m, p, m.opt.solver == kSolverNewton, d.solver_scratch);
   Scatter(p, dofs, rows, true, d);
