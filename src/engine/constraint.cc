@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <type_traits>
 #include <vector>
 
 #include "engine/constraint.h"
@@ -75,10 +76,17 @@ void WarmStart(const Model& m, Data& d) {
 
 // ---------------------------------------------------------------- problems
 
-// dst[i] = src[index[i]] for i < n.
+// src[index[i]] for i < n, in an array of `frame`.
 template <class T>
-void Gather(const std::vector<T>& src, const int* index, int n, T* dst) {
+T* Gather(const std::vector<T>& src, const int* index, int n, SolverFrame& frame) {
+  T* dst;
+  if constexpr (std::is_same_v<T, int>) {
+    dst = frame.Ints(n);
+  } else {
+    dst = frame.Reals(n);
+  }
   for (int i = 0; i < n; i++) dst[i] = src[index[i]];
+  return dst;
 }
 
 // The problem over the given dofs (ascending) and rows (ascending), in arrays of `frame`.
@@ -95,50 +103,93 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
   }
 
   // Inertia rows of the dofs: their ancestors are in the same tree, so in the problem.
-  for (int** a : {&p.M_rownnz, &p.M_rowadr}) *a = frame.Ints(nv);
-  p.M_colind = frame.Ints(nnz);
-  for (double** a : {&p.M, &p.qLD}) *a = frame.Reals(nnz);
-  for (double** a : {&p.qLDiagInv, &p.qfrc_smooth, &p.qacc_smooth, &p.qacc, &p.qfrc_constraint}) {
-    *a = frame.Reals(nv);
-  }
+  int* rownnz = frame.Ints(nv);
+  int* rowadr = frame.Ints(nv);
+  int* colind = frame.Ints(nnz);
+  double* mass = frame.Reals(nnz);
+  double* factor = frame.Reals(nnz);
   int adr = 0;
   for (int i = 0; i < nv; i++) {
     int v = dofs[i];
-    p.M_rowadr[i] = adr;
-    p.M_rownnz[i] = m.M_rownnz[v];
+    rowadr[i] = adr;
+    rownnz[i] = m.M_rownnz[v];
     for (int k = m.M_rowadr[v]; k < m.M_rowadr[v] + m.M_rownnz[v]; k++, adr++) {
-      p.M_colind[adr] = local[m.M_colind[k]];
-      p.M[adr] = d.M[k];
-      p.qLD[adr] = d.qLD[k];
+      colind[adr] = local[m.M_colind[k]];
+      mass[adr] = d.M[k];
+      factor[adr] = d.qLD[k];
     }
   }
-  Gather(d.qLDiagInv, dofs, nv, p.qLDiagInv);
-  Gather(d.qfrc_smooth, dofs, nv, p.qfrc_smooth);
-  Gather(d.qacc_smooth, dofs, nv, p.qacc_smooth);
-  Gather(d.qacc, dofs, nv, p.qacc);
+  p.M_rownnz = rownnz;
+  p.M_rowadr = rowadr;
+  p.M_colind = colind;
+  p.M = mass;
+  p.qLD = factor;
+  p.qLDiagInv = Gather(d.qLDiagInv, dofs, nv, frame);
+  p.qfrc_smooth = Gather(d.qfrc_smooth, dofs, nv, frame);
+  p.qacc_smooth = Gather(d.qacc_smooth, dofs, nv, frame);
+  p.qacc = Gather(d.qacc, dofs, nv, frame);
+  p.qfrc_constraint = frame.Reals(nv);
 
   // Rows, with the Jacobian restricted to the problem's dofs.
-  p.J = frame.Reals(static_cast<size_t>(nefc) * nv);
-  for (double** a : {&p.D, &p.R, &p.frictionloss, &p.aref, &p.force}) *a = frame.Reals(nefc);
-  for (int** a : {&p.type, &p.id, &p.state}) *a = frame.Ints(nefc);
+  double* jac = frame.Reals(static_cast<size_t>(nefc) * nv);
   for (int r = 0; r < nefc; r++) {
     int e = rows[r];
     if (d.efc_type[e] == kCnstrEquality) p.ne++;
     if (d.efc_type[e] == kCnstrFrictionDof || d.efc_type[e] == kCnstrFrictionTendon) p.nf++;
-    double* row = p.J + static_cast<size_t>(r) * nv;
+    double* row = jac + static_cast<size_t>(r) * nv;
     for (int k = d.efc_J_rowadr[e]; k < d.efc_J_rowadr[e] + d.efc_J_rownnz[e]; k++) {
       int i = local[d.efc_J_colind[k]];
       if (i >= 0) row[i] = d.efc_J[k];
     }
   }
-  Gather(d.efc_D, rows, nefc, p.D);
-  Gather(d.efc_R, rows, nefc, p.R);
-  Gather(d.efc_frictionloss, rows, nefc, p.frictionloss);
-  Gather(d.efc_aref, rows, nefc, p.aref);
-  Gather(d.efc_type, rows, nefc, p.type);
-  Gather(d.efc_id, rows, nefc, p.id);
+  p.J = jac;
+  p.D = Gather(d.efc_D, rows, nefc, frame);
+  p.R = Gather(d.efc_R, rows, nefc, frame);
+  p.frictionloss = Gather(d.efc_frictionloss, rows, nefc, frame);
+  p.aref = Gather(d.efc_aref, rows, nefc, frame);
+  p.type = Gather(d.efc_type, rows, nefc, frame);
+  p.id = Gather(d.efc_id, rows, nefc, frame);
+  p.force = frame.Reals(nefc);
+  p.state = frame.Ints(nefc);
   p.contact = d.contact.data();
   return p;
+}
+
+// The problem over every dof and row in Data's own arrays, without copies: possible when
+// efc_J is dense (nv columns per row). The solution is written into Data directly; row
+// states go to `state`.
+ConstraintProblem WholeProblem(const Model& m, Data& d, int* state) {
+  ConstraintProblem p;
+  p.nv = m.nv;
+  p.nefc = d.nefc;
+  p.ne = d.ne;
+  p.nf = d.nf;
+  p.M_rownnz = m.M_rownnz.data();
+  p.M_rowadr = m.M_rowadr.data();
+  p.M_colind = m.M_colind.data();
+  p.M = d.M.data();
+  p.qLD = d.qLD.data();
+  p.qLDiagInv = d.qLDiagInv.data();
+  p.qfrc_smooth = d.qfrc_smooth.data();
+  p.qacc_smooth = d.qacc_smooth.data();
+  p.qacc = d.qacc.data();
+  p.qfrc_constraint = d.qfrc_constraint.data();
+  p.J = d.efc_J.data();
+  p.D = d.efc_D.data();
+  p.R = d.efc_R.data();
+  p.frictionloss = d.efc_frictionloss.data();
+  p.aref = d.efc_aref.data();
+  p.type = d.efc_type.data();
+  p.id = d.efc_id.data();
+  p.force = d.efc_force.data();
+  p.state = state;
+  p.contact = d.contact.data();
+  return p;
+}
+
+// Is efc_J the dense nefc x nv matrix (every row holding every dof)?
+bool DenseRows(const Model& m, const Data& d) {
+  return !SparseJacobian(m) && static_cast<size_t>(d.nJ) == static_cast<size_t>(d.nefc) * m.nv;
 }
 
 // Copies a solved problem's results back into Data. Row states only with `states`: MuJoCo
@@ -148,6 +199,8 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
 void Scatter(const ConstraintProblem& p, const int* dofs, const int* rows, bool states,
              Data& d) {
   if (p.nonconvex > 0) RaiseWarning(d, kWarnLineSearch, p.nonconvex);
+  d.solver_niter += p.niter;
+  if (!dofs) return;  // a WholeProblem: solved in place
   for (int i = 0; i < p.nv; i++) {
     d.qacc[dofs[i]] = p.qacc[i];
     d.qfrc_constraint[dofs[i]] = p.qfrc_constraint[i];
@@ -156,7 +209,6 @@ void Scatter(const ConstraintProblem& p, const int* dofs, const int* rows, bool 
     d.efc_force[rows[r]] = p.force[r];
     if (states) d.efc_state[rows[r]] = p.state[r];
   }
-  d.solver_niter += p.niter;
 }
 
 // The indices i < n grouped by label (0..nlabel-1; other labels left out), ascending
@@ -192,8 +244,12 @@ void SolveIslands(const Model& m, Data& d) {
     const int* rows = row_order + row_start[island];
     int nv = dof_start[island + 1] - dof_start[island];
     int nefc = row_start[island + 1] - row_start[island];
-    ConstraintProblem p = MakeProblem(m, d, dofs, nv, rows, nefc, local, frame);
-    for (int i = 0; i < nv; i++) local[dofs[i]] = -1;
+    // One island holding everything is solved in Data's arrays (its states apart).
+    bool whole = nv == m.nv && nefc == d.nefc && DenseRows(m, d);
+    ConstraintProblem p = whole ? WholeProblem(m, d, frame.Ints(nefc))
+                                : MakeProblem(m, d, dofs, nv, rows, nefc, local, frame);
+    for (int i = 0; i < nv && !whole; i++) local[dofs[i]] = -1;
+    if (whole) dofs = rows = nullptr;
     double inertia = 0;
     for (int i = 0; i < p.nv; i++) inertia += p.M[p.M_rowadr[i] + p.M_rownnz[i] - 1];
     p.scale = 1 / inertia;
@@ -210,10 +266,12 @@ void SolveWhole(const Model& m, Data& d) {
   int* local = frame.Ints(m.nv);
   for (int v = 0; v < m.nv; v++) dofs[v] = v;
   for (int r = 0; r < d.nefc; r++) rows[r] = r;
-  ConstraintProblem p = MakeProblem(m, d, dofs, m.nv, rows, d.nefc, local, frame);
+  bool whole = DenseRows(m, d);
+  ConstraintProblem p = whole ? WholeProblem(m, d, d.efc_state.data())
+                              : MakeProblem(m, d, dofs, m.nv, rows, d.nefc, local, frame);
   p.scale = 1 / (m.stat.meaninertia * std::max(1, m.nv));
   SolvePrimal(m, p, m.opt.solver == kSolverNewton, d.solver_scratch);
-  Scatter(p, dofs, rows, true, d);
+  Scatter(p, whole ? nullptr : dofs, rows, true, d);
 }
 
 }  // namespace

@@ -98,16 +98,19 @@ struct ConstraintProblem {
 
   // dofs: inertia in the tree-sparse lower-triangle layout of Model::M_*, with its
   // L^T D L factor, and the smooth force/acceleration; qacc is the solver's iterate.
-  int *M_rownnz = nullptr, *M_rowadr = nullptr, *M_colind = nullptr;
-  double *M = nullptr, *qLD = nullptr, *qLDiagInv = nullptr;
-  double *qfrc_smooth = nullptr, *qacc_smooth = nullptr, *qacc = nullptr;
+  const int *M_rownnz = nullptr, *M_rowadr = nullptr, *M_colind = nullptr;
+  const double *M = nullptr, *qLD = nullptr, *qLDiagInv = nullptr;
+  const double *qfrc_smooth = nullptr, *qacc_smooth = nullptr;
+  double* qacc = nullptr;
   double* qfrc_constraint = nullptr;
 
   // rows: dense Jacobian (nefc x nv) and the per-row data the cost needs; id is efc_id
   // (the contact of a contact row), contact is Data's contact list.
-  double *J = nullptr, *D = nullptr, *R = nullptr, *frictionloss = nullptr;
-  double *aref = nullptr, *force = nullptr;
-  int *type = nullptr, *id = nullptr, *state = nullptr;
+  const double *J = nullptr, *D = nullptr, *R = nullptr, *frictionloss = nullptr;
+  const double* aref = nullptr;
+  double* force = nullptr;
+  const int *type = nullptr, *id = nullptr;
+  int* state = nullptr;
   Contact* contact = nullptr;
 
   double scale = 1;  // 1 / (total inertia): makes tolerances unit-free
