@@ -145,12 +145,11 @@ void PrintReport(std::ostream& out, const Model& m, const BenchOptions& o,
 }  // namespace
 
 double Halton(int index, int base) {
-  double n = index, b = base, f = 1 / b, h = 0;
-  while (n > 0) {
-    double next = std::floor(n / b);
-    h += f * (n - next * b);
+  const double b = base;
+  double f = 1 / b, h = 0;
+  for (int n = index; n > 0; n /= base) {
+    h += f * (n % base);
     f /= b;
-    n = next;
   }
   return h;
 }

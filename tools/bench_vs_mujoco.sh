@@ -11,7 +11,8 @@
 # time of each process (user + system, from the kernel), not wall time: the machine is
 # shared. Loading a model is taken out by running every command twice, with N steps and
 # with N0 = N/10 steps: steps/s = (N - N0) / (cpu(N) - cpu(N0)), each cpu the median of
-# the rounds. The commands of one round run one after the other, both engines in turn.
+# the rounds. The commands of one round run one after the other, both engines in turn,
+# and the ratio printed is the median over the rounds of each round's ratio.
 #
 # The step counts make each run about a second. Workloads agree step for step (the same
 # contacts and rows per step) except where MuJoCo 3.12 changed its colliders: box-box is a
@@ -101,20 +102,27 @@ for name, path, steps in models:
         for count in (n, n0):
             for e in order:
                 times[e][count].append(cpu(engines[e](path, count), os.path.dirname(path)))
-    sps = {}
-    for e in engines:
-        if any(t is None for t in times[e][n] + times[e][n0]):
-            sps[e] = None
-            continue
-        dt = statistics.median(times[e][n]) - statistics.median(times[e][n0])
-        sps[e] = (n - n0) / dt if dt > 0 else None
+    # steps/s per engine from the medians; the ratio is the median of the rounds' own
+    # ratios (both engines timed within the same round, so slow spells of a shared
+    # machine fall on both).
+    def rate(e, r=None):
+        tn, t0 = times[e][n], times[e][n0]
+        if any(t is None for t in tn + t0):
+            return None
+        dt = statistics.median(tn) - statistics.median(t0) if r is None else tn[r] - t0[r]
+        return (n - n0) / dt if dt > 0 else None
+    sps = {e: rate(e) for e in engines}
+    def ratio_of(e):
+        rs = [rate("simlab", r) / rate(e, r) for r in range(rounds)
+              if rate("simlab", r) and rate(e, r)]
+        return statistics.median(rs) if rs else None
     def fmt(x, w):
         return f"{x:{w}.0f}" if x else f"{'-':>{w}s}"
-    ratio = sps["simlab"] / sps["mujoco"] if sps["simlab"] and sps["mujoco"] else None
+    ratio = ratio_of("mujoco")
     line = f"{name:20s} {fmt(sps['simlab'], 10)} {fmt(sps['mujoco'], 12)} "
     line += f"{ratio:6.2f}" if ratio else f"{'-':>6s}"
     if old:
-        r2 = sps["simlab"] / sps["2.2.2"] if sps["simlab"] and sps["2.2.2"] else None
+        r2 = ratio_of("2.2.2")
         line += f"   {fmt(sps['2.2.2'], 9)} " + (f"{r2:6.2f}" if r2 else f"{'-':>6s}")
     print(line, flush=True)
 PY

@@ -69,7 +69,7 @@ struct Contact {
 struct BroadPhaseScratch {
   std::vector<int> pairs;
   std::vector<int> bodies;
-  std::vector<std::pair<float, int>> ends;
+  std::vector<uint64_t> ends;
   std::vector<int> open;
 };
 

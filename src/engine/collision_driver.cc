@@ -9,6 +9,8 @@
 // with its single-precision ends, so that even touching boxes pair up as in MuJoCo.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -332,26 +334,28 @@ void BodyBox(const Model& m, const Data& d, int b, const double* frame, double* 
 // ones whose boxes also overlap on the other two axes. Calls add(b1, b2) per candidate.
 template <typename Add>
 void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
-  constexpr int kEnd = 0x10000;
-  // (a NaN bound sorts last, so that the order stays a strict weak one)
-  auto key = [](double x) {
-    return std::isnan(x) ? std::numeric_limits<float>::infinity() : static_cast<float>(x);
+  // Each end as one integer key: its value in single precision mapped to unsigned bits
+  // in the same order (a NaN as +inf, -0 as +0), then 2 body + 1 for an upper end, so
+  // that ties keep the order the ends were added in (by body, its lower end first).
+  auto key = [](double x, int tie) {
+    float f = std::isnan(x) ? std::numeric_limits<float>::infinity() : static_cast<float>(x);
+    if (f == 0) f = 0;
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+    return (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(tie);
   };
   s.ends.clear();
   for (int b : s.bodies) {
-    s.ends.emplace_back(key(boxes[6 * b]), b);
-    s.ends.emplace_back(key(boxes[6 * b + 3]), b + kEnd);
+    s.ends.push_back(key(boxes[6 * b], 2 * b));
+    s.ends.push_back(key(boxes[6 * b + 3], 2 * b + 1));
   }
-  // Stably by value: ties in the order the ends were added (by body, its lower end
-  // first), by std::sort, which unlike std::stable_sort takes no buffer from the heap.
-  auto added = [](int id) { return 2 * (id % kEnd) + (id >= kEnd ? 1 : 0); };
-  std::sort(s.ends.begin(), s.ends.end(), [&](const auto& a, const auto& b) {
-    return a.first < b.first || (a.first == b.first && added(a.second) < added(b.second));
-  });
+  std::sort(s.ends.begin(), s.ends.end());
   s.open.clear();
-  for (const auto& [value, id] : s.ends) {
-    if (id >= kEnd) {
-      s.open.erase(std::find(s.open.begin(), s.open.end(), id - kEnd));
+  for (uint64_t end : s.ends) {
+    int id = static_cast<int>((end & 0xFFFFFFFFu) >> 1);
+    if (end & 1) {
+      s.open.erase(std::find(s.open.begin(), s.open.end(), id));
       continue;
     }
     const double* x2 = boxes + 6 * id;

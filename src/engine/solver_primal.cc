@@ -231,8 +231,10 @@ struct Primal {
   // keeps the previous gradients and the change of the preconditioned one.
   double *ma, *mv, *grad, *mgrad, *search, *gradold, *mgradold, *mgrad_change;
   // Newton: Cholesky factor of M + J^T D_active J (nv x nv), the same plus the cone-zone
-  // contacts' Hessians, and room for update vectors (one per row of a contact).
+  // contacts' Hessians, and room for update vectors (one per row of a contact); the
+  // nonzero columns of each row of J (row r: nonzero[r * nv ..], nnz[r] of them).
   double *hessian = nullptr, *hessian_cone = nullptr, *updates = nullptr;
+  int *nonzero = nullptr, *nnz = nullptr;
   double cost = 0;
   double quad_gauss[3] = {0, 0, 0};
   int ncone = 0;  // rows in the cone state
@@ -253,6 +255,21 @@ struct Primal {
     if (newton) hessian = frame.Reals(square);
     if (newton && elliptic) hessian_cone = frame.Reals(square);
     if (newton) updates = frame.Reals(6 * static_cast<size_t>(nv));
+    if (newton) FindNonzeros(frame);
+  }
+
+  // The nonzero columns of every row of J, ascending.
+  void FindNonzeros(SolverFrame& frame) {
+    int nv = p.nv;
+    nonzero = frame.Ints(static_cast<size_t>(p.nefc) * nv);
+    nnz = frame.Ints(p.nefc);
+    for (int r = 0; r < p.nefc; r++) {
+      const double* row = &p.J[static_cast<size_t>(r) * nv];
+      int* cols = &nonzero[static_cast<size_t>(r) * nv];
+      for (int v = 0; v < nv; v++) {
+        if (row[v] != 0) cols[nnz[r]++] = v;
+      }
+    }
   }
 
   // The factor Newton steps with: with the cones' curvature when any contact is in the cone.
@@ -320,13 +337,15 @@ void FactorHessian(Primal& s) {
   int nv = p.nv;
   double* h = s.hessian;
   std::fill(h, h + static_cast<size_t>(nv) * nv, 0.0);
+  // (only the rows' nonzeros: the zeros would add exact zeros to the same sums)
   for (int r = 0; r < p.nefc; r++) {
     if (p.state[r] != kStateQuadratic) continue;
     const double* row = &p.J[static_cast<size_t>(r) * nv];
-    for (int i = 0; i < nv; i++) {
+    const int* cols = &s.nonzero[static_cast<size_t>(r) * nv];
+    for (int a = 0; a < s.nnz[r]; a++) {
+      int i = cols[a];
       double scaled = row[i] * p.D[r];
-      if (row[i] == 0) continue;
-      for (int j = 0; j <= i; j++) h[i * nv + j] += scaled * row[j];
+      for (int b = 0; b <= a; b++) h[i * nv + cols[b]] += scaled * row[cols[b]];
     }
   }
   for (int i = 0; i < nv; i++) {
