@@ -10,9 +10,10 @@
 # Ornstein-Uhlenbeck control noise; contacts and rows per step agree). Time is the CPU
 # time of each process (user + system, from the kernel), not wall time: the machine is
 # shared. Loading a model is taken out by running every command twice, with N steps and
-# with N0 = N/10 steps: steps/s = (N - N0) / (cpu(N) - cpu(N0)), each cpu the median of
-# the rounds. The commands of one round run one after the other, both engines in turn,
-# and the ratio printed is the median over the rounds of each round's ratio.
+# with N0 = N/10 steps: steps/s = (N - N0) / (cpu(N) - cpu(N0)), each cpu the least of
+# the rounds (other work on a shared machine only adds time: a virtual machine's runs of
+# one binary vary by up to 40%). The commands of one round run one after the other, both
+# engines in turn.
 #
 # The step counts make each run about a second. Workloads agree step for step (the same
 # contacts and rows per step) except where MuJoCo 3.12 changed its colliders: box-box is a
@@ -102,20 +103,17 @@ for name, path, steps in models:
         for count in (n, n0):
             for e in order:
                 times[e][count].append(cpu(engines[e](path, count), os.path.dirname(path)))
-    # steps/s per engine from the medians; the ratio is the median of the rounds' own
-    # ratios (both engines timed within the same round, so slow spells of a shared
-    # machine fall on both).
-    def rate(e, r=None):
+    # steps/s per engine from the least CPU time of the rounds (on a shared machine other
+    # work only ever adds time), and the ratio of those.
+    def rate(e):
         tn, t0 = times[e][n], times[e][n0]
         if any(t is None for t in tn + t0):
             return None
-        dt = statistics.median(tn) - statistics.median(t0) if r is None else tn[r] - t0[r]
+        dt = min(tn) - min(t0)
         return (n - n0) / dt if dt > 0 else None
     sps = {e: rate(e) for e in engines}
     def ratio_of(e):
-        rs = [rate("simlab", r) / rate(e, r) for r in range(rounds)
-              if rate("simlab", r) and rate(e, r)]
-        return statistics.median(rs) if rs else None
+        return sps["simlab"] / sps[e] if sps["simlab"] and sps[e] else None
     def fmt(x, w):
         return f"{x:{w}.0f}" if x else f"{'-':>{w}s}"
     ratio = ratio_of("mujoco")
