@@ -235,13 +235,18 @@ void CollideGeoms(const Model& m, Data& d, int g1, int g2, int ipair) {
     d.contact.resize(static_cast<size_t>(d.ncon + kMaxContactPair) * 2);
   }
   Contact* con = &d.contact[d.ncon];
-  // Narrow-phase functions write dist, pos and the normal, and a tangent only when
-  // they choose one: clear the tangents (the rest is set below).
-  for (int i = 0; i < kMaxContactPair; i++) std::fill(con[i].frame + 3, con[i].frame + 9, 0.0);
   int num = collide(m, d, con, g1, g2, margin);
   if (num <= 0) return;
   if (m.geom_type[g1] == kGeomBox && m.geom_type[g2] == kGeomBox) {
     num = CleanBoxBox(m, d, con, num, g1, g2, margin);
+  }
+  // Narrow-phase functions write dist, pos and the normal; only the plane-capsule one
+  // chooses a first tangent (the capsule's axis). The others' tangents are cleared for
+  // SetContact to complete the frame.
+  if (collide != CollidePlaneCapsule) {
+    for (int i = 0; i < num; i++) std::fill(con[i].frame + 3, con[i].frame + 9, 0.0);
+  } else {
+    for (int i = 0; i < num; i++) std::fill(con[i].frame + 6, con[i].frame + 9, 0.0);
   }
 
   // Parameters: the pair's own, or combined from the two geoms.
