@@ -2,7 +2,7 @@
 # Steps per second of simlab beside MuJoCo 3.12 (and Debian's 2.2.2) on the same models,
 # interleaved in one run on one machine, and the ratio simlab / MuJoCo.
 #
-#   tools/bench_vs_mujoco.sh [--rounds R] [--only NAME] [BUILD_DIR]
+#   tools/bench_vs_mujoco.sh [--rounds R] [--only NAME] [--cpu C] [BUILD_DIR]
 #
 # Both engines run the same workload: MuJoCo's own `testspeed` (built from source by
 # ../shared/oracle/native/build.sh into $MUJOCO_NATIVE, default /work/mujoco-native) and
@@ -13,7 +13,9 @@
 # with N0 = N/10 steps: steps/s = (N - N0) / (cpu(N) - cpu(N0)), each cpu the least of
 # the rounds (other work on a shared machine only adds time: a virtual machine's runs of
 # one binary vary by up to 40%). The commands of one round run one after the other, both
-# engines in turn.
+# engines in turn; --cpu C pins every run to CPU C. (The two virtual CPUs of the machine
+# this was written on swap between a fast and a 30% slower state every minute or so:
+# the least time of many rounds is each engine's time in the fast state.)
 #
 # The step counts make each run about a second. Workloads agree step for step (the same
 # contacts and rows per step) except where MuJoCo 3.12 changed its colliders: box-box is a
@@ -25,11 +27,12 @@
 # centre), so its workload differs slightly, and it cannot load 3.x-only models (-).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
-rounds=5 only="" build=$here/build
+rounds=9 only="" cpu="" build=$here/build
 while [ $# -gt 0 ]; do
   case $1 in
     --rounds) rounds=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
+    --cpu) cpu=$2; shift 2 ;;
     *) build=$1; shift ;;
   esac
 done
@@ -68,18 +71,19 @@ old=$(command -v mujoco-testspeed || true)
 echo "simlab: $build/simlab ($(git -C "$here" rev-parse --short HEAD))"
 echo "MuJoCo: $testspeed ($(basename "$(readlink -f "$native/build/lib/libmujoco.so")"))"
 echo "Debian MuJoCo 2.2.2: ${old:-not installed (apt-get install libmujoco-samples)}"
-echo "rounds: $rounds, CPU time per process"
+echo "rounds: $rounds, CPU time per process${cpu:+, all runs on CPU $cpu}"
 echo
 
-python3 - "$build/simlab" "$testspeed" "$old" "$rounds" "$only" <<PY
+python3 - "$build/simlab" "$testspeed" "$old" "$rounds" "$only" "$cpu" <<PY
 import os, resource, statistics, subprocess, sys
 simlab, testspeed, old, rounds, only = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), sys.argv[5]
+pin = ["taskset", "-c", sys.argv[6]] if sys.argv[6] else []
 models = [line.split("|") for line in """$models""".splitlines()]
 
 def cpu(cmd, cwd):
     """CPU seconds of one command (None when it fails)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    done = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    done = subprocess.run(pin + cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode != 0 or "rror" in done.stdout:
         return None
