@@ -50,23 +50,35 @@ struct Columns {
   int n;
 };
 
-// Appends `size` rows whose Jacobian `jac` (size x cols.n) holds the columns `cols`.
-// Rows other than contacts whose Jacobian is all zero are skipped: they cannot act on
-// anything (MuJoCo does the same).
-void AddRows(Data& d, const double* jac, Columns cols, const double* pos, double margin,
-             double frictionloss, int size, ConstraintType type, int id) {
+// Appends `size` rows whose Jacobian `jac` (size x cols.n) holds the columns `cols`
+// (every other column is zero): stored as they are with a sparse Jacobian, spread over
+// all nv dofs with a dense one. Rows other than contacts whose Jacobian is all zero are
+// skipped: they cannot act on anything (MuJoCo does the same).
+void AddRows(const Model& m, Data& d, const double* jac, Columns cols, const double* pos,
+             double margin, double frictionloss, int size, ConstraintType type, int id) {
   bool contact = type >= kCnstrContactFrictionless;
   const double* end = jac + static_cast<size_t>(size) * cols.n;
   if (!contact && std::all_of(jac, end, [](double x) { return x == 0; })) return;
 
   int first = d.nefc;
-  GrowRows(d, size, cols.n);
-  std::copy(jac, end, d.efc_J.begin() + d.nJ);
+  bool dense = !SparseJacobian(m);
+  int width = dense ? m.nv : cols.n;
+  GrowRows(d, size, width);
   for (int r = 0; r < size; r++) {
-    d.efc_J_rownnz[first + r] = cols.n;
+    d.efc_J_rownnz[first + r] = width;
     d.efc_J_rowadr[first + r] = d.nJ;
-    std::copy_n(cols.dof, cols.n, d.efc_J_colind.begin() + d.nJ);
-    d.nJ += cols.n;
+    double* values = d.efc_J.data() + d.nJ;
+    int* colind = d.efc_J_colind.data() + d.nJ;
+    const double* row = jac + static_cast<size_t>(r) * cols.n;
+    if (dense) {
+      std::fill_n(values, width, 0.0);
+      for (int k = 0; k < cols.n; k++) values[cols.dof[k]] = row[k];
+      for (int v = 0; v < width; v++) colind[v] = v;
+    } else {
+      std::copy_n(row, width, values);
+      std::copy_n(cols.dof, width, colind);
+    }
+    d.nJ += width;
     d.efc_pos[first + r] = pos ? pos[r] : 0;
     d.efc_margin[first + r] = margin;
     d.efc_frictionloss[first + r] = frictionloss;
@@ -79,33 +91,25 @@ void AddRows(Data& d, const double* jac, Columns cols, const double* pos, double
   if (type == kCnstrLimitJoint || type == kCnstrLimitTendon) d.nl += size;
 }
 
-// Appends rows given as dense size x nv Jacobians: with a sparse Jacobian only the columns
-// that are nonzero in some row are kept (in place: `jac` is overwritten); `index` has
-// room for nv dofs.
+// Appends rows given as dense size x nv Jacobians, by the columns that are nonzero in
+// some row (compacted in place: `jac` is overwritten); `index` has room for nv dofs.
 void AddDenseRows(const Model& m, Data& d, double* jac, int* index, const double* pos,
                   double margin, double frictionloss, int size, ConstraintType type, int id) {
   int nv = m.nv, n = 0;
-  bool sparse = SparseJacobian(m);
   for (int v = 0; v < nv; v++) {
-    bool used = !sparse;
+    bool used = false;
     for (int r = 0; r < size && !used; r++) used = jac[r * nv + v] != 0;
     if (used) index[n++] = v;
   }
-  if (sparse) {
-    for (int r = 0; r < size; r++) {
-      for (int k = 0; k < n; k++) jac[r * n + k] = jac[r * nv + index[k]];
-    }
+  for (int r = 0; r < size; r++) {
+    for (int k = 0; k < n; k++) jac[r * n + k] = jac[r * nv + index[k]];
   }
-  AddRows(d, jac, Columns{index, n}, pos, margin, frictionloss, size, type, id);
+  AddRows(m, d, jac, Columns{index, n}, pos, margin, frictionloss, size, type, id);
 }
 
-// The columns of rows that move bodies b0 and b1: every dof with a dense Jacobian, else
-// the dofs of both bodies' chains (MuJoCo mj_mergeChain); `index` has room for nv.
+// The columns of rows that move bodies b0 and b1: the dofs of both bodies' chains (MuJoCo
+// mj_mergeChain); `index` has room for nv.
 Columns BodyPairColumns(const Model& m, int b0, int b1, int* index) {
-  if (!SparseJacobian(m)) {
-    for (int v = 0; v < m.nv; v++) index[v] = v;
-    return Columns{index, m.nv};
-  }
   return Columns{index, MergedDofChain(m, b0, b1, index)};
 }
 
@@ -139,7 +143,7 @@ void ConnectRows(const Model& m, Data& d, int eq, double* jac, double* jac1, int
   JacobianOnDofs(m, d, cols.dof, cols.n, jac, nullptr, pos[0], body0);
   JacobianOnDofs(m, d, cols.dof, cols.n, jac1, nullptr, pos[1], body1);
   for (int k = 0; k < 3 * cols.n; k++) jac[k] -= jac1[k];
-  AddRows(d, jac, cols, err, 0, 0, 3, kCnstrEquality, eq);
+  AddRows(m, d, jac, cols, err, 0, 0, 3, kCnstrEquality, eq);
 }
 
 // Weld: the two frames coincide, up to relpose (3 translation + 3 rotation rows).
@@ -180,7 +184,7 @@ void WeldRows(const Model& m, Data& d, int eq, double* jac, double* jac1, int* i
     math::MulQuat(rot, tmp, q0);
     for (int k = 0; k < 3; k++) jac[(3 + k) * nv + v] = 0.5 * rot[1 + k] * torquescale;
   }
-  AddRows(d, jac, cols, err, 0, 0, 6, kCnstrEquality, eq);
+  AddRows(m, d, jac, cols, err, 0, 0, 6, kCnstrEquality, eq);
 }
 
 // Joint or tendon coupling: x1 - x1_0 = poly(x2 - x2_0), or x1 = x1_0 + data[0] alone.
@@ -242,9 +246,9 @@ void FrictionRows(const Model& m, Data& d) {
   int* index = ints.Ints(m.nv);
   for (int v = 0; v < m.nv; v++) {
     if (m.dof_frictionloss[v] == 0) continue;
-    std::fill(jac, jac + m.nv, 0.0);
-    jac[v] = 1;
-    AddDenseRows(m, d, jac, index, nullptr, 0, m.dof_frictionloss[v], 1, kCnstrFrictionDof, v);
+    const double one = 1;
+    AddRows(m, d, &one, Columns{&v, 1}, nullptr, 0, m.dof_frictionloss[v], 1,
+            kCnstrFrictionDof, v);
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (m.tendon_frictionloss[t] <= 0) continue;
@@ -256,23 +260,21 @@ void FrictionRows(const Model& m, Data& d) {
 
 // Lower and upper limit of a scalar quantity with Jacobian `grad` on the columns `cols`:
 // a row for each side closer than the margin, pointing into the allowed range.
-void ScalarLimitRows(Data& d, double value, const double* range, double margin,
+void ScalarLimitRows(const Model& m, Data& d, double value, const double* range, double margin,
                      const double* grad, Columns cols, double* jac, ConstraintType type, int id) {
   for (int side = -1; side <= 1; side += 2) {
     double dist = side * (range[(side + 1) / 2] - value);
     if (dist >= margin) continue;
     for (int k = 0; k < cols.n; k++) jac[k] = -side * grad[k];
-    AddRows(d, jac, cols, &dist, margin, 0, 1, type, id);
+    AddRows(m, d, jac, cols, &dist, margin, 0, 1, type, id);
   }
 }
 
-// The columns of a dense row `row` (nv): all dofs with a dense Jacobian, else its nonzeros,
-// whose values go to `values`.
+// The nonzero columns of a dense row `row` (nv), their values into `values`.
 Columns RowColumns(const Model& m, const double* row, int* index, double* values) {
-  bool sparse = SparseJacobian(m);
   int n = 0;
   for (int v = 0; v < m.nv; v++) {
-    if (sparse && row[v] == 0) continue;
+    if (row[v] == 0) continue;
     index[n] = v;
     values[n++] = row[v];
   }
@@ -300,28 +302,24 @@ void LimitRows(const Model& m, Data& d) {
   if (m.opt.disableflags & kDisableLimit) return;
   StackFrame frame(d);
   double* jac = frame.Alloc(m.nv);
-  double* unit = frame.Alloc(m.nv);
   double* grad = frame.Alloc(m.nv);
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
-  bool sparse = SparseJacobian(m);
   for (int j = 0; j < m.njnt; j++) {
     if (!m.jnt_limited[j]) continue;
     int type = m.jnt_type[j];
     if (type == kJointBall) BallLimitRow(m, d, j, jac, index);
     if (type != kJointSlide && type != kJointHinge) continue;
-    // The joint's own dof: one column when sparse, a unit row when dense.
+    // The joint's own dof, with slope 1.
     int dof = m.jnt_dofadr[j];
-    unit[dof] = 1;
-    Columns cols = sparse ? Columns{&dof, 1} : RowColumns(m, unit, index, grad);
-    ScalarLimitRows(d, d.qpos[m.jnt_qposadr[j]], &m.jnt_range[2 * j], m.jnt_margin[j],
-                    sparse ? unit + dof : grad, cols, jac, kCnstrLimitJoint, j);
-    unit[dof] = 0;
+    const double one = 1;
+    ScalarLimitRows(m, d, d.qpos[m.jnt_qposadr[j]], &m.jnt_range[2 * j], m.jnt_margin[j], &one,
+                    Columns{&dof, 1}, jac, kCnstrLimitJoint, j);
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (!m.tendon_limited[t]) continue;
     Columns cols = RowColumns(m, RowOf(d.ten_J, t, m.nv), index, grad);
-    ScalarLimitRows(d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t], grad, cols,
+    ScalarLimitRows(m, d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t], grad, cols,
                     jac, kCnstrLimitTendon, t);
   }
 }
@@ -369,7 +367,7 @@ void ContactRowsOf(const Model& m, Data& d, int i, double* jac, double* edges, d
   int n = cols.n;
   ContactJacobian(m, d, c, cols, jac, scratch);
   if (c.dim == 1) {
-    AddRows(d, jac, cols, &c.dist, c.includemargin, 0, 1, kCnstrContactFrictionless, i);
+    AddRows(m, d, jac, cols, &c.dist, c.includemargin, 0, 1, kCnstrContactFrictionless, i);
   } else if (m.opt.cone == kConePyramidal) {
     double pos[2] = {c.dist, c.dist};
     for (int k = 1; k < c.dim; k++) {
@@ -378,13 +376,13 @@ void ContactRowsOf(const Model& m, Data& d, int i, double* jac, double* edges, d
         edges[v] = jac[v] + mu * jac[k * n + v];
         edges[n + v] = jac[v] - mu * jac[k * n + v];
       }
-      AddRows(d, edges, cols, pos, c.includemargin, 0, 2, kCnstrContactPyramidal, i);
+      AddRows(m, d, edges, cols, pos, c.includemargin, 0, 2, kCnstrContactPyramidal, i);
     }
   } else {
     // Only the normal row has a distance and a margin.
     double pos[6] = {c.dist, 0, 0, 0, 0, 0};
     int first = d.nefc;
-    AddRows(d, jac, cols, pos, 0, 0, c.dim, kCnstrContactElliptic, i);
+    AddRows(m, d, jac, cols, pos, 0, 0, c.dim, kCnstrContactElliptic, i);
     d.efc_margin[first] = c.includemargin;
   }
 }
