@@ -7,20 +7,21 @@
 # Both engines run the same workload: MuJoCo's own `testspeed` (built from source by
 # ../shared/oracle/native/build.sh into $MUJOCO_NATIVE, default /work/mujoco-native) and
 # `simlab bench`, which follows testspeed 3.12 exactly (start keyframe "test", the same
-# Ornstein-Uhlenbeck control noise; contacts and rows per step agree). Time is the CPU
-# time of each process (user + system, from the kernel), not wall time: the machine is
-# shared. Loading a model is taken out by running every command twice, with N steps and
-# with N0 = N/10 steps: steps/s = (N - N0) / (cpu(N) - cpu(N0)), each cpu the least of
-# the rounds (other work on a shared machine only adds time: a virtual machine's runs of
-# one binary vary by up to 40%). The commands of one round run one after the other, both
-# engines in turn; --cpu C pins every run to CPU C. (The two virtual CPUs of the machine
-# this was written on swap between a fast and a 30% slower state every minute or so:
-# the least time of many rounds is each engine's time in the fast state.)
+# Ornstein-Uhlenbeck control noise; contacts and rows per step agree). Each program times
+# its own stepping loop (model loading left out): testspeed by the clock, simlab bench
+# in thread CPU time; both run alone on one pinned CPU, where the two agree.
 #
-# The step counts make each run about a second. Workloads agree step for step (the same
-# contacts and rows per step) except where MuJoCo 3.12 changed its colliders: box-box is a
-# new SAT collider (the gantry's cube: 8 contacts per step against 3.5.1's 7) and
-# mesh-mesh pairs differ slightly (the cubes: 32.6 against 32.0).
+# A round runs both engines, one after the other, pinned to the same CPU; rounds
+# alternate the CPU and the order. Each engine's speed is its best round (on a shared
+# machine other work only ever slows a run: the two virtual CPUs of the machine this was
+# written on swap between a fast and a 30% slower state every minute or so), and the
+# ratio is simlab's best over MuJoCo's best; the median of the rounds' own ratios is
+# printed beside it.
+#
+# The step counts make each run about a second. Workloads agree step for step except
+# where MuJoCo 3.12 changed its colliders: box-box is a new SAT collider (the gantry's
+# cube: 8 contacts per step against 3.5.1's 7) and mesh-mesh pairs differ slightly (the
+# cubes: 32.6 contacts per step against 32.0).
 #
 # Debian's MuJoCo 2.2.2 (`mujoco-testspeed`, package libmujoco-samples) is the third
 # column when installed; its control noise is the older process (no relaxation to the
@@ -71,23 +72,22 @@ old=$(command -v mujoco-testspeed || true)
 echo "simlab: $build/simlab ($(git -C "$here" rev-parse --short HEAD))"
 echo "MuJoCo: $testspeed ($(basename "$(readlink -f "$native/build/lib/libmujoco.so")"))"
 echo "Debian MuJoCo 2.2.2: ${old:-not installed (apt-get install libmujoco-samples)}"
-echo "rounds: $rounds, CPU time per process${cpu:+, all runs on CPU $cpu}"
+echo "rounds: $rounds, best round of each engine${cpu:+, all runs on CPU $cpu}"
 echo
 
 python3 - "$build/simlab" "$testspeed" "$old" "$rounds" "$only" "$cpu" <<PY
-import os, resource, statistics, subprocess, sys
-simlab, testspeed, old, rounds, only = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), sys.argv[5]
-pin = ["taskset", "-c", sys.argv[6]] if sys.argv[6] else []
+import os, re, statistics, subprocess, sys
+simlab, testspeed, old, rounds, only, cpu = sys.argv[1:7]
+rounds = int(rounds)
+ncpu = os.cpu_count() or 1
 models = [line.split("|") for line in """$models""".splitlines()]
 
-def cpu(cmd, cwd):
-    """CPU seconds of one command (None when it fails)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    done = subprocess.run(pin + cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if done.returncode != 0 or "rror" in done.stdout:
-        return None
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+def speed(cmd, cwd, pin):
+    """Steps per second a timing program reports (None when it fails)."""
+    done = subprocess.run(["taskset", "-c", str(pin)] + cmd, cwd=cwd, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    found = re.search(r"Steps per second\s*:\s*([0-9.]+)", done.stdout)
+    return float(found.group(1)) if done.returncode == 0 and found else None
 
 engines = {
     "simlab": lambda f, n: [simlab, "bench", f, "--steps", str(n)],
@@ -96,35 +96,30 @@ engines = {
 if old:
     engines["2.2.2"] = lambda f, n: [old, f, str(n), "1", "0.01"]
 
-print(f"{'model':20s} {'simlab':>10s} {'MuJoCo 3.12':>12s} {'ratio':>6s}   {'2.2.2':>9s} {'ratio':>6s}")
+def fmt(x, w, digits=0):
+    return f"{x:{w}.{digits}f}" if x else f"{'-':>{w}s}"
+
+print(f"{'model':20s} {'simlab':>9s} {'MuJoCo 3.12':>12s} {'ratio':>6s} {'(median)':>9s}"
+      + (f"   {'2.2.2':>9s} {'ratio':>6s}" if old else ""))
 for name, path, steps in models:
     if only and name != only:
         continue
-    n = int(steps); n0 = n // 10
-    times = {e: {n: [], n0: []} for e in engines}
+    n = int(steps)
+    runs = {e: [] for e in engines}
     for r in range(rounds):
-        order = list(engines) if r % 2 == 0 else list(reversed(engines))
-        for count in (n, n0):
-            for e in order:
-                times[e][count].append(cpu(engines[e](path, count), os.path.dirname(path)))
-    # steps/s per engine from the least CPU time of the rounds (on a shared machine other
-    # work only ever adds time), and the ratio of those.
-    def rate(e):
-        tn, t0 = times[e][n], times[e][n0]
-        if any(t is None for t in tn + t0):
-            return None
-        dt = min(tn) - min(t0)
-        return (n - n0) / dt if dt > 0 else None
-    sps = {e: rate(e) for e in engines}
-    def ratio_of(e):
-        return sps["simlab"] / sps[e] if sps["simlab"] and sps[e] else None
-    def fmt(x, w):
-        return f"{x:{w}.0f}" if x else f"{'-':>{w}s}"
-    ratio = ratio_of("mujoco")
-    line = f"{name:20s} {fmt(sps['simlab'], 10)} {fmt(sps['mujoco'], 12)} "
-    line += f"{ratio:6.2f}" if ratio else f"{'-':>6s}"
+        pin = int(cpu) if cpu else r % ncpu
+        order = list(engines) if (r // ncpu) % 2 == 0 else list(reversed(engines))
+        for e in order:
+            runs[e].append(speed(engines[e](path, n), os.path.dirname(path), pin))
+    best = {e: max([x for x in runs[e] if x] or [0]) for e in engines}
+    def ratios(e):
+        rs = [a / b for a, b in zip(runs["simlab"], runs[e]) if a and b]
+        return (best["simlab"] / best[e] if best["simlab"] and best[e] else None,
+                statistics.median(rs) if rs else None)
+    ratio, median = ratios("mujoco")
+    line = f"{name:20s} {fmt(best['simlab'], 9)} {fmt(best['mujoco'], 12)} {fmt(ratio, 6, 2)} {fmt(median, 9, 2)}"
     if old:
-        r2 = ratio_of("2.2.2")
-        line += f"   {fmt(sps['2.2.2'], 9)} " + (f"{r2:6.2f}" if r2 else f"{'-':>6s}")
+        r2, _ = ratios("2.2.2")
+        line += f"   {fmt(best['2.2.2'], 9)} {fmt(r2, 6, 2)}"
     print(line, flush=True)
 PY

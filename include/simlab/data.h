@@ -245,6 +245,9 @@ struct Data {
   // transmission stage): moment_rownnz[i] of them, ascending, from moment_colind[i * nv] on.
   std::vector<int> moment_rownnz;
   std::vector<int> moment_colind;
+  // The same for each tendon's row of ten_J (set by the tendon stage).
+  std::vector<int> ten_J_rownnz;
+  std::vector<int> ten_J_colind;
 
   // The constraint Jacobian in compressed rows, nJ entries: row r has efc_J_rownnz[r]
   // entries from efc_J_rowadr[r] on, in the dofs efc_J_colind (ascending). As MuJoCo's

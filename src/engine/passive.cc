@@ -64,7 +64,9 @@ void TendonSpringDamper(const Model& m, Data& d, int i, bool spring, bool damper
   double vel = d.ten_velocity[i];
   double f_damper = -vel * DampingCoefficient(damping, poly, vel);
   const double* jac = RowOf(d.ten_J, i, m.nv);
-  for (int v = 0; v < m.nv; v++) {
+  const int* cols = RowOf(d.ten_J_colind, i, m.nv);
+  for (int k = 0; k < d.ten_J_rownnz[i]; k++) {
+    int v = cols[k];
     if (f_spring != 0) d.qfrc_spring[v] += jac[v] * f_spring;
     if (f_damper != 0) d.qfrc_damper[v] += jac[v] * f_damper;
   }

@@ -35,7 +35,9 @@ void ResetData(const Model& m, Data& d) {
 #define SIMLAB_X(type, name, rows, cols) std::fill(d.name.begin(), d.name.end(), type{});
   SIMLAB_DATA_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
-  std::fill(d.moment_rownnz.begin(), d.moment_rownnz.end(), 0);  // actuator_moment is zero
+  // actuator_moment and ten_J are zero: no row has a nonzero anywhere
+  std::fill(d.moment_rownnz.begin(), d.moment_rownnz.end(), 0);
+  std::fill(d.ten_J_rownnz.begin(), d.ten_J_rownnz.end(), 0);
   d.nJ = 0;
   d.time = 0;
   d.energy[0] = d.energy[1] = 0;

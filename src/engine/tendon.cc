@@ -208,13 +208,46 @@ void AddSegmentJacobianDot(const Model& m, Data& d, int site_a, int site_b, doub
   AddSegmentJacobian(m, d, a, body_a, b, body_b, udot, scale, jdot);
 }
 
+// Clears tendon i's row of ten_J where it may be nonzero (its last pattern).
+void ClearTendonRow(const Model& m, Data& d, int i) {
+  double* jac = RowOf(d.ten_J, i, m.nv);
+  const int* cols = RowOf(d.ten_J_colind, i, m.nv);
+  for (int k = 0; k < d.ten_J_rownnz[i]; k++) jac[cols[k]] = 0;
+  d.ten_J_rownnz[i] = 0;
+}
+
+// Records where tendon i's row of ten_J may be nonzero: a fixed tendon's joint dofs
+// (ascending, once each), else the row's nonzeros.
+void SetTendonPattern(const Model& m, Data& d, int i) {
+  const double* jac = RowOf(d.ten_J, i, m.nv);
+  int* cols = RowOf(d.ten_J_colind, i, m.nv);
+  int n = 0;
+  int adr = m.tendon_adr[i], num = m.tendon_num[i];
+  if (num > 0 && m.wrap_type[adr] == kWrapJoint) {
+    for (int w = adr; w < adr + num; w++) {
+      int dof = m.jnt_dofadr[m.wrap_objid[w]];
+      int at = n;
+      while (at > 0 && cols[at - 1] > dof) at--;
+      if (at > 0 && cols[at - 1] == dof) continue;
+      std::copy_backward(cols + at, cols + n, cols + n + 1);
+      cols[at] = dof;
+      n++;
+    }
+  } else {
+    for (int v = 0; v < m.nv; v++) {
+      if (jac[v] != 0) cols[n++] = v;
+    }
+  }
+  d.ten_J_rownnz[i] = n;
+}
+
 }  // namespace
 
 void Tendon(const Model& m, Data& d) {
   int count = 0;
   for (int i = 0; i < m.ntendon; i++) {
+    ClearTendonRow(m, d, i);
     double* jac = RowOf(d.ten_J, i, m.nv);
-    std::fill(jac, jac + m.nv, 0.0);
     d.ten_length[i] = 0;
     d.ten_wrapadr[i] = count;
     d.ten_wrapnum[i] = 0;
@@ -224,6 +257,7 @@ void Tendon(const Model& m, Data& d) {
     } else {
       SpatialTendon(m, d, i, &count, jac);
     }
+    SetTendonPattern(m, d, i);
   }
 }
 
@@ -246,8 +280,9 @@ void TendonJacobianDot(const Model& m, Data& d, int i, double* jdot) {
 void TendonVelocity(const Model& m, Data& d) {
   for (int i = 0; i < m.ntendon; i++) {
     const double* jac = RowOf(d.ten_J, i, m.nv);
+    const int* cols = RowOf(d.ten_J_colind, i, m.nv);
     double s = 0;
-    for (int v = 0; v < m.nv; v++) s += jac[v] * d.qvel[v];
+    for (int k = 0; k < d.ten_J_rownnz[i]; k++) s += jac[cols[k]] * d.qvel[cols[k]];
     d.ten_velocity[i] = s;
   }
 }

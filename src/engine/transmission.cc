@@ -279,7 +279,8 @@ void ClearMomentRow(const Model& m, Data& d, int i) {
   for (int k = 0; k < d.moment_rownnz[i]; k++) moment[cols[k]] = 0;
 }
 
-// Records where actuator i's row may be nonzero: a joint's dofs, else the nonzeros.
+// Records where actuator i's row may be nonzero: a joint's dofs, a tendon's pattern,
+// else the row's nonzeros.
 void SetMomentPattern(const Model& m, Data& d, int i) {
   const double* moment = RowOf(d.actuator_moment, i, m.nv);
   int* cols = RowOf(d.moment_colind, i, m.nv);
@@ -289,6 +290,9 @@ void SetMomentPattern(const Model& m, Data& d, int i) {
     int type = m.jnt_type[id];
     int dofs = type == kJointFree ? 6 : type == kJointBall ? 3 : 1;
     for (; n < dofs; n++) cols[n] = m.jnt_dofadr[id] + n;
+  } else if (trntype == kTrnTendon) {
+    n = d.ten_J_rownnz[id];
+    std::copy_n(RowOf(d.ten_J_colind, id, m.nv), n, cols);
   } else {
     for (int v = 0; v < m.nv; v++) {
       if (moment[v] != 0) cols[n++] = v;
@@ -313,7 +317,8 @@ void Transmission(const Model& m, Data& d) {
         double gear = m.actuator_gear[6 * i];
         d.actuator_length[i] = d.ten_length[id] * gear;
         const double* jac = RowOf(d.ten_J, id, m.nv);
-        for (int v = 0; v < m.nv; v++) moment[v] = jac[v] * gear;
+        const int* cols = RowOf(d.ten_J_colind, id, m.nv);
+        for (int k = 0; k < d.ten_J_rownnz[id]; k++) moment[cols[k]] = jac[cols[k]] * gear;
         break;
       }
       case kTrnSite:
