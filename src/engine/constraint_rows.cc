@@ -33,15 +33,17 @@ void Reserve(std::vector<T>& array, size_t needed) {
   if (array.size() < needed) array.resize(std::max(needed, array.size() + array.size() / 2));
 }
 
-// Room in every efc array for `size` more rows of `width` Jacobian entries each.
+// Room in every efc array for `size` more rows of `width` Jacobian entries each. (Every
+// per-row array is resized with efc_type, so its size stands for all of them.)
 void GrowRows(Data& d, int size, int width) {
   size_t rows = static_cast<size_t>(d.nefc + size);
+  size_t needed = static_cast<size_t>(d.nJ) + static_cast<size_t>(size) * width;
+  if (rows <= d.efc_type.size() && needed <= d.efc_J.size()) return;
 #define SIMLAB_X(type, name, cols) Reserve(d.name, rows * (cols));
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
-  size_t entries = static_cast<size_t>(d.nJ) + static_cast<size_t>(size) * width;
-  Reserve(d.efc_J, entries);
-  Reserve(d.efc_J_colind, entries);
+  Reserve(d.efc_J, needed);
+  Reserve(d.efc_J_colind, needed);
 }
 
 // The columns of a group of rows: the dofs `dof` (ascending), `n` of them.
