@@ -7,16 +7,17 @@
 # Both engines run the same workload: MuJoCo's own `testspeed` (built from source by
 # ../shared/oracle/native/build.sh into $MUJOCO_NATIVE, default /work/mujoco-native) and
 # `simlab bench`, which follows testspeed 3.12 exactly (start keyframe "test", the same
-# Ornstein-Uhlenbeck control noise; contacts and rows per step agree). Each program times
-# its own stepping loop (model loading left out): testspeed by the clock, simlab bench
-# in thread CPU time; both run alone on one pinned CPU, where the two agree.
+# Ornstein-Uhlenbeck control noise; contacts and rows per step agree). Time is the CPU
+# time of each process (user + system, from the kernel): other work on the machine does
+# not count. Loading the model is taken out by running every command twice, with N and
+# with N0 = N/10 steps, one after the other: steps/s = (N - N0) / (cpu(N) - cpu(N0)).
 #
-# A round runs both engines, one after the other, pinned to the same CPU; rounds
-# alternate the CPU and the order. Each engine's speed is its best round (on a shared
-# machine other work only ever slows a run: the two virtual CPUs of the machine this was
-# written on swap between a fast and a 30% slower state every minute or so), and the
-# ratio is simlab's best over MuJoCo's best; the median of the rounds' own ratios is
-# printed beside it.
+# A round runs both engines so, one after the other, pinned to the same CPU; rounds
+# alternate the CPU and the order. Each engine's speed is its best round (a shared
+# machine only ever slows a run: the two virtual CPUs of the machine this was written on
+# swap between a fast and a 30% slower state every minute or so), and the ratio is
+# simlab's best over MuJoCo's best; the median of the rounds' own ratios is printed
+# beside it.
 #
 # The step counts make each run about a second. Workloads agree step for step except
 # where MuJoCo 3.12 changed its colliders: box-box is a new SAT collider (the gantry's
@@ -72,22 +73,34 @@ old=$(command -v mujoco-testspeed || true)
 echo "simlab: $build/simlab ($(git -C "$here" rev-parse --short HEAD))"
 echo "MuJoCo: $testspeed ($(basename "$(readlink -f "$native/build/lib/libmujoco.so")"))"
 echo "Debian MuJoCo 2.2.2: ${old:-not installed (apt-get install libmujoco-samples)}"
-echo "rounds: $rounds, best round of each engine${cpu:+, all runs on CPU $cpu}"
+echo "rounds: $rounds, CPU time per process, best round of each engine${cpu:+, all runs on CPU $cpu}"
 echo
 
 python3 - "$build/simlab" "$testspeed" "$old" "$rounds" "$only" "$cpu" <<PY
-import os, re, statistics, subprocess, sys
+import os, resource, statistics, subprocess, sys
 simlab, testspeed, old, rounds, only, cpu = sys.argv[1:7]
 rounds = int(rounds)
 ncpu = os.cpu_count() or 1
 models = [line.split("|") for line in """$models""".splitlines()]
 
-def speed(cmd, cwd, pin):
-    """Steps per second a timing program reports (None when it fails)."""
+def cpu_seconds(cmd, cwd, pin):
+    """CPU seconds of one command (None when it fails)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     done = subprocess.run(["taskset", "-c", str(pin)] + cmd, cwd=cwd, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True)
-    found = re.search(r"Steps per second\s*:\s*([0-9.]+)", done.stdout)
-    return float(found.group(1)) if done.returncode == 0 and found else None
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode != 0 or "Steps per second" not in done.stdout:
+        return None
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+def speed(engine, path, n, pin):
+    """Steps per second of N - N0 steps from two runs (None when either fails)."""
+    n0 = n // 10
+    long = cpu_seconds(engines[engine](path, n), os.path.dirname(path), pin)
+    short = cpu_seconds(engines[engine](path, n0), os.path.dirname(path), pin)
+    if long is None or short is None or long <= short:
+        return None
+    return (n - n0) / (long - short)
 
 engines = {
     "simlab": lambda f, n: [simlab, "bench", f, "--steps", str(n)],
@@ -110,7 +123,7 @@ for name, path, steps in models:
         pin = int(cpu) if cpu else r % ncpu
         order = list(engines) if (r // ncpu) % 2 == 0 else list(reversed(engines))
         for e in order:
-            runs[e].append(speed(engines[e](path, n), os.path.dirname(path), pin))
+            runs[e].append(speed(e, path, n, pin))
     best = {e: max([x for x in runs[e] if x] or [0]) for e in engines}
     def ratios(e):
         rs = [a / b for a, b in zip(runs["simlab"], runs[e]) if a and b]
