@@ -132,5 +132,25 @@ TEST(Profiler, TimersCountWithAClockOnly) {
   EXPECT_EQ(d.timer[kTimerStep].number, 0);
 }
 
+// MuJoCo's 22 humanoids (594 dofs, sparse rows) under testspeed's workload: the row
+// count rises and falls by a few rows at a time for hundreds of steps, and every efc
+// array keeps room for the rows in use. (The rows' arrays once grew out of step with each
+// other here, and step 370 wrote past the end of efc_KBIP.)
+TEST(Bench, RowArraysKeepRoomOnTwentyTwoHumanoids) {
+  Model m = LoadXml(Source("../shared/corpus/mujoco/model/humanoid/22_humanoids.xml"));
+  Data d = MakeData(m);
+  std::vector<double> ctrl = ControlNoise(m, 400, NoiseOptions{}, -1);
+  for (int s = 0; s < 400; s++) {
+    std::copy_n(ctrl.begin() + static_cast<size_t>(s) * m.nu, m.nu, d.ctrl.begin());
+    Step(m, d);
+#define SIMLAB_X(type, name, cols) \
+    ASSERT_GE(d.name.size(), static_cast<size_t>(d.nefc) * (cols)) << #name << ", step " << s;
+    SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
+#undef SIMLAB_X
+    ASSERT_GE(d.efc_J.size(), static_cast<size_t>(d.nJ));
+  }
+  EXPECT_EQ(d.warning[kWarnEngineError].number, 0);
+}
+
 }  // namespace
 }  // namespace simlab::apps

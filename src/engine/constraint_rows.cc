@@ -25,25 +25,25 @@ constexpr double kMaxImp = 0.9999;  // mjMAXIMP
 
 // ---------------------------------------------------------------- adding rows
 
-// Makes room in `array` for `needed` entries: the arrays keep their size from step to
-// step (nefc and nJ say how much is in use), growing by half again when short, so that
-// steady steps neither allocate nor clear what the rows overwrite.
-template <typename T>
-void Reserve(std::vector<T>& array, size_t needed) {
-  if (array.size() < needed) array.resize(std::max(needed, array.size() + array.size() / 2));
-}
-
-// Room in every efc array for `size` more rows of `width` Jacobian entries each. (Every
-// per-row array is resized with efc_type, so its size stands for all of them.)
+// Room in every efc array for `size` more rows of `width` Jacobian entries each. The
+// arrays keep their size from step to step (nefc and nJ say how much is in use) and grow
+// by half again when short, all per-row arrays to the same number of rows (efc_type's
+// size), so that steady steps neither allocate nor clear what the rows overwrite.
 void GrowRows(Data& d, int size, int width) {
   size_t rows = static_cast<size_t>(d.nefc + size);
-  size_t needed = static_cast<size_t>(d.nJ) + static_cast<size_t>(size) * width;
-  if (rows <= d.efc_type.size() && needed <= d.efc_J.size()) return;
-#define SIMLAB_X(type, name, cols) Reserve(d.name, rows * (cols));
-  SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
+  size_t capacity = d.efc_type.size();
+  if (rows > capacity) {
+    capacity = std::max(rows, capacity + capacity / 2);
+#define SIMLAB_X(type, name, cols) d.name.resize(capacity * (cols));
+    SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
-  Reserve(d.efc_J, needed);
-  Reserve(d.efc_J_colind, needed);
+  }
+  size_t entries = static_cast<size_t>(d.nJ) + static_cast<size_t>(size) * width;
+  if (entries > d.efc_J.size()) {
+    size_t grown = std::max(entries, d.efc_J.size() + d.efc_J.size() / 2);
+    d.efc_J.resize(grown);
+    d.efc_J_colind.resize(grown);
+  }
 }
 
 // The columns of a group of rows: the dofs `dof` (ascending), `n` of them.
