@@ -62,6 +62,7 @@ RowSet DataRows(Data& d);
 //
 //   SolverFrame frame(d.solver_scratch);
 //   double* x = frame.Reals(n);   // n zeros, valid until `frame` goes out of scope
+//   double* h = frame.RealsToWrite(n);  // n numbers to overwrite (not cleared)
 class SolverFrame {
  public:
   explicit SolverFrame(SolverScratch& s) : s_(s), nreal_(s.nreal), nint_(s.nint) {}
@@ -72,17 +73,23 @@ class SolverFrame {
   SolverFrame(const SolverFrame&) = delete;
   SolverFrame& operator=(const SolverFrame&) = delete;
 
-  double* Reals(size_t n) { return Take(s_.reals, s_.nreal, n); }
-  int* Ints(size_t n) { return Take(s_.ints, s_.nint, n); }
+  double* Reals(size_t n) { return Take(s_.reals, s_.nreal, n, true); }
+  int* Ints(size_t n) { return Take(s_.ints, s_.nint, n, true); }
+  // n numbers left as they are, for arrays their user writes in full before reading.
+  double* RealsToWrite(size_t n) { return Take(s_.reals, s_.nreal, n, false); }
 
  private:
-  // The next array of the pool, zeroed; a new one when the pool is used up (moving the
-  // pool's vectors keeps their buffers, so arrays handed out before stay valid).
+  // The next array of the pool, zeroed when asked; a new one when the pool is used up
+  // (moving the pool's vectors keeps their buffers, so arrays handed out before stay valid).
   template <class T>
-  static T* Take(std::vector<std::vector<T>>& pool, size_t& used, size_t n) {
+  static T* Take(std::vector<std::vector<T>>& pool, size_t& used, size_t n, bool zero) {
     if (used == pool.size()) pool.emplace_back();
     std::vector<T>& array = pool[used++];
-    array.assign(n, T{});
+    if (zero) {
+      array.assign(n, T{});
+    } else if (array.size() < n) {
+      array.resize(n);
+    }
     return array.data();
   }
 

@@ -272,13 +272,16 @@ void ScalarLimitRows(const Model& m, Data& d, double value, const double* range,
   }
 }
 
-// The nonzero columns of a dense row `row` (nv), their values into `values`.
-Columns RowColumns(const Model& m, const double* row, int* index, double* values) {
+// The nonzero columns of tendon t's Jacobian (ascending: those of its pattern that are
+// not zero), their values into `values`.
+Columns TendonColumns(const Model& m, const Data& d, int t, int* index, double* values) {
+  const double* row = RowOf(d.ten_J, t, m.nv);
+  const int* cols = RowOf(d.ten_J_colind, t, m.nv);
   int n = 0;
-  for (int v = 0; v < m.nv; v++) {
-    if (row[v] == 0) continue;
-    index[n] = v;
-    values[n++] = row[v];
+  for (int k = 0; k < d.ten_J_rownnz[t]; k++) {
+    if (row[cols[k]] == 0) continue;
+    index[n] = cols[k];
+    values[n++] = row[cols[k]];
   }
   return Columns{index, n};
 }
@@ -320,7 +323,7 @@ void LimitRows(const Model& m, Data& d) {
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (!m.tendon_limited[t]) continue;
-    Columns cols = RowColumns(m, RowOf(d.ten_J, t, m.nv), index, grad);
+    Columns cols = TendonColumns(m, d, t, index, grad);
     ScalarLimitRows(m, d, d.ten_length[t], &m.tendon_range[2 * t], m.tendon_margin[t], grad, cols,
                     jac, kCnstrLimitTendon, t);
   }

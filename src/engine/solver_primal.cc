@@ -251,10 +251,12 @@ struct Primal {
          {&ma, &mv, &grad, &mgrad, &search, &gradold, &mgradold, &mgrad_change}) {
       *dof_array = frame.Reals(nv);
     }
+    // (the factors are filled by FactorHessian and AddConeHessians, the update vectors by
+    // their users: not cleared here)
     size_t square = static_cast<size_t>(nv) * nv;
-    if (newton) hessian = frame.Reals(square);
-    if (newton && elliptic) hessian_cone = frame.Reals(square);
-    if (newton) updates = frame.Reals(6 * static_cast<size_t>(nv));
+    if (newton) hessian = frame.RealsToWrite(square);
+    if (newton && elliptic) hessian_cone = frame.RealsToWrite(square);
+    if (newton) updates = frame.RealsToWrite(6 * static_cast<size_t>(nv));
     if (newton) FindNonzeros(frame);
   }
 
