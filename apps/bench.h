@@ -1,8 +1,9 @@
 // `simlab bench MODEL.xml`: steps per second with MuJoCo's testspeed semantics, so that
 // any model can be timed the same way in both engines: the start keyframe "test" when
 // the model has one, testspeed's control noise (an Ornstein-Uhlenbeck process driven by a
-// Halton sequence around the middle of each control range or the keyframe's controls), contacts and constraint rows per step, and the time of each
-// pipeline stage as MuJoCo's profiler reports it (Data::timer). Times are thread CPU
+// Halton sequence around the middle of each control range or the keyframe's controls),
+// contacts and constraint rows per step, and the time of each pipeline stage as MuJoCo's
+// profiler reports it (Data::timer). Times are thread CPU
 // time; with --threads N, N independent rollouts (one Data each) run at once and the
 // total steps per second is over wall time.
 #ifndef SIMLAB_APPS_BENCH_H_

@@ -135,7 +135,7 @@ TEST(Profiler, TimersCountWithAClockOnly) {
 // MuJoCo's 22 humanoids (594 dofs, sparse rows) under testspeed's workload: the row
 // count rises and falls by a few rows at a time for hundreds of steps, and every efc
 // array keeps room for the rows in use. (The rows' arrays once grew out of step with each
-// other here, and step 370 wrote past the end of efc_KBIP.)
+// other here, and step 268 wrote past the end of efc_KBIP.)
 TEST(Bench, RowArraysKeepRoomOnTwentyTwoHumanoids) {
   Model m = LoadXml(Source("../shared/corpus/mujoco/model/humanoid/22_humanoids.xml"));
   Data d = MakeData(m);

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/constraint.h"
 #include "wrappers.h"
 
 namespace simlab::python {
@@ -219,15 +220,12 @@ void DefineConstraintRows(py::class_<PyData>& cls) {
   SIMLAB_DATA_EFC_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
   cls.def_property_readonly("efc_J", [](const PyData& d) {
-    const Data& data = d.data;
     const int nv = d.model->nv;
-    std::vector<double> dense(static_cast<size_t>(data.nefc) * nv, 0.0);
-    for (int r = 0; r < data.nefc; r++) {
-      for (int k = data.efc_J_rowadr[r]; k < data.efc_J_rowadr[r] + data.efc_J_rownnz[r]; k++) {
-        dense[static_cast<size_t>(r) * nv + data.efc_J_colind[k]] = data.efc_J[k];
-      }
+    std::vector<double> dense(static_cast<size_t>(d.data.nefc) * nv);
+    for (int r = 0; r < d.data.nefc; r++) {
+      EfcRowDense(*d.model, d.data, r, dense.data() + static_cast<size_t>(r) * nv);
     }
-    return ReadOnlyCopy<double>(dense.data(), data.nefc, nv, false);
+    return ReadOnlyCopy<double>(dense.data(), d.data.nefc, nv, false);
   });
   cls.def_property_readonly("efc_J_colind", [](const PyData& d) {
     return ReadOnlyCopy<int>(d.data.efc_J_colind.data(), d.data.nJ, 1, true);

@@ -20,14 +20,18 @@ inline constexpr int kMaxContactPair = 50;
 // A narrow-phase function. Geom g1's type is <= g2's type (the driver orders them).
 // Writes up to kMaxContactPair contacts whose distance is below `margin` and returns
 // how many. For each it sets dist, pos, and frame[0..2], the unit normal pointing from
-// g1 to g2; it may set frame[3..5] to a first tangent direction, else leaves it zero.
-// The driver fills in everything else (ids, parameters, the rest of the frame).
+// g1 to g2; those ChoosesTangent names also set frame[3..5] to a first tangent
+// direction. The driver fills in everything else (ids, parameters, the rest of the frame).
 using CollideFn = int (*)(const Model& m, const Data& d, Contact* con, int g1, int g2,
                           double margin);
 
 // The narrow-phase function for a pair of geom types (type1 <= type2), or null when
 // MuJoCo has none for it (collision_table.cc).
 CollideFn CollisionFunction(int type1, int type2);
+// Does `collide` choose the first tangent of its contacts' frames (frame[3..5])? The
+// others write dist, pos and the normal only, and their tangents are left to SetContact.
+// (Only the plane-capsule collider does: the capsule's axis.)
+bool ChoosesTangent(CollideFn collide);
 
 // The whole collision stage: d.ncon and d.contact (collision_driver.cc).
 void Collision(const Model& m, Data& d);

@@ -240,18 +240,14 @@ void CollideGeoms(const Model& m, Data& d, int g1, int g2, int ipair) {
   if (m.geom_type[g1] == kGeomBox && m.geom_type[g2] == kGeomBox) {
     num = CleanBoxBox(m, d, con, num, g1, g2, margin);
   }
-  // Narrow-phase functions write dist, pos and the normal; only the plane-capsule one
-  // chooses a first tangent (the capsule's axis). The others' tangents are cleared for
-  // SetContact to complete the frame.
-  if (collide != CollidePlaneCapsule) {
-    for (int i = 0; i < num; i++) std::fill(con[i].frame + 3, con[i].frame + 9, 0.0);
-  } else {
-    for (int i = 0; i < num; i++) std::fill(con[i].frame + 6, con[i].frame + 9, 0.0);
-  }
-
-  // Parameters: the pair's own, or combined from the two geoms.
+  // Parameters: the pair's own, or combined from the two geoms; a tangent only where the
+  // collider chose one (SetContact completes the frame from it, or from none).
   ContactParams p = ipair < 0 ? GeomPairParams(m, g1, g2) : PairParams(m, ipair);
-  for (int i = 0; i < num; i++) SetContact(m, p, margin - p.gap, g1, g2, con + i);
+  bool tangent = ChoosesTangent(collide);
+  for (int i = 0; i < num; i++) {
+    if (!tangent) math::Zero3(con[i].frame + 3);
+    SetContact(m, p, margin - p.gap, g1, g2, con + i);
+  }
   d.ncon += num;
 }
 

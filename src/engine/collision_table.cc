@@ -37,6 +37,8 @@ const CollideFn kTable[kNumGeomTypes][kNumGeomTypes] = {
 
 }  // namespace
 
+bool ChoosesTangent(CollideFn collide) { return collide == CollidePlaneCapsule; }
+
 CollideFn CollisionFunction(int type1, int type2) {
   if (type1 < 0 || type2 < 0 || type1 >= kNumGeomTypes || type2 >= kNumGeomTypes) {
     return nullptr;

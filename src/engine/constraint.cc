@@ -156,7 +156,7 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
 }
 
 // The problem over every dof and row in Data's own arrays, without copies: possible when
-// efc_J is dense (nv columns per row). The solution is written into Data directly; row
+// efc_J is dense (nv columns per row: !SparseJacobian). The solution is written into Data directly; row
 // states go to `state`.
 ConstraintProblem WholeProblem(const Model& m, Data& d, int* state) {
   ConstraintProblem p;
@@ -187,20 +187,16 @@ ConstraintProblem WholeProblem(const Model& m, Data& d, int* state) {
   return p;
 }
 
-// Is efc_J the dense nefc x nv matrix (every row holding every dof)?
-bool DenseRows(const Model& m, const Data& d) {
-  return !SparseJacobian(m) && static_cast<size_t>(d.nJ) == static_cast<size_t>(d.nefc) * m.nv;
-}
-
 // Copies a solved problem's results back into Data. Row states only with `states`: MuJoCo
 // copies an island's forces back but not its states, so after island solves efc_state
 // keeps the warm start's evaluation (at qacc_smooth or the warm start). A non-convex
-// line search becomes a warning (its info: how many points were not convex).
+// line search becomes a warning (its info: how many points were not convex). Without
+// `dofs` (a WholeProblem) the results are in Data already.
 void Scatter(const ConstraintProblem& p, const int* dofs, const int* rows, bool states,
              Data& d) {
   if (p.nonconvex > 0) RaiseWarning(d, kWarnLineSearch, p.nonconvex);
   d.solver_niter += p.niter;
-  if (!dofs) return;  // a WholeProblem: solved in place
+  if (!dofs) return;
   for (int i = 0; i < p.nv; i++) {
     d.qacc[dofs[i]] = p.qacc[i];
     d.qfrc_constraint[dofs[i]] = p.qfrc_constraint[i];
@@ -245,7 +241,7 @@ void SolveIslands(const Model& m, Data& d) {
     int nv = dof_start[island + 1] - dof_start[island];
     int nefc = row_start[island + 1] - row_start[island];
     // One island holding everything is solved in Data's arrays (its states apart).
-    bool whole = nv == m.nv && nefc == d.nefc && DenseRows(m, d);
+    bool whole = nv == m.nv && nefc == d.nefc && !SparseJacobian(m);
     ConstraintProblem p = whole ? WholeProblem(m, d, frame.Ints(nefc))
                                 : MakeProblem(m, d, dofs, nv, rows, nefc, local, frame);
     for (int i = 0; i < nv && !whole; i++) local[dofs[i]] = -1;
@@ -261,17 +257,21 @@ void SolveIslands(const Model& m, Data& d) {
 // Newton or CG on the whole model at once (islands disabled).
 void SolveWhole(const Model& m, Data& d) {
   SolverFrame frame(d.solver_scratch);
-  int* dofs = frame.Ints(m.nv);
-  int* rows = frame.Ints(d.nefc);
-  int* local = frame.Ints(m.nv);
-  for (int v = 0; v < m.nv; v++) dofs[v] = v;
-  for (int r = 0; r < d.nefc; r++) rows[r] = r;
-  bool whole = DenseRows(m, d);
-  ConstraintProblem p = whole ? WholeProblem(m, d, d.efc_state.data())
-                              : MakeProblem(m, d, dofs, m.nv, rows, d.nefc, local, frame);
+  // With a dense Jacobian in Data's own arrays; else gathered into dense rows.
+  int *dofs = nullptr, *rows = nullptr;
+  ConstraintProblem p;
+  if (!SparseJacobian(m)) {
+    p = WholeProblem(m, d, d.efc_state.data());
+  } else {
+    dofs = frame.Ints(m.nv);
+    rows = frame.Ints(d.nefc);
+    for (int v = 0; v < m.nv; v++) dofs[v] = v;
+    for (int r = 0; r < d.nefc; r++) rows[r] = r;
+    p = MakeProblem(m, d, dofs, m.nv, rows, d.nefc, frame.Ints(m.nv), frame);
+  }
   p.scale = 1 / (m.stat.meaninertia * std::max(1, m.nv));
   SolvePrimal(m, p, m.opt.solver == kSolverNewton, d.solver_scratch);
-  Scatter(p, whole ? nullptr : dofs, rows, true, d);
+  Scatter(p, dofs, rows, true, d);
 }
 
 }  // namespace

@@ -239,6 +239,20 @@ void EqualityRows(const Model& m, Data& d) {
 
 // ---------------------------------------------------------------- friction and limits
 
+// The nonzero columns of tendon t's Jacobian (ascending: those of its pattern that are
+// not zero), their values into `values`.
+Columns TendonColumns(const Model& m, const Data& d, int t, int* index, double* values) {
+  const double* row = RowOf(d.ten_J, t, m.nv);
+  const int* cols = RowOf(d.ten_J_colind, t, m.nv);
+  int n = 0;
+  for (int k = 0; k < d.ten_J_rownnz[t]; k++) {
+    if (row[cols[k]] == 0) continue;
+    index[n] = cols[k];
+    values[n++] = row[cols[k]];
+  }
+  return Columns{index, n};
+}
+
 // One row per dof and per tendon with a friction loss.
 void FrictionRows(const Model& m, Data& d) {
   if (m.opt.disableflags & kDisableFrictionloss) return;
@@ -254,9 +268,8 @@ void FrictionRows(const Model& m, Data& d) {
   }
   for (int t = 0; t < m.ntendon; t++) {
     if (m.tendon_frictionloss[t] <= 0) continue;
-    std::copy_n(RowOf(d.ten_J, t, m.nv), m.nv, jac);
-    AddDenseRows(m, d, jac, index, nullptr, 0, m.tendon_frictionloss[t], 1,
-                 kCnstrFrictionTendon, t);
+    Columns cols = TendonColumns(m, d, t, index, jac);
+    AddRows(m, d, jac, cols, nullptr, 0, m.tendon_frictionloss[t], 1, kCnstrFrictionTendon, t);
   }
 }
 
@@ -272,22 +285,8 @@ void ScalarLimitRows(const Model& m, Data& d, double value, const double* range,
   }
 }
 
-// The nonzero columns of tendon t's Jacobian (ascending: those of its pattern that are
-// not zero), their values into `values`.
-Columns TendonColumns(const Model& m, const Data& d, int t, int* index, double* values) {
-  const double* row = RowOf(d.ten_J, t, m.nv);
-  const int* cols = RowOf(d.ten_J_colind, t, m.nv);
-  int n = 0;
-  for (int k = 0; k < d.ten_J_rownnz[t]; k++) {
-    if (row[cols[k]] == 0) continue;
-    index[n] = cols[k];
-    values[n++] = row[cols[k]];
-  }
-  return Columns{index, n};
-}
-
 // Ball joint limit: the rotation angle stays below the larger range value.
-void BallLimitRow(const Model& m, Data& d, int j, double* jac, int* index) {
+void BallLimitRow(const Model& m, Data& d, int j) {
   int adr = m.jnt_qposadr[j];
   double quat[4];
   math::CopyQuat(quat, &d.qpos[adr]);
@@ -298,9 +297,11 @@ void BallLimitRow(const Model& m, Data& d, int j, double* jac, int* index) {
   double dist = std::max(m.jnt_range[2 * j], m.jnt_range[2 * j + 1]) - angle;
   double margin = m.jnt_margin[j];
   if (dist >= margin) return;
-  std::fill(jac, jac + m.nv, 0.0);
-  math::Scale3(jac + m.jnt_dofadr[j], axis, -1);
-  AddDenseRows(m, d, jac, index, &dist, margin, 0, 1, kCnstrLimitJoint, j);
+  // The joint's three dofs, along minus the rotation axis.
+  const int dofs[3] = {m.jnt_dofadr[j], m.jnt_dofadr[j] + 1, m.jnt_dofadr[j] + 2};
+  double jac[3];
+  math::Scale3(jac, axis, -1);
+  AddRows(m, d, jac, Columns{dofs, 3}, &dist, margin, 0, 1, kCnstrLimitJoint, j);
 }
 
 void LimitRows(const Model& m, Data& d) {
@@ -313,7 +314,7 @@ void LimitRows(const Model& m, Data& d) {
   for (int j = 0; j < m.njnt; j++) {
     if (!m.jnt_limited[j]) continue;
     int type = m.jnt_type[j];
-    if (type == kJointBall) BallLimitRow(m, d, j, jac, index);
+    if (type == kJointBall) BallLimitRow(m, d, j);
     if (type != kJointSlide && type != kJointHinge) continue;
     // The joint's own dof, with slope 1.
     int dof = m.jnt_dofadr[j];

@@ -75,21 +75,16 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
 }
 
 int MergedDofChain(const Model& m, int b0, int b1, int* dofs) {
-  // Both chains walked up together (descending dof indices), shared ancestors once:
-  // first to count, then to fill the list from its end.
-  auto walk = [&m, b0, b1](auto&& visit) {
-    int i0 = LastDof(m, b0), i1 = LastDof(m, b1);
-    while (i0 >= 0 || i1 >= 0) {
-      int next = std::max(i0, i1);
-      visit(next);
-      if (i0 == next) i0 = m.dof_parentid[i0];
-      if (i1 == next) i1 = m.dof_parentid[i1];
-    }
-  };
-  int n = 0;
-  walk([&n](int) { n++; });
-  int at = n;
-  walk([dofs, &at](int dof) { dofs[--at] = dof; });
+  // Both chains walked up together (descending dof indices), shared ancestors once, then
+  // the list turned ascending.
+  int n = 0, i0 = LastDof(m, b0), i1 = LastDof(m, b1);
+  while (i0 >= 0 || i1 >= 0) {
+    int next = std::max(i0, i1);
+    dofs[n++] = next;
+    if (i0 == next) i0 = m.dof_parentid[i0];
+    if (i1 == next) i1 = m.dof_parentid[i1];
+  }
+  std::reverse(dofs, dofs + n);
   return n;
 }
 

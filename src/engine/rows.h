@@ -30,6 +30,33 @@ const T* DofRows(const std::vector<T>& array, int adr, int width, int num) {
   return num > 0 ? RowOf(array, adr, width) : nullptr;
 }
 
+// ---------------------------------------------------------------- rows with a pattern
+// Dense rows that also keep the columns where they may be nonzero (actuator_moment and
+// ten_J: row i's pattern is rownnz[i] ascending columns from colind[i * nv] on), so that
+// the stages touch those columns only.
+
+// The columns where `row` (n numbers) is nonzero, ascending, into `cols`; their count.
+inline int NonzeroColumns(const double* row, int n, int* cols) {
+  int count = 0;
+  for (int v = 0; v < n; v++) {
+    if (row[v] != 0) cols[count++] = v;
+  }
+  return count;
+}
+
+// row . vec over the pattern's n columns, summed in column order (as over every column:
+// the others add exact zeros).
+inline double PatternDot(const double* row, const int* cols, int n, const double* vec) {
+  double s = 0;
+  for (int k = 0; k < n; k++) s += row[cols[k]] * vec[cols[k]];
+  return s;
+}
+
+// Zeroes `row` on its pattern's n columns: the whole row is zero then.
+inline void ClearPattern(double* row, const int* cols, int n) {
+  for (int k = 0; k < n; k++) row[cols[k]] = 0;
+}
+
 }  // namespace simlab
 
 #endif  // SIMLAB_ENGINE_ROWS_H_

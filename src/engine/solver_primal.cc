@@ -13,6 +13,7 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/rows.h"
 #include "math/dot.h"
 
 namespace simlab {
@@ -266,11 +267,8 @@ struct Primal {
     nonzero = frame.Ints(static_cast<size_t>(p.nefc) * nv);
     nnz = frame.Ints(p.nefc);
     for (int r = 0; r < p.nefc; r++) {
-      const double* row = &p.J[static_cast<size_t>(r) * nv];
-      int* cols = &nonzero[static_cast<size_t>(r) * nv];
-      for (int v = 0; v < nv; v++) {
-        if (row[v] != 0) cols[nnz[r]++] = v;
-      }
+      size_t at = static_cast<size_t>(r) * nv;
+      nnz[r] = NonzeroColumns(&p.J[at], nv, &nonzero[at]);
     }
   }
 

@@ -208,14 +208,6 @@ void AddSegmentJacobianDot(const Model& m, Data& d, int site_a, int site_b, doub
   AddSegmentJacobian(m, d, a, body_a, b, body_b, udot, scale, jdot);
 }
 
-// Clears tendon i's row of ten_J where it may be nonzero (its last pattern).
-void ClearTendonRow(const Model& m, Data& d, int i) {
-  double* jac = RowOf(d.ten_J, i, m.nv);
-  const int* cols = RowOf(d.ten_J_colind, i, m.nv);
-  for (int k = 0; k < d.ten_J_rownnz[i]; k++) jac[cols[k]] = 0;
-  d.ten_J_rownnz[i] = 0;
-}
-
 // Records where tendon i's row of ten_J may be nonzero: a fixed tendon's joint dofs
 // (ascending, once each), else the row's nonzeros.
 void SetTendonPattern(const Model& m, Data& d, int i) {
@@ -234,9 +226,7 @@ void SetTendonPattern(const Model& m, Data& d, int i) {
       n++;
     }
   } else {
-    for (int v = 0; v < m.nv; v++) {
-      if (jac[v] != 0) cols[n++] = v;
-    }
+    n = NonzeroColumns(jac, m.nv, cols);
   }
   d.ten_J_rownnz[i] = n;
 }
@@ -246,8 +236,10 @@ void SetTendonPattern(const Model& m, Data& d, int i) {
 void Tendon(const Model& m, Data& d) {
   int count = 0;
   for (int i = 0; i < m.ntendon; i++) {
-    ClearTendonRow(m, d, i);
+    // (zero where the last pattern said it may not be)
     double* jac = RowOf(d.ten_J, i, m.nv);
+    ClearPattern(jac, RowOf(d.ten_J_colind, i, m.nv), d.ten_J_rownnz[i]);
+    d.ten_J_rownnz[i] = 0;
     d.ten_length[i] = 0;
     d.ten_wrapadr[i] = count;
     d.ten_wrapnum[i] = 0;
@@ -279,11 +271,8 @@ void TendonJacobianDot(const Model& m, Data& d, int i, double* jdot) {
 
 void TendonVelocity(const Model& m, Data& d) {
   for (int i = 0; i < m.ntendon; i++) {
-    const double* jac = RowOf(d.ten_J, i, m.nv);
-    const int* cols = RowOf(d.ten_J_colind, i, m.nv);
-    double s = 0;
-    for (int k = 0; k < d.ten_J_rownnz[i]; k++) s += jac[cols[k]] * d.qvel[cols[k]];
-    d.ten_velocity[i] = s;
+    d.ten_velocity[i] = PatternDot(RowOf(d.ten_J, i, m.nv), RowOf(d.ten_J_colind, i, m.nv),
+                                   d.ten_J_rownnz[i], d.qvel.data());
   }
 }
 

@@ -272,13 +272,6 @@ void BodyMoment(const Model& m, Data& d, int body, double* moment) {
   for (int v = 0; v < nv; v++) moment[v] = (moment[v] + exclude[v]) * (-1.0 / count);
 }
 
-// Clears actuator i's row of actuator_moment where it may be nonzero (its last pattern).
-void ClearMomentRow(const Model& m, Data& d, int i) {
-  double* moment = RowOf(d.actuator_moment, i, m.nv);
-  const int* cols = RowOf(d.moment_colind, i, m.nv);
-  for (int k = 0; k < d.moment_rownnz[i]; k++) moment[cols[k]] = 0;
-}
-
 // Records where actuator i's row may be nonzero: a joint's dofs, a tendon's pattern,
 // else the row's nonzeros.
 void SetMomentPattern(const Model& m, Data& d, int i) {
@@ -294,9 +287,7 @@ void SetMomentPattern(const Model& m, Data& d, int i) {
     n = d.ten_J_rownnz[id];
     std::copy_n(RowOf(d.ten_J_colind, id, m.nv), n, cols);
   } else {
-    for (int v = 0; v < m.nv; v++) {
-      if (moment[v] != 0) cols[n++] = v;
-    }
+    n = NonzeroColumns(moment, m.nv, cols);
   }
   d.moment_rownnz[i] = n;
 }
@@ -305,8 +296,9 @@ void SetMomentPattern(const Model& m, Data& d, int i) {
 
 void Transmission(const Model& m, Data& d) {
   for (int i = 0; i < m.nu; i++) {
-    ClearMomentRow(m, d, i);
+    // (zero where the last pattern said it may not be)
     double* moment = RowOf(d.actuator_moment, i, m.nv);
+    ClearPattern(moment, RowOf(d.moment_colind, i, m.nv), d.moment_rownnz[i]);
     int id = m.actuator_trnid[2 * i];
     switch (m.actuator_trntype[i]) {
       case kTrnJoint:
@@ -343,11 +335,10 @@ void Transmission(const Model& m, Data& d) {
 void ActuatorVelocity(const Model& m, Data& d) {
   bool actuation = !(m.opt.disableflags & kDisableActuation);
   for (int i = 0; i < m.nu; i++) {
-    const double* moment = RowOf(d.actuator_moment, i, m.nv);
-    const int* cols = RowOf(d.moment_colind, i, m.nv);
-    double s = 0;
-    for (int k = 0; k < d.moment_rownnz[i] && actuation; k++) s += moment[cols[k]] * d.qvel[cols[k]];
-    d.actuator_velocity[i] = s;
+    d.actuator_velocity[i] = actuation ? PatternDot(RowOf(d.actuator_moment, i, m.nv),
+                                                    RowOf(d.moment_colind, i, m.nv),
+                                                    d.moment_rownnz[i], d.qvel.data())
+                                       : 0;
   }
 }
 
