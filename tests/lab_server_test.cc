@@ -381,6 +381,24 @@ int DescriptorsInUse() {
   return highest + 1;
 }
 
+// How many file descriptors this process has open.
+int OpenDescriptors() {
+  int count = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator("/proc/self/fd")) ++count;
+  return count;
+}
+
+// Waits (up to 5 s) until this process has no more than `count` descriptors open: the
+// server closes a finished connection on its own thread, a moment after the client has
+// its reply.
+bool SettlesAt(int count) {
+  for (int tries = 0; tries < 500; ++tries) {
+    if (OpenDescriptors() <= count) return true;
+    std::this_thread::sleep_for(10ms);
+  }
+  return false;
+}
+
 // While alive, this process has no free file descriptor: RLIMIT_NOFILE lowered a little
 // above those in use and every free one below it taken by /dev/null (as idle connections
 // would take them). The destructor gives them back and restores the limit.
@@ -413,7 +431,10 @@ class DescriptorExhaustion {
 // the queue and is answered once some come back.
 TEST_F(LabServerTest, KeepsAcceptingAfterRunningOutOfDescriptors) {
   RunningServer site(LabSite{kRepo, lesson()});
+  const int idle = OpenDescriptors();
   ASSERT_EQ(Get(site.port(), "/lesson.json").status, 200);  // now waiting in accept()
+  // The server has closed that connection: no descriptor comes free during the test.
+  ASSERT_TRUE(SettlesAt(idle));
   const int first = ClientSocket();
   const int second = ClientSocket();
   const std::string request = "GET /lesson.json HTTP/1.1\r\nHost: " + HostOf(site.port()) +
