@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "simlab/simlab.h"
@@ -82,18 +83,24 @@ Data SettledData(const Model& m) {
   return d;
 }
 
-TEST(SparseRows, DenseAndSparseJacobiansHoldTheSameRows) {
-  Model dense_model = LoadXmlString(Scene("dense"));
-  Model sparse_model = LoadXmlString(Scene("sparse"));
+// The settled state of the dense model, copied into a Data of the sparse one; both then
+// through Forward.
+std::pair<Data, Data> SameState(const Model& dense_model, const Model& sparse_model) {
   Data dense = SettledData(dense_model);
   Data sparse = MakeData(sparse_model);
-  // The same state in both (the dense run's), then the position and velocity stages.
   sparse.qpos = dense.qpos;
   sparse.qvel = dense.qvel;
   sparse.ctrl = dense.ctrl;
   sparse.qacc_warmstart = dense.qacc_warmstart;
   Forward(dense_model, dense);
   Forward(sparse_model, sparse);
+  return {std::move(dense), std::move(sparse)};
+}
+
+TEST(SparseRows, DenseAndSparseJacobiansHoldTheSameRows) {
+  Model dense_model = LoadXmlString(Scene("dense"));
+  Model sparse_model = LoadXmlString(Scene("sparse"));
+  auto [dense, sparse] = SameState(dense_model, sparse_model);
 
   const int nv = dense_model.nv;
   ASSERT_GT(dense.ncon, 0);
@@ -127,6 +134,38 @@ TEST(SparseRows, DenseAndSparseJacobiansHoldTheSameRows) {
   EXPECT_GT(contact_rows, 0);
   for (int v = 0; v < nv; v++) {
     EXPECT_NEAR(dense.qacc[v], sparse.qacc[v], 1e-8 * (1 + std::abs(dense.qacc[v]))) << v;
+  }
+}
+
+// The solvers on compressed rows (sparse products, the sparse Newton Hessian and its
+// updates, PGS and noslip on the compressed efc_AR) find the accelerations the dense ones
+// find, for both cones, with islands and on the whole model at once: a state with
+// contacts, limits, equalities and friction loss.
+TEST(SparseRows, SparseSolversFindTheDenseSolution) {
+  for (const char* cone : {"pyramidal", "elliptic"}) {
+    for (const char* solver : {"Newton", "CG", "PGS", "Newton noslip"}) {
+      for (const char* island : {"enable", "disable"}) {
+        auto variant = [&](const std::string& jacobian) {
+          std::string xml = Scene(jacobian);
+          std::string name = solver;
+          bool noslip = name.find(" noslip") != std::string::npos;
+          std::string option = std::string(R"(cone=")") + cone + R"(" solver=")" +
+                               name.substr(0, name.find(' ')) +
+                               R"(" iterations="2000" tolerance="1e-15" )" +
+                               (noslip ? R"(noslip_iterations="50" )" : "") +
+                               R"(><flag island=")" + island + R"("/></option>)";
+          xml.replace(xml.find("/>"), 2, " " + option);
+          return LoadXmlString(xml);
+        };
+        Model dense_model = variant("dense"), sparse_model = variant("sparse");
+        auto [dense, sparse] = SameState(dense_model, sparse_model);
+        ASSERT_GT(dense.ncon, 0);
+        for (int v = 0; v < dense_model.nv; v++) {
+          EXPECT_NEAR(dense.qacc[v], sparse.qacc[v], 1e-7 * (1 + std::abs(dense.qacc[v])))
+              << cone << " " << solver << " island " << island << " dof " << v;
+        }
+      }
+    }
   }
 }
 

@@ -257,7 +257,15 @@ struct Data {
   int nJ = 0;
   std::vector<double> efc_J;
   std::vector<int> efc_J_colind;
-  std::vector<double> efc_AR;  // nefc x nefc: J M^-1 J^T + diag(R), for the PGS solver
+  // AR = J M^-1 J^T + diag(R), for the dual solvers (PGS, noslip), nA entries: the dense
+  // nefc x nefc matrix, or, when efc_J is sparse, in compressed rows as MuJoCo's (row r:
+  // efc_AR_rownnz[r] entries from efc_AR_rowadr[r] on, at the rows efc_AR_colind that
+  // share a dof with r, ascending).
+  int nA = 0;
+  std::vector<double> efc_AR;
+  std::vector<int> efc_AR_rownnz;
+  std::vector<int> efc_AR_rowadr;
+  std::vector<int> efc_AR_colind;
 
   // Contacts of the last collision stage: the first ncon entries (capacity grows as needed).
   std::vector<Contact> contact;

@@ -9,6 +9,7 @@
 //   4. noslip (opt.noslip_iterations > 0): friction forces re-solved without R.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <initializer_list>
 #include <type_traits>
 #include <vector>
@@ -50,7 +51,7 @@ void WarmStart(const Model& m, Data& d) {
   if (m.opt.solver == kSolverPGS) {
     // Dual cost of the warm-start forces: f.b + 0.5 f.AR f; zero forces if positive.
     double* arf = frame.Alloc(nefc);
-    math::MulMatVec(arf, d.efc_AR.data(), d.efc_force.data(), nefc, nefc);
+    MulAR(m, d, d.efc_force.data(), arf);
     double dual = math::Dot(d.efc_force.data(), d.efc_b.data(), nefc) +
                   0.5 * math::Dot(d.efc_force.data(), arf, nefc);
     if (dual > 0) std::fill_n(d.efc_force.begin(), d.nefc, 0.0);
@@ -87,6 +88,35 @@ T* Gather(const std::vector<T>& src, const int* index, int n, SolverFrame& frame
   }
   for (int i = 0; i < n; i++) dst[i] = src[index[i]];
   return dst;
+}
+
+// The given rows of a compressed-row efc_J with their columns renumbered by `local` (the
+// problem's dofs, ascending as Data's), into p.J_* in arrays of `frame`.
+void GatherSparseRows(const Data& d, const int* rows, int nefc, const int* local,
+                      SolverFrame& frame, ConstraintProblem& p) {
+  int* rownnz = frame.IntsToWrite(nefc);
+  int* rowadr = frame.IntsToWrite(nefc);
+  int nnz = 0;
+  for (int r = 0; r < nefc; r++) {
+    rowadr[r] = nnz;
+    nnz += d.efc_J_rownnz[rows[r]];
+  }
+  int* colind = frame.IntsToWrite(nnz);
+  double* values = frame.RealsToWrite(nnz);
+  for (int r = 0; r < nefc; r++) {
+    int e = rows[r], count = 0;
+    for (int k = d.efc_J_rowadr[e]; k < d.efc_J_rowadr[e] + d.efc_J_rownnz[e]; k++) {
+      int i = local[d.efc_J_colind[k]];
+      if (i < 0) continue;
+      colind[rowadr[r] + count] = i;
+      values[rowadr[r] + count++] = d.efc_J[k];
+    }
+    rownnz[r] = count;
+  }
+  p.J_rownnz = rownnz;
+  p.J_rowadr = rowadr;
+  p.J_colind = colind;
+  p.J = values;
 }
 
 // The problem over the given dofs (ascending) and rows (ascending), in arrays of `frame`.
@@ -131,18 +161,25 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
   p.qfrc_constraint = frame.Reals(nv);
 
   // Rows, with the Jacobian restricted to the problem's dofs.
-  double* jac = frame.Reals(static_cast<size_t>(nefc) * nv);
   for (int r = 0; r < nefc; r++) {
     int e = rows[r];
     if (d.efc_type[e] == kCnstrEquality) p.ne++;
     if (d.efc_type[e] == kCnstrFrictionDof || d.efc_type[e] == kCnstrFrictionTendon) p.nf++;
-    double* row = jac + static_cast<size_t>(r) * nv;
-    for (int k = d.efc_J_rowadr[e]; k < d.efc_J_rowadr[e] + d.efc_J_rownnz[e]; k++) {
-      int i = local[d.efc_J_colind[k]];
-      if (i >= 0) row[i] = d.efc_J[k];
-    }
   }
-  p.J = jac;
+  if (SparseJacobian(m)) {
+    GatherSparseRows(d, rows, nefc, local, frame, p);
+  } else {
+    double* jac = frame.Reals(static_cast<size_t>(nefc) * nv);
+    for (int r = 0; r < nefc; r++) {
+      int e = rows[r];
+      double* row = jac + static_cast<size_t>(r) * nv;
+      for (int k = d.efc_J_rowadr[e]; k < d.efc_J_rowadr[e] + d.efc_J_rownnz[e]; k++) {
+        int i = local[d.efc_J_colind[k]];
+        if (i >= 0) row[i] = d.efc_J[k];
+      }
+    }
+    p.J = jac;
+  }
   p.D = Gather(d.efc_D, rows, nefc, frame);
   p.R = Gather(d.efc_R, rows, nefc, frame);
   p.frictionloss = Gather(d.efc_frictionloss, rows, nefc, frame);
@@ -155,9 +192,9 @@ ConstraintProblem MakeProblem(const Model& m, Data& d, const int* dofs, int nv, 
   return p;
 }
 
-// The problem over every dof and row in Data's own arrays, without copies: possible when
-// efc_J is dense (nv columns per row: !SparseJacobian). The solution is written into Data directly; row
-// states go to `state`.
+// The problem over every dof and row in Data's own arrays, without copies (efc_J dense,
+// or in compressed rows when SparseJacobian). The solution is written into Data directly;
+// row states go to `state`.
 ConstraintProblem WholeProblem(const Model& m, Data& d, int* state) {
   ConstraintProblem p;
   p.nv = m.nv;
@@ -175,6 +212,11 @@ ConstraintProblem WholeProblem(const Model& m, Data& d, int* state) {
   p.qacc = d.qacc.data();
   p.qfrc_constraint = d.qfrc_constraint.data();
   p.J = d.efc_J.data();
+  if (SparseJacobian(m)) {
+    p.J_rownnz = d.efc_J_rownnz.data();
+    p.J_rowadr = d.efc_J_rowadr.data();
+    p.J_colind = d.efc_J_colind.data();
+  }
   p.D = d.efc_D.data();
   p.R = d.efc_R.data();
   p.frictionloss = d.efc_frictionloss.data();
@@ -241,7 +283,7 @@ void SolveIslands(const Model& m, Data& d) {
     int nv = dof_start[island + 1] - dof_start[island];
     int nefc = row_start[island + 1] - row_start[island];
     // One island holding everything is solved in Data's arrays (its states apart).
-    bool whole = nv == m.nv && nefc == d.nefc && !SparseJacobian(m);
+    bool whole = nv == m.nv && nefc == d.nefc;
     ConstraintProblem p = whole ? WholeProblem(m, d, frame.Ints(nefc))
                                 : MakeProblem(m, d, dofs, nv, rows, nefc, local, frame);
     for (int i = 0; i < nv && !whole; i++) local[dofs[i]] = -1;
@@ -256,54 +298,221 @@ void SolveIslands(const Model& m, Data& d) {
 
 // Newton or CG on the whole model at once (islands disabled).
 void SolveWhole(const Model& m, Data& d) {
-  SolverFrame frame(d.solver_scratch);
-  // With a dense Jacobian in Data's own arrays; else gathered into dense rows.
-  int *dofs = nullptr, *rows = nullptr;
-  ConstraintProblem p;
-  if (!SparseJacobian(m)) {
-    p = WholeProblem(m, d, d.efc_state.data());
-  } else {
-    dofs = frame.Ints(m.nv);
-    rows = frame.Ints(d.nefc);
-    for (int v = 0; v < m.nv; v++) dofs[v] = v;
-    for (int r = 0; r < d.nefc; r++) rows[r] = r;
-    p = MakeProblem(m, d, dofs, m.nv, rows, d.nefc, frame.Ints(m.nv), frame);
-  }
+  ConstraintProblem p = WholeProblem(m, d, d.efc_state.data());
   p.scale = 1 / (m.stat.meaninertia * std::max(1, m.nv));
   SolvePrimal(m, p, m.opt.solver == kSolverNewton, d.solver_scratch);
-  Scatter(p, dofs, rows, true, d);
+  Scatter(p, nullptr, nullptr, true, d);
 }
 
 }  // namespace
 
 // ---------------------------------------------------------------- efc_AR for PGS and noslip
 
-void ProjectConstraint(const Model& m, Data& d) {
-  int nv = m.nv, nefc = d.nefc;
-  bool dual = m.opt.solver == kSolverPGS || m.opt.noslip_iterations > 0;
-  if (nefc == 0 || !dual) return;
+namespace {
 
-  // B = J L^-1 D^-1/2 row by row (M = L^T D L), so that J M^-1 J^T = B B^T.
+// 1 / sqrt(D_i) of M = L^T D L.
+double InverseSqrtPivot(const Model& m, const Data& d, int i) {
+  return 1 / std::sqrt(d.qLD[m.M_rowadr[i] + m.M_rownnz[i] - 1]);
+}
+
+// x <- x L^-1 (M = L^T D L) for a row x over dofs: from the last dof to the first, each
+// nonzero entry is taken out of its ancestors' (dofs listed in `order`, descending).
+void BackSubstituteRow(const Model& m, const Data& d, const int* order, int n, double* x) {
+  for (int q = 0; q < n; q++) {
+    int i = order[q];
+    if (x[i] == 0) continue;
+    int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
+    for (int k = m.M_rowadr[i]; k < end; k++) x[m.M_colind[k]] -= d.qLD[k] * x[i];
+  }
+}
+
+// Dense efc_AR = J M^-1 J^T + diag(R): B = J L^-1 D^-1/2 row by row, then B B^T.
+void ProjectDense(const Model& m, Data& d) {
+  int nv = m.nv, nefc = d.nefc;
   SolverFrame frame(d.solver_scratch);
   double* b = frame.Reals(static_cast<size_t>(nefc) * nv);
+  int* descending = frame.IntsToWrite(nv);
+  for (int i = 0; i < nv; i++) descending[i] = nv - 1 - i;
   for (int r = 0; r < nefc; r++) {
     double* x = &b[static_cast<size_t>(r) * nv];
     EfcRowDense(m, d, r, x);
-    for (int i = nv - 1; i >= 0; i--) {
-      if (x[i] == 0) continue;
-      int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
-      for (int k = m.M_rowadr[i]; k < end; k++) x[m.M_colind[k]] -= d.qLD[k] * x[i];
-    }
-    for (int i = 0; i < nv; i++) x[i] *= 1 / std::sqrt(d.qLD[m.M_rowadr[i] + m.M_rownnz[i] - 1]);
+    BackSubstituteRow(m, d, descending, nv, x);
+    for (int i = 0; i < nv; i++) x[i] *= InverseSqrtPivot(m, d, i);
   }
   d.efc_AR.assign(static_cast<size_t>(nefc) * nefc, 0.0);
   for (int r = 0; r < nefc; r++) {
+    const double* br = &b[static_cast<size_t>(r) * nv];
     for (int c = 0; c <= r; c++) {
+      const double* bc = &b[static_cast<size_t>(c) * nv];
       double s = 0;
-      for (int v = 0; v < nv; v++) s += b[static_cast<size_t>(r) * nv + v] * b[static_cast<size_t>(c) * nv + v];
+      for (int v = 0; v < nv; v++) s += br[v] * bc[v];
       d.efc_AR[static_cast<size_t>(r) * nefc + c] = d.efc_AR[static_cast<size_t>(c) * nefc + r] = s;
     }
     d.efc_AR[static_cast<size_t>(r) * nefc + r] += d.efc_R[r];
+  }
+}
+
+// Compressed rows (row r: rownnz[r] entries from rowadr[r], at colind, ascending).
+struct SparseRows {
+  int *rownnz = nullptr, *rowadr = nullptr, *colind = nullptr;
+  double* values = nullptr;
+};
+
+// The dofs of efc row r and all their ancestors (where L^-1 spreads the row), in
+// `cols` when given; returns how many. `mark` (nv, never equal to r before) is set to r.
+int ClosedRowDofs(const Model& m, const Data& d, int r, int* mark, int* cols) {
+  int n = 0;
+  for (int k = d.efc_J_rowadr[r]; k < d.efc_J_rowadr[r] + d.efc_J_rownnz[r]; k++) {
+    for (int v = d.efc_J_colind[k]; v >= 0 && mark[v] != r; v = m.dof_parentid[v]) {
+      mark[v] = r;
+      if (cols) cols[n] = v;
+      n++;
+    }
+  }
+  return n;
+}
+
+// Y = J L^-1 D^-1/2 on compressed rows (MuJoCo's efc_Y), in arrays of `frame`.
+SparseRows SparseY(const Model& m, const Data& d, SolverFrame& frame) {
+  int nv = m.nv, nefc = d.nefc;
+  SparseRows y;
+  y.rownnz = frame.IntsToWrite(nefc);
+  y.rowadr = frame.IntsToWrite(nefc);
+  int* mark = frame.IntsToWrite(nv);
+  std::fill(mark, mark + nv, -1);
+  int total = 0;
+  for (int r = 0; r < nefc; r++) {
+    y.rowadr[r] = total;
+    y.rownnz[r] = ClosedRowDofs(m, d, r, mark, nullptr);
+    total += y.rownnz[r];
+  }
+  y.colind = frame.IntsToWrite(total);
+  y.values = frame.RealsToWrite(total);
+  std::fill(mark, mark + nv, -1);
+  double* x = frame.Reals(nv);
+  for (int r = 0; r < nefc; r++) {
+    int* cols = y.colind + y.rowadr[r];
+    int n = ClosedRowDofs(m, d, r, mark, cols);
+    // descending for the back-substitution, then ascending as stored
+    std::sort(cols, cols + n, std::greater<int>());
+    for (int k = d.efc_J_rowadr[r]; k < d.efc_J_rowadr[r] + d.efc_J_rownnz[r]; k++) {
+      x[d.efc_J_colind[k]] = d.efc_J[k];
+    }
+    BackSubstituteRow(m, d, cols, n, x);
+    std::reverse(cols, cols + n);
+    for (int q = 0; q < n; q++) {
+      y.values[y.rowadr[r] + q] = x[cols[q]] * InverseSqrtPivot(m, d, cols[q]);
+      x[cols[q]] = 0;
+    }
+  }
+  return y;
+}
+
+// The rows of Y by dof (Y^T): for each dof, the rows that hold it, ascending.
+SparseRows TransposePattern(const SparseRows& y, int nrow, int ncol, SolverFrame& frame) {
+  SparseRows t;
+  t.rownnz = frame.Ints(ncol);
+  t.rowadr = frame.IntsToWrite(ncol);
+  int total = 0;
+  for (int r = 0; r < nrow; r++) {
+    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) t.rownnz[y.colind[q]]++;
+    total += y.rownnz[r];
+  }
+  t.colind = frame.IntsToWrite(total);
+  for (int c = 0, adr = 0; c < ncol; c++) {
+    t.rowadr[c] = adr;
+    adr += t.rownnz[c];
+    t.rownnz[c] = 0;
+  }
+  for (int r = 0; r < nrow; r++) {
+    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) {
+      int c = y.colind[q];
+      t.colind[t.rowadr[c] + t.rownnz[c]++] = r;
+    }
+  }
+  return t;
+}
+
+// Does row r of y hold the same dofs as row r - 1 (as the rows of one contact do)?
+bool RepeatsRow(const SparseRows& y, int r) {
+  if (r == 0 || y.rownnz[r] != y.rownnz[r - 1]) return false;
+  const int* cols = y.colind + y.rowadr[r];
+  return std::equal(cols, cols + y.rownnz[r], y.colind + y.rowadr[r - 1]);
+}
+
+// The rows of efc that share a dof with row r (r's columns of AR), into `cols` when given;
+// returns how many. `mark` (nefc, never equal to r before) is set to r.
+int CoupledRows(const SparseRows& y, const SparseRows& yt, int r, int* mark, int* cols) {
+  int n = 0;
+  for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) {
+    int v = y.colind[q];
+    for (int k = yt.rowadr[v]; k < yt.rowadr[v] + yt.rownnz[v]; k++) {
+      int c = yt.colind[k];
+      if (mark[c] == r) continue;
+      mark[c] = r;
+      if (cols) cols[n] = c;
+      n++;
+    }
+  }
+  return n;
+}
+
+// Sparse efc_AR = Y Y^T + diag(R) in compressed rows (efc_AR_rownnz/rowadr/colind, nA
+// entries): row r holds the rows that share a dof with it.
+void ProjectSparse(const Model& m, Data& d) {
+  int nv = m.nv, nefc = d.nefc;
+  SolverFrame frame(d.solver_scratch);
+  SparseRows y = SparseY(m, d, frame);
+  SparseRows yt = TransposePattern(y, nefc, nv, frame);
+  int* mark = frame.IntsToWrite(nefc);
+  std::fill(mark, mark + nefc, -1);
+  // The pattern: counted, then written (a row repeating the one before copies it).
+  if (d.efc_AR_rownnz.size() < static_cast<size_t>(nefc)) {
+    d.efc_AR_rownnz.resize(nefc);
+    d.efc_AR_rowadr.resize(nefc);
+  }
+  int total = 0;
+  for (int r = 0; r < nefc; r++) {
+    d.efc_AR_rowadr[r] = total;
+    d.efc_AR_rownnz[r] =
+        RepeatsRow(y, r) ? d.efc_AR_rownnz[r - 1] : CoupledRows(y, yt, r, mark, nullptr);
+    total += d.efc_AR_rownnz[r];
+  }
+  d.nA = total;
+  if (d.efc_AR_colind.size() < static_cast<size_t>(total)) d.efc_AR_colind.resize(total);
+  if (d.efc_AR.size() < static_cast<size_t>(total)) d.efc_AR.resize(total);
+  std::fill(mark, mark + nefc, -1);
+  for (int r = 0; r < nefc; r++) {
+    int* cols = &d.efc_AR_colind[d.efc_AR_rowadr[r]];
+    if (RepeatsRow(y, r)) {
+      std::copy_n(&d.efc_AR_colind[d.efc_AR_rowadr[r - 1]], d.efc_AR_rownnz[r], cols);
+    } else {
+      CoupledRows(y, yt, r, mark, cols);
+      std::sort(cols, cols + d.efc_AR_rownnz[r]);
+    }
+  }
+  // The values: row r of Y scattered, dotted with each coupled row.
+  double* x = frame.Reals(nv);
+  for (int r = 0; r < nefc; r++) {
+    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) x[y.colind[q]] = y.values[q];
+    for (int k = d.efc_AR_rowadr[r]; k < d.efc_AR_rowadr[r] + d.efc_AR_rownnz[r]; k++) {
+      int c = d.efc_AR_colind[k];
+      d.efc_AR[k] = math::DotSparse(y.values + y.rowadr[c], x, y.rownnz[c], y.colind + y.rowadr[c]);
+      if (c == r) d.efc_AR[k] += d.efc_R[r];
+    }
+    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) x[y.colind[q]] = 0;
+  }
+}
+
+}  // namespace
+
+void ProjectConstraint(const Model& m, Data& d) {
+  bool dual = m.opt.solver == kSolverPGS || m.opt.noslip_iterations > 0;
+  if (d.nefc == 0 || !dual) return;
+  if (SparseJacobian(m)) {
+    ProjectSparse(m, d);
+  } else {
+    ProjectDense(m, d);
   }
 }
 

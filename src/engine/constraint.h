@@ -75,6 +75,7 @@ class SolverFrame {
 
   double* Reals(size_t n) { return Take(s_.reals, s_.nreal, n, true); }
   int* Ints(size_t n) { return Take(s_.ints, s_.nint, n, true); }
+  int* IntsToWrite(size_t n) { return Take(s_.ints, s_.nint, n, false); }
   // n numbers left as they are, for arrays their user writes in full before reading.
   double* RealsToWrite(size_t n) { return Take(s_.reals, s_.nreal, n, false); }
 
@@ -111,8 +112,12 @@ struct ConstraintProblem {
   double* qacc = nullptr;
   double* qfrc_constraint = nullptr;
 
-  // rows: dense Jacobian (nefc x nv) and the per-row data the cost needs; id is efc_id
-  // (the contact of a contact row), contact is Data's contact list.
+  // rows: the Jacobian and the per-row data the cost needs; id is efc_id (the contact of
+  // a contact row), contact is Data's contact list. J is dense (nefc x nv) unless
+  // J_rownnz is set: then, for a model MuJoCo treats as sparse (SparseJacobian), its rows
+  // are compressed (row r: J_rownnz[r] values from J_rowadr[r], at the problem's dofs
+  // J_colind[..], ascending), and the solvers work on the nonzeros.
+  const int *J_rownnz = nullptr, *J_rowadr = nullptr, *J_colind = nullptr;
   const double *J = nullptr, *D = nullptr, *R = nullptr, *frictionloss = nullptr;
   const double* aref = nullptr;
   double* force = nullptr;
@@ -125,6 +130,7 @@ struct ConstraintProblem {
   int nonconvex = 0;  // line-search points where the objective was not convex
 
   RowSet Rows() const { return RowSet{ne, nf, nefc, D, R, frictionloss, type, id, contact}; }
+  bool sparse() const { return J_rownnz != nullptr; }
 };
 
 // Row states and forces for jar = J a - aref, and optionally the constraint cost s(jar)
@@ -172,12 +178,15 @@ void SolveNoSlip(const Model& m, Data& d);
 // qacc = qacc_smooth + M^-1 qfrc_constraint.
 void RunDualSweeps(const Model& m, Data& d, int maxiter, double tolerance,
                    const std::function<double(int)>& sweep);
+// (efc_AR is dense or in compressed rows, as the model's efc_J: SparseJacobian.)
 // inv = 1 / diag(AR) (or of AR - R, floored at kMinVal) for every row.
-void InverseDiagAR(const Data& d, bool no_r, double* inv);
+void InverseDiagAR(const Model& m, const Data& d, bool no_r, double* inv);
 // The dim x dim diagonal block of AR at row `start` (minus R, floored at 1e-10).
-void BlockAR(const Data& d, int start, int dim, bool no_r, double* block);
+void BlockAR(const Model& m, const Data& d, int start, int dim, bool no_r, double* block);
 // res = b + AR f over rows start..start+dim-1 (minus R f).
-void Residual(const Data& d, int start, int dim, bool no_r, double* res);
+void Residual(const Model& m, const Data& d, int start, int dim, bool no_r, double* res);
+// res (nefc) = AR f.
+void MulAR(const Model& m, const Data& d, const double* f, double* res);
 // The dual cost change of moving `force` (dim rows) from `old` given the block A and the
 // residual at `old`; a step that raises the cost is undone (returns 0 then).
 double CostChange(const double* A, double* force, const double* old, const double* res,

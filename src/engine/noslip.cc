@@ -21,10 +21,10 @@ namespace {
 
 // Friction-loss rows: unconstrained minimum along each row, clamped to its interval.
 // (The sweeps subtract their cost changes from one running sum, in MuJoCo's order.)
-void SweepFrictionLoss(Data& d, const double* ar_inv, double* improvement) {
+void SweepFrictionLoss(const Model& m, Data& d, const double* ar_inv, double* improvement) {
   for (int r = d.ne; r < d.ne + d.nf; r++) {
     double res;
-    Residual(d, r, 1, true, &res);
+    Residual(m, d, r, 1, true, &res);
     double old = d.efc_force[r];
     double loss = d.efc_frictionloss[r];
     d.efc_force[r] = std::clamp(old - res * ar_inv[r], -loss, loss);
@@ -35,11 +35,11 @@ void SweepFrictionLoss(Data& d, const double* ar_inv, double* improvement) {
 
 // Rows j, j+1 (opposite edges of a pyramid): f_j = mid + y, f_j+1 = mid - y with their sum
 // 2 mid fixed, y minimizing the pair's quadratic within [-mid, mid]; returns the change.
-double UpdateEdgePair(Data& d, int j) {
+double UpdateEdgePair(const Model& m, Data& d, int j) {
   double res[2], old[2], A[4], b[2];
-  Residual(d, j, 2, true, res);
+  Residual(m, d, j, 2, true, res);
   std::copy(&d.efc_force[j], &d.efc_force[j] + 2, old);
-  BlockAR(d, j, 2, true, A);
+  BlockAR(m, d, j, 2, true, A);
   for (int k = 0; k < 2; k++) b[k] = res[k] - math::Dot(A + 2 * k, old, 2);
 
   double* f = &d.efc_force[j];
@@ -65,12 +65,12 @@ double UpdateEdgePair(Data& d, int j) {
 }
 
 // The friction rows i+1.. of an elliptic contact at row i, normal force fixed.
-double UpdateEllipticFriction(Data& d, int i, int dim) {
+double UpdateEllipticFriction(const Model& m, Data& d, int i, int dim) {
   int n = dim - 1;
   double res[5], old[5], A[25], b[5];
-  Residual(d, i + 1, n, true, res);
+  Residual(m, d, i + 1, n, true, res);
   std::copy(&d.efc_force[i + 1], &d.efc_force[i + 1] + n, old);
-  BlockAR(d, i + 1, n, true, A);
+  BlockAR(m, d, i + 1, n, true, A);
   for (int j = 0; j < n; j++) b[j] = res[j] - math::Dot(A + j * n, old, n);
   double* f = &d.efc_force[i];
   EllipticFriction(A, b, d.contact[d.efc_id[i]].friction, f[0], dim, f + 1);
@@ -78,16 +78,16 @@ double UpdateEllipticFriction(Data& d, int i, int dim) {
 }
 
 // Contact rows: pyramidal edge pairs and elliptic friction blocks (frictionless skipped).
-void SweepContacts(Data& d, double* improvement) {
+void SweepContacts(const Model& m, Data& d, double* improvement) {
   for (int i = d.ne + d.nf; i < d.nefc; i++) {
     int type = d.efc_type[i];
     if (type != kCnstrContactPyramidal && type != kCnstrContactElliptic) continue;
     int dim = d.contact[d.efc_id[i]].dim;
     if (type == kCnstrContactPyramidal) {
-      for (int j = i; j < i + 2 * (dim - 1); j += 2) *improvement -= UpdateEdgePair(d, j);
+      for (int j = i; j < i + 2 * (dim - 1); j += 2) *improvement -= UpdateEdgePair(m, d, j);
       i += 2 * (dim - 1) - 1;
     } else {
-      *improvement -= UpdateEllipticFriction(d, i, dim);
+      *improvement -= UpdateEllipticFriction(m, d, i, dim);
       i += dim - 1;
     }
   }
@@ -98,8 +98,8 @@ void SweepContacts(Data& d, double* improvement) {
 void SolveNoSlip(const Model& m, Data& d) {
   SolverFrame frame(d.solver_scratch);
   double* ar_inv = frame.Reals(d.nefc);
-  InverseDiagAR(d, true, ar_inv);
-  auto sweep = [&d, ar_inv](int iter) {
+  InverseDiagAR(m, d, true, ar_inv);
+  auto sweep = [&m, &d, ar_inv](int iter) {
     // The first sweep also counts removing R from the cost.
     double improvement = 0;
     if (iter == 0) {
@@ -107,8 +107,8 @@ void SolveNoSlip(const Model& m, Data& d) {
         improvement += 0.5 * d.efc_force[r] * d.efc_force[r] * d.efc_R[r];
       }
     }
-    SweepFrictionLoss(d, ar_inv, &improvement);
-    SweepContacts(d, &improvement);
+    SweepFrictionLoss(m, d, ar_inv, &improvement);
+    SweepContacts(m, d, &improvement);
     return improvement;
   };
   RunDualSweeps(m, d, m.opt.noslip_iterations, m.opt.noslip_tolerance, sweep);

@@ -38,7 +38,7 @@ void ResetData(const Model& m, Data& d) {
   // actuator_moment and ten_J are zero: no row has a nonzero anywhere
   std::fill(d.moment_rownnz.begin(), d.moment_rownnz.end(), 0);
   std::fill(d.ten_J_rownnz.begin(), d.ten_J_rownnz.end(), 0);
-  d.nJ = 0;
+  d.nJ = d.nA = 0;
   d.time = 0;
   d.energy[0] = d.energy[1] = 0;
   d.flg_energypos = d.flg_energyvel = d.flg_subtreevel = d.flg_rnepost = false;

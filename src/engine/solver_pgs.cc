@@ -64,18 +64,40 @@ void DualState(Data& d) {
 
 }  // namespace
 
-void InverseDiagAR(const Data& d, bool no_r, double* inv) {
+namespace {
+
+// The index in efc_AR of AR(r, c) on compressed rows (row r holds column c).
+size_t SparseAREntry(const Data& d, int r, int c) {
+  const int* begin = &d.efc_AR_colind[d.efc_AR_rowadr[r]];
+  return d.efc_AR_rowadr[r] + (std::lower_bound(begin, begin + d.efc_AR_rownnz[r], c) - begin);
+}
+
+// Row r of AR times f.
+double ARRowDot(const Model& m, const Data& d, int r, const double* f) {
+  if (!SparseJacobian(m)) return Dot(&d.efc_AR[static_cast<size_t>(r) * d.nefc], f, d.nefc);
+  int adr = d.efc_AR_rowadr[r];
+  return math::DotSparse(&d.efc_AR[adr], f, d.efc_AR_rownnz[r], &d.efc_AR_colind[adr]);
+}
+
+}  // namespace
+
+void InverseDiagAR(const Model& m, const Data& d, bool no_r, double* inv) {
   int nefc = d.nefc;
+  bool sparse = SparseJacobian(m);
   for (int r = 0; r < nefc; r++) {
-    double diag = d.efc_AR[static_cast<size_t>(r) * (nefc + 1)];
+    double diag = sparse ? d.efc_AR[SparseAREntry(d, r, r)]
+                         : d.efc_AR[static_cast<size_t>(r) * (nefc + 1)];
     inv[r] = 1 / (no_r ? std::max(kMinVal, diag - d.efc_R[r]) : diag);
   }
 }
 
-void BlockAR(const Data& d, int start, int dim, bool no_r, double* block) {
+void BlockAR(const Model& m, const Data& d, int start, int dim, bool no_r, double* block) {
   int nefc = d.nefc;
+  // (on compressed rows the block's rows share their columns: those of one constraint)
+  bool sparse = SparseJacobian(m);
   for (int j = 0; j < dim; j++) {
-    const double* row = &d.efc_AR[static_cast<size_t>(start + j) * nefc + start];
+    const double* row = sparse ? &d.efc_AR[SparseAREntry(d, start + j, start)]
+                               : &d.efc_AR[static_cast<size_t>(start + j) * nefc + start];
     std::copy(row, row + dim, block + j * dim);
   }
   if (!no_r) return;
@@ -85,13 +107,15 @@ void BlockAR(const Data& d, int start, int dim, bool no_r, double* block) {
   }
 }
 
-void Residual(const Data& d, int start, int dim, bool no_r, double* res) {
-  int nefc = d.nefc;
+void Residual(const Model& m, const Data& d, int start, int dim, bool no_r, double* res) {
   for (int j = 0; j < dim; j++) {
-    const double* row = &d.efc_AR[static_cast<size_t>(start + j) * nefc];
-    res[j] = d.efc_b[start + j] + Dot(row, d.efc_force.data(), nefc);
+    res[j] = d.efc_b[start + j] + ARRowDot(m, d, start + j, d.efc_force.data());
     if (no_r) res[j] -= d.efc_R[start + j] * d.efc_force[start + j];
   }
+}
+
+void MulAR(const Model& m, const Data& d, const double* f, double* res) {
+  for (int r = 0; r < d.nefc; r++) res[r] = ARRowDot(m, d, r, f);
 }
 
 double CostChange(const double* A, double* force, const double* old, const double* res,
@@ -189,16 +213,16 @@ void UpdateElliptic(Data& d, int i, int dim, const double* A, const double* res,
 }
 
 // One Gauss-Seidel sweep over the rows and elliptic blocks; returns the cost decrease.
-double Sweep(Data& d, const double* ar_inv) {
+double Sweep(const Model& m, Data& d, const double* ar_inv) {
   double improvement = 0;
   for (int i = 0; i < d.nefc; i++) {
     bool elliptic = d.efc_type[i] == kCnstrContactElliptic;
     int dim = elliptic ? d.contact[d.efc_id[i]].dim : 1;
     double res[6], old[6], A[36];
-    Residual(d, i, dim, false, res);
+    Residual(m, d, i, dim, false, res);
     std::copy(&d.efc_force[i], &d.efc_force[i] + dim, old);
     if (elliptic) {
-      BlockAR(d, i, dim, false, A);
+      BlockAR(m, d, i, dim, false, A);
       UpdateElliptic(d, i, dim, A, res, old, ar_inv[i]);
     } else {
       UpdateScalar(d, i, res[0], ar_inv[i]);
@@ -235,9 +259,9 @@ void RunDualSweeps(const Model& m, Data& d, int maxiter, double tolerance,
 void SolvePGS(const Model& m, Data& d) {
   SolverFrame frame(d.solver_scratch);
   double* ar_inv = frame.Reals(d.nefc);
-  InverseDiagAR(d, false, ar_inv);
+  InverseDiagAR(m, d, false, ar_inv);
   RunDualSweeps(m, d, m.opt.iterations, m.opt.tolerance,
-                [&d, ar_inv](int) { return Sweep(d, ar_inv); });
+                [&m, &d, ar_inv](int) { return Sweep(m, d, ar_inv); });
 }
 
 }  // namespace simlab

@@ -14,6 +14,7 @@
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/rows.h"
+#include "engine/sparse_cholesky.h"
 #include "math/dot.h"
 
 namespace simlab {
@@ -215,7 +216,189 @@ void MulSym(const ConstraintProblem& p, const double* vec, double* res) {
 
 // res (rows) = J vec.
 void MulJ(const ConstraintProblem& p, const double* vec, double* res) {
-  math::MulMatVec(res, p.J, vec, p.nefc, p.nv);
+  if (!p.sparse()) {
+    math::MulMatVec(res, p.J, vec, p.nefc, p.nv);
+    return;
+  }
+  for (int r = 0; r < p.nefc; r++) {
+    int adr = p.J_rowadr[r];
+    res[r] = math::DotSparse(p.J + adr, vec, p.J_rownnz[r], p.J_colind + adr);
+  }
+}
+
+// ---------------------------------------------------------------- sparse rows
+
+// Below this many dofs a problem's Newton Hessian is factored dense even when its rows
+// are sparse: on the 27-dof islands of 22 humanoids the dense factor (contiguous rows)
+// was measured faster than the sparse one, on the 66-dof cube the sparse one 1.8x faster.
+// (MuJoCo factors every island of a sparse model sparse; the two differ in rounding only.)
+constexpr int kSparseFactorDofs = 60;
+
+// Rows of J by their nonzeros: row r has rownnz[r] values from rowadr[r], at the dofs
+// colind[..], ascending.
+struct CompressedRows {
+  const int *rownnz = nullptr, *rowadr = nullptr, *colind = nullptr;
+  const double* values = nullptr;
+};
+
+// The nonzeros of p's dense rows (each row keeps nv slots). The rows of an elliptic
+// contact share one pattern, where any of them is nonzero, as compressed rows do (the
+// cone's update vectors combine them); the zeros this keeps add exact zeros to H.
+CompressedRows CompressDenseRows(const ConstraintProblem& p, SolverFrame& frame) {
+  int nv = p.nv;
+  size_t slots = static_cast<size_t>(p.nefc) * nv;
+  int* rownnz = frame.IntsToWrite(p.nefc);
+  int* rowadr = frame.IntsToWrite(p.nefc);
+  int* colind = frame.IntsToWrite(slots);
+  double* values = frame.RealsToWrite(slots);
+  for (int r = 0; r < p.nefc; r++) {
+    int dim = p.type[r] == kCnstrContactElliptic ? p.contact[p.id[r]].dim : 1;
+    const double* first = &p.J[static_cast<size_t>(r) * nv];
+    int* cols = &colind[static_cast<size_t>(r) * nv];
+    int nnz = 0;
+    for (int v = 0; v < nv; v++) {
+      bool used = false;
+      for (int j = 0; j < dim; j++) used = used || first[static_cast<size_t>(j) * nv + v] != 0;
+      if (used) cols[nnz++] = v;
+    }
+    for (int j = r; j < r + dim; j++) {
+      size_t at = static_cast<size_t>(j) * nv;
+      rowadr[j] = static_cast<int>(at);
+      rownnz[j] = nnz;
+      if (j > r) std::copy(cols, cols + nnz, &colind[at]);
+      for (int k = 0; k < nnz; k++) values[at + k] = p.J[at + cols[k]];
+    }
+    r += dim - 1;
+  }
+  return CompressedRows{rownnz, rowadr, colind, values};
+}
+
+// J^T by rows (one per dof: the rows that move it, ascending, with their values), for
+// J^T f as MuJoCo computes it on sparse rows (a sparse dot per dof).
+struct Transposed {
+  RowPattern rows;
+  double* values = nullptr;
+};
+
+Transposed Transpose(const ConstraintProblem& p, SolverFrame& frame) {
+  Transposed t;
+  RowPattern& pt = t.rows;
+  pt.n = p.nv;
+  pt.rownnz = frame.Ints(p.nv);
+  pt.rowadr = frame.IntsToWrite(p.nv);
+  int nnz = 0;
+  for (int r = 0; r < p.nefc; r++) {
+    for (int k = p.J_rowadr[r]; k < p.J_rowadr[r] + p.J_rownnz[r]; k++) pt.rownnz[p.J_colind[k]]++;
+    nnz += p.J_rownnz[r];
+  }
+  pt.colind = frame.IntsToWrite(nnz);
+  t.values = frame.RealsToWrite(nnz);
+  for (int v = 0, adr = 0; v < p.nv; v++) {
+    pt.rowadr[v] = adr;
+    adr += pt.rownnz[v];
+    pt.rownnz[v] = 0;
+  }
+  for (int r = 0; r < p.nefc; r++) {
+    for (int k = p.J_rowadr[r]; k < p.J_rowadr[r] + p.J_rownnz[r]; k++) {
+      int v = p.J_colind[k];
+      int at = pt.rowadr[v] + pt.rownnz[v]++;
+      pt.colind[at] = r;
+      t.values[at] = p.J[k];
+    }
+  }
+  return t;
+}
+
+// res (dofs) = J^T f over the transposed rows.
+void MulJT(const Transposed& t, const double* f, double* res) {
+  const RowPattern& pt = t.rows;
+  for (int v = 0; v < pt.n; v++) {
+    int adr = pt.rowadr[v];
+    res[v] = math::DotSparse(t.values + adr, f, pt.rownnz[v], pt.colind + adr);
+  }
+}
+
+// The pattern of H = M + J^T D J strictly above its diagonal (row r: the dofs i > r that
+// share a row of J with r, or descend from r in the dof tree), columns ascending: what
+// the symbolic Cholesky reads. Every row of J counts, whatever its state, so that rank-one
+// updates stay within the factor's pattern.
+RowPattern HessianUpperPattern(const ConstraintProblem& p, const CompressedRows& rows,
+                               const Transposed& t, SolverFrame& frame) {
+  int nv = p.nv;
+  RowPattern up;
+  up.n = nv;
+  up.rownnz = frame.Ints(nv);
+  up.rowadr = frame.IntsToWrite(nv);
+  int* mark = frame.IntsToWrite(nv);
+  // Room per row: its descendants (entries of M below it) and the rows of J through it.
+  for (int i = 0; i < nv; i++) {
+    for (int k = p.M_rowadr[i]; k < p.M_rowadr[i] + p.M_rownnz[i] - 1; k++) {
+      up.rownnz[p.M_colind[k]]++;
+    }
+  }
+  // (a row with the dofs of the row before it adds nothing new: the rows of a contact)
+  int* repeats = frame.IntsToWrite(p.nefc);
+  for (int e = 0; e < p.nefc; e++) {
+    const int* cols = rows.colind + rows.rowadr[e];
+    repeats[e] = e > 0 && rows.rownnz[e] == rows.rownnz[e - 1] &&
+                 std::equal(cols, cols + rows.rownnz[e], rows.colind + rows.rowadr[e - 1]);
+  }
+  int room = 0;
+  for (int r = 0; r < nv; r++) {
+    up.rowadr[r] = room;
+    room += up.rownnz[r];
+    for (int k = t.rows.rowadr[r]; k < t.rows.rowadr[r] + t.rows.rownnz[r]; k++) {
+      int e = t.rows.colind[k];
+      if (!repeats[e]) room += rows.rownnz[e];
+    }
+    up.rownnz[r] = 0;
+    mark[r] = -1;
+  }
+  up.colind = frame.IntsToWrite(room);
+  // The tree's entries (M's lower triangle read by columns), then those of J's rows.
+  for (int i = 0; i < nv; i++) {
+    for (int k = p.M_rowadr[i]; k < p.M_rowadr[i] + p.M_rownnz[i] - 1; k++) {
+      int r = p.M_colind[k];
+      up.colind[up.rowadr[r] + up.rownnz[r]++] = i;
+    }
+  }
+  for (int r = 0; r < nv; r++) {
+    int* row = up.colind + up.rowadr[r];
+    for (int k = 0; k < up.rownnz[r]; k++) mark[row[k]] = r;
+    for (int k = t.rows.rowadr[r]; k < t.rows.rowadr[r] + t.rows.rownnz[r]; k++) {
+      int e = t.rows.colind[k];
+      if (repeats[e]) continue;
+      for (int q = rows.rowadr[e] + rows.rownnz[e] - 1; q >= rows.rowadr[e]; q--) {
+        int i = rows.colind[q];
+        if (i <= r) break;
+        if (mark[i] == r) continue;
+        mark[i] = r;
+        row[up.rownnz[r]++] = i;
+      }
+    }
+    std::sort(row, row + up.rownnz[r]);
+  }
+  return up;
+}
+
+// The symbolic reverse Cholesky of H's pattern, in arrays of `frame`.
+CholeskyPattern SymbolicHessian(const RowPattern& upper, SolverFrame& frame) {
+  int n = upper.n;
+  CholeskyPattern c;
+  c.lower.rownnz = frame.IntsToWrite(n);
+  c.lower.rowadr = frame.IntsToWrite(n);
+  c.transposed.rownnz = frame.IntsToWrite(n);
+  c.transposed.rowadr = frame.IntsToWrite(n);
+  int* parent = frame.IntsToWrite(n);
+  int* flag = frame.IntsToWrite(n);
+  int* cursor = frame.IntsToWrite(n);
+  int* lt_write = frame.IntsToWrite(n);
+  int nnz = CountCholesky(upper, c, parent, flag);
+  c.lower.colind = frame.IntsToWrite(nnz);
+  c.transposed.colind = frame.IntsToWrite(nnz);
+  c.lt_map = frame.IntsToWrite(nnz);
+  FillCholesky(upper, c, parent, flag, cursor, lt_write);
+  return c;
 }
 
 // ---------------------------------------------------------------- solver state
@@ -231,11 +414,20 @@ struct Primal {
   // Dofs: M a, M search, the gradient, its preconditioned form and the direction; CG
   // keeps the previous gradients and the change of the preconditioned one.
   double *ma, *mv, *grad, *mgrad, *search, *gradold, *mgradold, *mgrad_change;
-  // Newton: Cholesky factor of M + J^T D_active J (nv x nv), the same plus the cone-zone
-  // contacts' Hessians, and room for update vectors (one per row of a contact); the
-  // nonzero columns of each row of J (row r: nonzero[r * nv ..], nnz[r] of them).
+  // Sparse rows (p.sparse()): J^T by dofs, for J^T f.
+  Transposed jt;
+  // Newton: the rows of J by their nonzeros (`rows`: p's own compressed rows, or the
+  // nonzeros of its dense ones); the Cholesky factor of M + J^T D_active J, the same plus
+  // the cone-zone contacts' Hessians, and room for update vectors (one per row of a
+  // contact, and one dense vector). The factors are dense (nv x nv) or, with
+  // `sparse_factor`, in the layout of `chol` (its nnz entries each) with two nv arrays of
+  // scratch: `dense` for the factorization (zero between uses) and `scattered` for the
+  // rank-one updates.
+  CompressedRows rows;
+  bool sparse_factor = false;
+  CholeskyPattern chol;
   double *hessian = nullptr, *hessian_cone = nullptr, *updates = nullptr;
-  int *nonzero = nullptr, *nnz = nullptr;
+  double *dense = nullptr, *scattered = nullptr;
   double cost = 0;
   double quad_gauss[3] = {0, 0, 0};
   int ncone = 0;  // rows in the cone state
@@ -252,24 +444,23 @@ struct Primal {
          {&ma, &mv, &grad, &mgrad, &search, &gradold, &mgradold, &mgrad_change}) {
       *dof_array = frame.Reals(nv);
     }
+    if (p.sparse()) jt = Transpose(p, frame);
+    if (!newton) return;
+    rows = p.sparse() ? CompressedRows{p.J_rownnz, p.J_rowadr, p.J_colind, p.J}
+                      : CompressDenseRows(p, frame);
     // (the factors are filled by FactorHessian and AddConeHessians, the update vectors by
     // their users: not cleared here)
-    size_t square = static_cast<size_t>(nv) * nv;
-    if (newton) hessian = frame.RealsToWrite(square);
-    if (newton && elliptic) hessian_cone = frame.RealsToWrite(square);
-    if (newton) updates = frame.RealsToWrite(6 * static_cast<size_t>(nv));
-    if (newton) FindNonzeros(frame);
-  }
-
-  // The nonzero columns of every row of J, ascending.
-  void FindNonzeros(SolverFrame& frame) {
-    int nv = p.nv;
-    nonzero = frame.Ints(static_cast<size_t>(p.nefc) * nv);
-    nnz = frame.Ints(p.nefc);
-    for (int r = 0; r < p.nefc; r++) {
-      size_t at = static_cast<size_t>(r) * nv;
-      nnz[r] = NonzeroColumns(&p.J[at], nv, &nonzero[at]);
+    size_t entries = static_cast<size_t>(nv) * nv;
+    sparse_factor = p.sparse() && nv >= kSparseFactorDofs;
+    if (sparse_factor) {
+      chol = SymbolicHessian(HessianUpperPattern(p, rows, jt, frame), frame);
+      entries = chol.nnz;
+      dense = frame.Reals(nv);
+      scattered = frame.RealsToWrite(nv);
     }
+    hessian = frame.RealsToWrite(entries);
+    if (elliptic) hessian_cone = frame.RealsToWrite(entries);
+    updates = frame.RealsToWrite(7 * static_cast<size_t>(nv));
   }
 
   // The factor Newton steps with: with the cones' curvature when any contact is in the cone.
@@ -281,7 +472,11 @@ void UpdateConstraint(Primal& s) {
   ConstraintProblem& p = s.p;
   ConstraintUpdate(p.Rows(), s.jaref, p.state, p.force, &s.cost, s.newton && s.elliptic);
   s.ncone = static_cast<int>(std::count(p.state, p.state + p.nefc, kStateCone));
-  math::MulMatTVec(p.qfrc_constraint, p.J, p.force, p.nefc, p.nv);
+  if (p.sparse()) {
+    MulJT(s.jt, p.force, p.qfrc_constraint);
+  } else {
+    math::MulMatTVec(p.qfrc_constraint, p.J, p.force, p.nefc, p.nv);
+  }
   double gauss = 0;
   for (int v = 0; v < p.nv; v++) {
     gauss += 0.5 * (s.ma[v] - p.qfrc_smooth[v]) * (p.qacc[v] - p.qacc_smooth[v]);
@@ -294,7 +489,9 @@ void UpdateConstraint(Primal& s) {
 void UpdateGradient(Primal& s) {
   ConstraintProblem& p = s.p;
   for (int v = 0; v < p.nv; v++) s.grad[v] = s.ma[v] - p.qfrc_smooth[v] - p.qfrc_constraint[v];
-  if (s.newton) {
+  if (s.newton && s.sparse_factor) {
+    SolveCholesky(s.chol, s.NewtonFactor(), s.grad, s.mgrad);
+  } else if (s.newton) {
     CholSolve(s.NewtonFactor(), p.nv, s.grad, s.mgrad);
   } else {
     std::copy(s.grad, s.grad + p.nv, s.mgrad);
@@ -302,37 +499,80 @@ void UpdateGradient(Primal& s) {
   }
 }
 
+// C^T J for one cone-zone contact (rows i..i+dim-1, which share their dofs: those of row
+// i), C the Cholesky factor of its cost's Hessian H = C C^T: dim vectors over row i's
+// nonzeros in `ltj` (MuJoCo HessianCone).
+void ConeUpdateVectors(const Primal& s, int i, double* ltj) {
+  const ConstraintProblem& p = s.p;
+  const Contact& con = p.contact[p.id[i]];
+  int dim = con.dim, nnz = s.rows.rownnz[i];
+  double local[36];
+  std::copy(con.H, con.H + dim * dim, local);
+  CholFactor(local, dim, kMinVal);
+  // Column c of C^T J: sum over rows r >= c of C(r, c) J_r.
+  std::fill(ltj, ltj + dim * nnz, 0.0);
+  for (int r = 0; r < dim; r++) {
+    const double* row = s.rows.values + s.rows.rowadr[i + r];
+    for (int c = 0; c <= r; c++) {
+      for (int k = 0; k < nnz; k++) ltj[c * nnz + k] += local[r * dim + c] * row[k];
+    }
+  }
+}
+
+// factor += or -= x x^T for x with nnz values at the ascending dofs `cols`; returns the
+// rank. (The dense update takes x scattered into nv entries of `vec`, which it overwrites.)
+int UpdateFactor(Primal& s, double* factor, const double* x, const int* cols, int nnz,
+                 bool plus, double* vec) {
+  if (s.sparse_factor) return UpdateCholesky(s.chol, factor, x, cols, nnz, plus, s.scattered);
+  int nv = s.p.nv;
+  std::fill(vec, vec + nv, 0.0);
+  for (int k = 0; k < nnz; k++) vec[cols[k]] = x[k];
+  return CholUpdate(factor, vec, nv, plus);
+}
+
 // The cone factor: the plain factor updated by each cone-zone contact's Hessian H = C C^T
-// (C its Cholesky factor), i.e. by the dim vectors of (J_contact^T C) (MuJoCo HessianCone).
+// (C its Cholesky factor), i.e. by the dim vectors of (J_contact^T C).
 void AddConeHessians(Primal& s) {
   ConstraintProblem& p = s.p;
   int nv = p.nv;
-  std::copy(s.hessian, s.hessian + static_cast<size_t>(nv) * nv, s.hessian_cone);
+  size_t entries = s.sparse_factor ? s.chol.nnz : static_cast<size_t>(nv) * nv;
+  std::copy(s.hessian, s.hessian + entries, s.hessian_cone);
+  // (the update vectors C^T J first, then each scattered into the dense one when needed)
   double* ltj = s.updates;
+  double* vec = s.updates + 6 * static_cast<size_t>(nv);
   for (int i = 0; i < p.nefc; i++) {
     if (p.state[i] != kStateCone) continue;
-    const Contact& con = p.contact[p.id[i]];
-    int dim = con.dim;
-    double local[36];
-    std::copy(con.H, con.H + dim * dim, local);
-    CholFactor(local, dim, kMinVal);
-
-    // Column c of C^T J: sum over rows r >= c of C(r, c) J_r.
-    std::fill(ltj, ltj + 6 * static_cast<size_t>(nv), 0.0);
+    int dim = p.contact[p.id[i]].dim, nnz = s.rows.rownnz[i];
+    ConeUpdateVectors(s, i, ltj);
+    const int* cols = s.rows.colind + s.rows.rowadr[i];
     for (int r = 0; r < dim; r++) {
-      const double* row = &p.J[static_cast<size_t>(i + r) * nv];
-      for (int c = 0; c <= r; c++) {
-        for (int v = 0; v < nv; v++) ltj[c * nv + v] += local[r * dim + c] * row[v];
-      }
+      UpdateFactor(s, s.hessian_cone, &ltj[r * nnz], cols, nnz, true, vec);
     }
-    for (int r = 0; r < dim; r++) CholUpdate(s.hessian_cone, &ltj[r * nv], nv, true);
     i += dim - 1;
   }
 }
 
-// H = M + J^T D J over the rows in the quadratic state, factored (lower triangle); then
-// the cone factor when contacts are in the cone.
-void FactorHessian(Primal& s) {
+// Row r of H = J^T D J + M (columns 0..r) added into `dense`: the quadratic rows of J in
+// ascending order, then M (MuJoCo's order).
+void AddHessianRow(const Primal& s, int r, double* dense) {
+  const ConstraintProblem& p = s.p;
+  const RowPattern& jt = s.jt.rows;
+  for (int k = jt.rowadr[r]; k < jt.rowadr[r] + jt.rownnz[r]; k++) {
+    int e = jt.colind[k];
+    if (p.state[e] != kStateQuadratic) continue;
+    double scaled = p.D[e] * s.jt.values[k];
+    for (int q = s.rows.rowadr[e]; q < s.rows.rowadr[e] + s.rows.rownnz[e]; q++) {
+      if (s.rows.colind[q] > r) break;
+      dense[s.rows.colind[q]] += scaled * s.rows.values[q];
+    }
+  }
+  for (int k = p.M_rowadr[r]; k < p.M_rowadr[r] + p.M_rownnz[r]; k++) {
+    dense[p.M_colind[k]] += p.M[k];
+  }
+}
+
+// H = M + J^T D J over the rows in the quadratic state, dense (lower triangle).
+void AssembleDenseHessian(Primal& s) {
   ConstraintProblem& p = s.p;
   int nv = p.nv;
   double* h = s.hessian;
@@ -340,12 +580,11 @@ void FactorHessian(Primal& s) {
   // (only the rows' nonzeros: the zeros would add exact zeros to the same sums)
   for (int r = 0; r < p.nefc; r++) {
     if (p.state[r] != kStateQuadratic) continue;
-    const double* row = &p.J[static_cast<size_t>(r) * nv];
-    const int* cols = &s.nonzero[static_cast<size_t>(r) * nv];
-    for (int a = 0; a < s.nnz[r]; a++) {
-      int i = cols[a];
-      double scaled = row[i] * p.D[r];
-      for (int b = 0; b <= a; b++) h[i * nv + cols[b]] += scaled * row[cols[b]];
+    const double* vals = s.rows.values + s.rows.rowadr[r];
+    const int* cols = s.rows.colind + s.rows.rowadr[r];
+    for (int a = 0; a < s.rows.rownnz[r]; a++) {
+      double scaled = vals[a] * p.D[r];
+      for (int b = 0; b <= a; b++) h[cols[a] * nv + cols[b]] += scaled * vals[b];
     }
   }
   for (int i = 0; i < nv; i++) {
@@ -353,7 +592,18 @@ void FactorHessian(Primal& s) {
       h[i * nv + p.M_colind[k]] += p.M[k];
     }
   }
-  CholFactor(h, nv, kMinVal);
+}
+
+// H = M + J^T D J over the rows in the quadratic state, factored; then the cone factor
+// when contacts are in the cone.
+void FactorHessian(Primal& s) {
+  if (s.sparse_factor) {
+    FactorCholesky(s.chol, s.hessian, kMinVal, s.dense,
+                   [&s](int r, double* dense) { AddHessianRow(s, r, dense); });
+  } else {
+    AssembleDenseHessian(s);
+    CholFactor(s.hessian, s.p.nv, kMinVal);
+  }
   if (s.ncone) AddConeHessians(s);
 }
 
@@ -361,14 +611,15 @@ void FactorHessian(Primal& s) {
 // full refactorization if an update loses rank); then the cone factor anew.
 void UpdateHessian(Primal& s) {
   ConstraintProblem& p = s.p;
-  double* vec = s.updates;
+  double* x = s.updates;
+  double* vec = s.updates + p.nv;
   for (int r = 0; r < p.nefc; r++) {
     bool was = s.oldstate[r] == kStateQuadratic, is = p.state[r] == kStateQuadratic;
     if (was == is) continue;
-    const double* row = &p.J[static_cast<size_t>(r) * p.nv];
     double sqrt_d = std::sqrt(p.D[r]);
-    for (int v = 0; v < p.nv; v++) vec[v] = row[v] * sqrt_d;
-    if (CholUpdate(s.hessian, vec, p.nv, is) < p.nv) {
+    int adr = s.rows.rowadr[r], nnz = s.rows.rownnz[r];
+    for (int k = 0; k < nnz; k++) x[k] = s.rows.values[adr + k] * sqrt_d;
+    if (UpdateFactor(s, s.hessian, x, s.rows.colind + adr, nnz, is, vec) < p.nv) {
       FactorHessian(s);
       return;
     }
