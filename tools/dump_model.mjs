@@ -33,7 +33,7 @@ const ARRAYS = [
   'M_rownnz', 'M_rowadr', 'M_colind',
   'geom_type', 'geom_contype', 'geom_conaffinity', 'geom_condim', 'geom_bodyid', 'geom_group',
   'geom_priority', 'geom_sameframe', 'geom_solmix', 'geom_solref', 'geom_solimp', 'geom_size',
-  'geom_rbound', 'geom_pos', 'geom_quat', 'geom_friction', 'geom_margin', 'geom_gap',
+  'geom_rbound', 'geom_aabb', 'geom_pos', 'geom_quat', 'geom_friction', 'geom_margin', 'geom_gap',
   'geom_rgba', 'geom_fluid', 'geom_dataid',
   'mesh_vertadr', 'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_graphadr', 'mesh_scale',
   'mesh_pos', 'mesh_quat', 'mesh_vert', 'mesh_face', 'mesh_graph',

@@ -260,6 +260,7 @@ struct Statistic {
   X(double, geom_solimp, ngeom, kNImp)             \
   X(double, geom_size, ngeom, 3)                   \
   X(double, geom_rbound, ngeom, 1)                 \
+  X(double, geom_aabb, ngeom, 6)                   \
   X(double, geom_pos, ngeom, 3)                    \
   X(double, geom_quat, ngeom, 4)                   \
   X(double, geom_friction, ngeom, 3)               \

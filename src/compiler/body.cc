@@ -481,6 +481,7 @@ void LayoutGeom(const GeomState& g, int gid, const BodyState& b, Model* m) {
   for (int k = 0; k < 4; k++) m->geom_rgba[4 * gid + k] = static_cast<float>(s.rgba[k]);
   m->geom_sameframe[gid] = SameFrame(g.pos, g.quat, b);
   m->geom_rbound[gid] = GeomRBound(g);
+  GeomAabb(g, &m->geom_aabb[6 * gid]);
   m->geom_dataid[gid] = g.meshid;  // the mesh of a mesh geom, else -1
   GeomFluid(g, &m->geom_fluid[kNFluid * gid]);
   m->geom_names[gid] = s.src.name;

@@ -139,6 +139,8 @@ void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>
                       BodyState* body);
 void BoundMassInertia(const mjcf::CompilerSpec& c, BodyState* body);
 double GeomRBound(const GeomState& g);
+// Its bounding box in its own frame (geom_aabb: centre, then half sizes).
+void GeomAabb(const GeomState& g, double aabb[6]);
 // The geom's row of geom_fluid (the ellipsoid fluid model's coefficients; fluid.cc).
 void GeomFluid(const GeomState& g, double* fluid);
 void CheckMovingBodies(const CompileState& state);

@@ -263,6 +263,41 @@ double GeomRBound(const GeomState& g) {
   }
 }
 
+void GeomAabb(const GeomState& g, double aabb[6]) {
+  // Bounds (min x y z, max x y z) in the geom's frame, by type as MuJoCo's.
+  const double* s = g.size;
+  double aamm[6] = {-s[0], -s[1], -s[2], s[0], s[1], s[2]};
+  switch (g.spec->type) {
+    case kGeomHfield: {
+      const std::array<double, 4>& h = g.hfield->spec->size;
+      double bounds[6] = {-h[0], -h[1], -h[3], h[0], h[1], h[2]};
+      std::copy(bounds, bounds + 6, aamm);
+      break;
+    }
+    case kGeomSphere: aamm[1] = aamm[2] = -s[0], aamm[4] = aamm[5] = s[0]; break;
+    case kGeomCapsule:
+      aamm[1] = -s[0], aamm[4] = s[0];
+      aamm[2] = -(s[0] + s[1]), aamm[5] = s[0] + s[1];
+      break;
+    case kGeomCylinder: aamm[1] = -s[0], aamm[4] = s[0], aamm[2] = -s[1], aamm[5] = s[1]; break;
+    case kGeomMesh:
+    case kGeomSdf:
+      if (g.mesh) std::copy(g.mesh->aamm, g.mesh->aamm + 6, aamm);
+      break;
+    case kGeomPlane: {
+      double bounds[6] = {-kMaxVal, -kMaxVal, -kMaxVal, kMaxVal, kMaxVal, 0};
+      std::copy(bounds, bounds + 6, aamm);
+      break;
+    }
+    default: break;
+  }
+  // As centre and half sizes.
+  for (int k = 0; k < 3; k++) {
+    aabb[k] = (aamm[k + 3] + aamm[k]) / 2;
+    aabb[k + 3] = (aamm[k + 3] - aamm[k]) / 2;
+  }
+}
+
 // ---------------------------------------------------------------- bodies
 
 void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>& geoms,
