@@ -241,34 +241,18 @@ struct CompressedRows {
   const double* values = nullptr;
 };
 
-// The nonzeros of p's dense rows (each row keeps nv slots). The rows of an elliptic
-// contact share one pattern, where any of them is nonzero, as compressed rows do (the
-// cone's update vectors combine them); the zeros this keeps add exact zeros to H.
+// The nonzeros of p's dense rows (each row keeps nv slots).
 CompressedRows CompressDenseRows(const ConstraintProblem& p, SolverFrame& frame) {
-  int nv = p.nv;
-  size_t slots = static_cast<size_t>(p.nefc) * nv;
+  size_t slots = static_cast<size_t>(p.nefc) * p.nv;
   int* rownnz = frame.IntsToWrite(p.nefc);
   int* rowadr = frame.IntsToWrite(p.nefc);
   int* colind = frame.IntsToWrite(slots);
   double* values = frame.RealsToWrite(slots);
   for (int r = 0; r < p.nefc; r++) {
-    int dim = p.type[r] == kCnstrContactElliptic ? p.contact[p.id[r]].dim : 1;
-    const double* first = &p.J[static_cast<size_t>(r) * nv];
-    int* cols = &colind[static_cast<size_t>(r) * nv];
-    int nnz = 0;
-    for (int v = 0; v < nv; v++) {
-      bool used = false;
-      for (int j = 0; j < dim; j++) used = used || first[static_cast<size_t>(j) * nv + v] != 0;
-      if (used) cols[nnz++] = v;
-    }
-    for (int j = r; j < r + dim; j++) {
-      size_t at = static_cast<size_t>(j) * nv;
-      rowadr[j] = static_cast<int>(at);
-      rownnz[j] = nnz;
-      if (j > r) std::copy(cols, cols + nnz, &colind[at]);
-      for (int k = 0; k < nnz; k++) values[at + k] = p.J[at + cols[k]];
-    }
-    r += dim - 1;
+    size_t at = static_cast<size_t>(r) * p.nv;
+    rowadr[r] = static_cast<int>(at);
+    rownnz[r] = NonzeroColumns(&p.J[at], p.nv, &colind[at]);
+    for (int k = 0; k < rownnz[r]; k++) values[at + k] = p.J[at + colind[at + k]];
   }
   return CompressedRows{rownnz, rowadr, colind, values};
 }
@@ -419,10 +403,9 @@ struct Primal {
   // Newton: the rows of J by their nonzeros (`rows`: p's own compressed rows, or the
   // nonzeros of its dense ones); the Cholesky factor of M + J^T D_active J, the same plus
   // the cone-zone contacts' Hessians, and room for update vectors (one per row of a
-  // contact, and one dense vector). The factors are dense (nv x nv) or, with
-  // `sparse_factor`, in the layout of `chol` (its nnz entries each) with two nv arrays of
-  // scratch: `dense` for the factorization (zero between uses) and `scattered` for the
-  // rank-one updates.
+  // contact). The factors are dense (nv x nv) or, with `sparse_factor`, in the layout of
+  // `chol` (its nnz entries each) with two nv arrays of scratch: `dense` for the
+  // factorization (zero between uses) and `scattered` for the rank-one updates.
   CompressedRows rows;
   bool sparse_factor = false;
   CholeskyPattern chol;
@@ -460,7 +443,7 @@ struct Primal {
     }
     hessian = frame.RealsToWrite(entries);
     if (elliptic) hessian_cone = frame.RealsToWrite(entries);
-    updates = frame.RealsToWrite(7 * static_cast<size_t>(nv));
+    updates = frame.RealsToWrite(6 * static_cast<size_t>(nv));
   }
 
   // The factor Newton steps with: with the cones' curvature when any contact is in the cone.
@@ -499,54 +482,51 @@ void UpdateGradient(Primal& s) {
   }
 }
 
-// C^T J for one cone-zone contact (rows i..i+dim-1, which share their dofs: those of row
-// i), C the Cholesky factor of its cost's Hessian H = C C^T: dim vectors over row i's
-// nonzeros in `ltj` (MuJoCo HessianCone).
-void ConeUpdateVectors(const Primal& s, int i, double* ltj) {
+// C^T J for one cone-zone contact (rows i..i+dim-1), C the Cholesky factor of its cost's
+// Hessian H = C C^T: dim vectors in `ltj` (MuJoCo HessianCone), of nv entries for the
+// dense factor, or over row i's nnz dofs for the sparse one (compressed rows of one
+// contact share their dofs).
+int ConeUpdateVectors(const Primal& s, int i, double* ltj) {
   const ConstraintProblem& p = s.p;
   const Contact& con = p.contact[p.id[i]];
-  int dim = con.dim, nnz = s.rows.rownnz[i];
+  int dim = con.dim;
+  int width = s.sparse_factor ? s.rows.rownnz[i] : p.nv;
   double local[36];
   std::copy(con.H, con.H + dim * dim, local);
   CholFactor(local, dim, kMinVal);
   // Column c of C^T J: sum over rows r >= c of C(r, c) J_r.
-  std::fill(ltj, ltj + dim * nnz, 0.0);
+  std::fill(ltj, ltj + dim * width, 0.0);
   for (int r = 0; r < dim; r++) {
-    const double* row = s.rows.values + s.rows.rowadr[i + r];
+    int adr = s.rows.rowadr[i + r], nnz = s.rows.rownnz[i + r];
+    const double* vals = s.rows.values + adr;
+    const int* cols = s.rows.colind + adr;
     for (int c = 0; c <= r; c++) {
-      for (int k = 0; k < nnz; k++) ltj[c * nnz + k] += local[r * dim + c] * row[k];
+      double* column = ltj + c * width;
+      double scale = local[r * dim + c];
+      for (int k = 0; k < nnz; k++) column[s.sparse_factor ? k : cols[k]] += scale * vals[k];
     }
   }
-}
-
-// factor += or -= x x^T for x with nnz values at the ascending dofs `cols`; returns the
-// rank. (The dense update takes x scattered into nv entries of `vec`, which it overwrites.)
-int UpdateFactor(Primal& s, double* factor, const double* x, const int* cols, int nnz,
-                 bool plus, double* vec) {
-  if (s.sparse_factor) return UpdateCholesky(s.chol, factor, x, cols, nnz, plus, s.scattered);
-  int nv = s.p.nv;
-  std::fill(vec, vec + nv, 0.0);
-  for (int k = 0; k < nnz; k++) vec[cols[k]] = x[k];
-  return CholUpdate(factor, vec, nv, plus);
+  return width;
 }
 
 // The cone factor: the plain factor updated by each cone-zone contact's Hessian H = C C^T
 // (C its Cholesky factor), i.e. by the dim vectors of (J_contact^T C).
 void AddConeHessians(Primal& s) {
   ConstraintProblem& p = s.p;
-  int nv = p.nv;
-  size_t entries = s.sparse_factor ? s.chol.nnz : static_cast<size_t>(nv) * nv;
+  size_t entries = s.sparse_factor ? s.chol.nnz : static_cast<size_t>(p.nv) * p.nv;
   std::copy(s.hessian, s.hessian + entries, s.hessian_cone);
-  // (the update vectors C^T J first, then each scattered into the dense one when needed)
   double* ltj = s.updates;
-  double* vec = s.updates + 6 * static_cast<size_t>(nv);
   for (int i = 0; i < p.nefc; i++) {
     if (p.state[i] != kStateCone) continue;
-    int dim = p.contact[p.id[i]].dim, nnz = s.rows.rownnz[i];
-    ConeUpdateVectors(s, i, ltj);
-    const int* cols = s.rows.colind + s.rows.rowadr[i];
+    int dim = p.contact[p.id[i]].dim;
+    int width = ConeUpdateVectors(s, i, ltj);
     for (int r = 0; r < dim; r++) {
-      UpdateFactor(s, s.hessian_cone, &ltj[r * nnz], cols, nnz, true, vec);
+      if (s.sparse_factor) {
+        UpdateCholesky(s.chol, s.hessian_cone, &ltj[r * width], s.rows.colind + s.rows.rowadr[i],
+                       width, true, s.scattered);
+      } else {
+        CholUpdate(s.hessian_cone, &ltj[r * width], p.nv, true);
+      }
     }
     i += dim - 1;
   }
@@ -612,14 +592,22 @@ void FactorHessian(Primal& s) {
 void UpdateHessian(Primal& s) {
   ConstraintProblem& p = s.p;
   double* x = s.updates;
-  double* vec = s.updates + p.nv;
   for (int r = 0; r < p.nefc; r++) {
     bool was = s.oldstate[r] == kStateQuadratic, is = p.state[r] == kStateQuadratic;
     if (was == is) continue;
     double sqrt_d = std::sqrt(p.D[r]);
     int adr = s.rows.rowadr[r], nnz = s.rows.rownnz[r];
-    for (int k = 0; k < nnz; k++) x[k] = s.rows.values[adr + k] * sqrt_d;
-    if (UpdateFactor(s, s.hessian, x, s.rows.colind + adr, nnz, is, vec) < p.nv) {
+    const int* cols = s.rows.colind + adr;
+    int rank;
+    if (s.sparse_factor) {
+      for (int k = 0; k < nnz; k++) x[k] = s.rows.values[adr + k] * sqrt_d;
+      rank = UpdateCholesky(s.chol, s.hessian, x, cols, nnz, is, s.scattered);
+    } else {
+      std::fill(x, x + p.nv, 0.0);
+      for (int k = 0; k < nnz; k++) x[cols[k]] = s.rows.values[adr + k] * sqrt_d;
+      rank = CholUpdate(s.hessian, x, p.nv, is);
+    }
+    if (rank < p.nv) {
       FactorHessian(s);
       return;
     }
