@@ -84,14 +84,19 @@ Data SettledData(const Model& m) {
 }
 
 // The settled state of the dense model, copied into a Data of the sparse one; both then
-// through Forward.
-std::pair<Data, Data> SameState(const Model& dense_model, const Model& sparse_model) {
+// through Forward, with the solvers run to `iterations` and `tolerance` when given.
+std::pair<Data, Data> SameState(Model& dense_model, Model& sparse_model, int iterations = 0,
+                                double tolerance = 0) {
   Data dense = SettledData(dense_model);
   Data sparse = MakeData(sparse_model);
   sparse.qpos = dense.qpos;
   sparse.qvel = dense.qvel;
   sparse.ctrl = dense.ctrl;
   sparse.qacc_warmstart = dense.qacc_warmstart;
+  for (Model* m : {&dense_model, &sparse_model}) {
+    if (iterations > 0) m->opt.iterations = iterations;
+    if (tolerance > 0) m->opt.tolerance = tolerance;
+  }
   Forward(dense_model, dense);
   Forward(sparse_model, sparse);
   return {std::move(dense), std::move(sparse)};
@@ -137,29 +142,60 @@ TEST(SparseRows, DenseAndSparseJacobiansHoldTheSameRows) {
   }
 }
 
+// `xml` with a 60-dof chain added to its world (a free capsule and 54 hinged ones lying on
+// the plane): an island large enough for the sparse Newton factor.
+std::string WithLongChain(std::string xml) {
+  std::string chain = R"(<body pos="0 -1 .039"><freejoint/>
+      <geom type="capsule" fromto="0 0 0 .1 0 0" size=".04"/>)";
+  for (int i = 0; i < 54; i++) {
+    chain += R"(<body pos=".1 0 0"><joint axis=")" + std::string(i % 2 ? "0 0 1" : "0 1 0") +
+             R"(" damping=".01"/><geom type="capsule" fromto="0 0 0 .1 0 0" size=".04"/>)";
+  }
+  for (int i = 0; i <= 54; i++) chain += "</body>";
+  xml.replace(xml.find("</worldbody>"), 0, chain);
+  return xml;
+}
+
+// The dofs of the largest island.
+int LargestIsland(const Model& m, const Data& d) {
+  std::vector<int> size(std::max(d.nisland, 1), 0);
+  for (int v = 0; v < m.nv; v++) {
+    if (d.dof_island[v] >= 0) size[d.dof_island[v]]++;
+  }
+  return *std::max_element(size.begin(), size.end());
+}
+
 // The solvers on compressed rows (sparse products, the sparse Newton Hessian and its
 // updates, PGS and noslip on the compressed efc_AR) find the accelerations the dense ones
 // find, for both cones, with islands and on the whole model at once: a state with
-// contacts, limits, equalities and friction loss.
+// contacts, limits, equalities and friction loss; for Newton with a chain whose island
+// has 60 dofs, so that the sparse factor runs.
 TEST(SparseRows, SparseSolversFindTheDenseSolution) {
   for (const char* cone : {"pyramidal", "elliptic"}) {
     for (const char* solver : {"Newton", "CG", "PGS", "Newton noslip"}) {
       for (const char* island : {"enable", "disable"}) {
+        // (the chain for Newton, whose factor it is for; the others on the small scene)
+        bool chain = std::string(solver) == "Newton";
         auto variant = [&](const std::string& jacobian) {
           std::string xml = Scene(jacobian);
           std::string name = solver;
           bool noslip = name.find(" noslip") != std::string::npos;
           std::string option = std::string(R"(cone=")") + cone + R"(" solver=")" +
                                name.substr(0, name.find(' ')) +
-                               R"(" iterations="2000" tolerance="1e-15" )" +
+                               R"(" )" +
                                (noslip ? R"(noslip_iterations="50" )" : "") +
                                R"(><flag island=")" + island + R"("/></option>)";
           xml.replace(xml.find("/>"), 2, " " + option);
-          return LoadXmlString(xml);
+          return LoadXmlString(chain ? WithLongChain(xml) : xml);
         };
         Model dense_model = variant("dense"), sparse_model = variant("sparse");
-        auto [dense, sparse] = SameState(dense_model, sparse_model);
+        auto [dense, sparse] = SameState(dense_model, sparse_model, 2000, 1e-15);
         ASSERT_GT(dense.ncon, 0);
+        if (chain) {
+          ASSERT_GE(std::string(island) == "enable" ? LargestIsland(sparse_model, sparse)
+                                                    : sparse_model.nv,
+                    60);
+        }
         for (int v = 0; v < dense_model.nv; v++) {
           EXPECT_NEAR(dense.qacc[v], sparse.qacc[v], 1e-7 * (1 + std::abs(dense.qacc[v])))
               << cone << " " << solver << " island " << island << " dof " << v;

@@ -9,7 +9,6 @@
 //   4. noslip (opt.noslip_iterations > 0): friction forces re-solved without R.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <initializer_list>
 #include <type_traits>
 #include <vector>
@@ -306,6 +305,42 @@ void SolveWhole(const Model& m, Data& d) {
 
 }  // namespace
 
+// ---------------------------------------------------------------- compressed rows
+
+SparseRows TransposeRows(const SparseRows& rows, int nrow, int ncol, SolverFrame& frame) {
+  int* rownnz = frame.Ints(ncol);
+  int* rowadr = frame.IntsToWrite(ncol);
+  int total = 0;
+  for (int r = 0; r < nrow; r++) {
+    for (int q = rows.rowadr[r]; q < rows.rowadr[r] + rows.rownnz[r]; q++) {
+      rownnz[rows.colind[q]]++;
+    }
+    total += rows.rownnz[r];
+  }
+  int* colind = frame.IntsToWrite(total);
+  double* values = rows.values ? frame.RealsToWrite(total) : nullptr;
+  for (int c = 0, adr = 0; c < ncol; c++) {
+    rowadr[c] = adr;
+    adr += rownnz[c];
+    rownnz[c] = 0;
+  }
+  for (int r = 0; r < nrow; r++) {
+    for (int q = rows.rowadr[r]; q < rows.rowadr[r] + rows.rownnz[r]; q++) {
+      int c = rows.colind[q];
+      int at = rowadr[c] + rownnz[c]++;
+      colind[at] = r;
+      if (values) values[at] = rows.values[q];
+    }
+  }
+  return SparseRows{rownnz, rowadr, colind, values};
+}
+
+bool RepeatsRowBefore(const SparseRows& rows, int r) {
+  if (r == 0 || rows.rownnz[r] != rows.rownnz[r - 1]) return false;
+  const int* cols = rows.colind + rows.rowadr[r];
+  return std::equal(cols, cols + rows.rownnz[r], rows.colind + rows.rowadr[r - 1]);
+}
+
 // ---------------------------------------------------------------- efc_AR for PGS and noslip
 
 namespace {
@@ -315,11 +350,12 @@ double InverseSqrtPivot(const Model& m, const Data& d, int i) {
   return 1 / std::sqrt(d.qLD[m.M_rowadr[i] + m.M_rownnz[i] - 1]);
 }
 
-// x <- x L^-1 (M = L^T D L) for a row x over dofs: from the last dof to the first, each
-// nonzero entry is taken out of its ancestors' (dofs listed in `order`, descending).
-void BackSubstituteRow(const Model& m, const Data& d, const int* order, int n, double* x) {
-  for (int q = 0; q < n; q++) {
-    int i = order[q];
+// x <- x L^-1 (M = L^T D L) for a row x over the ascending `dofs` (closed under
+// ancestors): from the last dof to the first, each nonzero entry is taken out of its
+// ancestors'.
+void BackSubstituteRow(const Model& m, const Data& d, const int* dofs, int n, double* x) {
+  for (int q = n - 1; q >= 0; q--) {
+    int i = dofs[q];
     if (x[i] == 0) continue;
     int end = m.M_rowadr[i] + m.M_rownnz[i] - 1;
     for (int k = m.M_rowadr[i]; k < end; k++) x[m.M_colind[k]] -= d.qLD[k] * x[i];
@@ -331,14 +367,15 @@ void ProjectDense(const Model& m, Data& d) {
   int nv = m.nv, nefc = d.nefc;
   SolverFrame frame(d.solver_scratch);
   double* b = frame.Reals(static_cast<size_t>(nefc) * nv);
-  int* descending = frame.IntsToWrite(nv);
-  for (int i = 0; i < nv; i++) descending[i] = nv - 1 - i;
+  int* all = frame.IntsToWrite(nv);
+  for (int i = 0; i < nv; i++) all[i] = i;
   for (int r = 0; r < nefc; r++) {
     double* x = &b[static_cast<size_t>(r) * nv];
     EfcRowDense(m, d, r, x);
-    BackSubstituteRow(m, d, descending, nv, x);
+    BackSubstituteRow(m, d, all, nv, x);
     for (int i = 0; i < nv; i++) x[i] *= InverseSqrtPivot(m, d, i);
   }
+  d.nA = nefc * nefc;
   d.efc_AR.assign(static_cast<size_t>(nefc) * nefc, 0.0);
   for (int r = 0; r < nefc; r++) {
     const double* br = &b[static_cast<size_t>(r) * nv];
@@ -351,12 +388,6 @@ void ProjectDense(const Model& m, Data& d) {
     d.efc_AR[static_cast<size_t>(r) * nefc + r] += d.efc_R[r];
   }
 }
-
-// Compressed rows (row r: rownnz[r] entries from rowadr[r], at colind, ascending).
-struct SparseRows {
-  int *rownnz = nullptr, *rowadr = nullptr, *colind = nullptr;
-  double* values = nullptr;
-};
 
 // The dofs of efc row r and all their ancestors (where L^-1 spreads the row), in
 // `cols` when given; returns how many. `mark` (nv, never equal to r before) is set to r.
@@ -375,69 +406,34 @@ int ClosedRowDofs(const Model& m, const Data& d, int r, int* mark, int* cols) {
 // Y = J L^-1 D^-1/2 on compressed rows (MuJoCo's efc_Y), in arrays of `frame`.
 SparseRows SparseY(const Model& m, const Data& d, SolverFrame& frame) {
   int nv = m.nv, nefc = d.nefc;
-  SparseRows y;
-  y.rownnz = frame.IntsToWrite(nefc);
-  y.rowadr = frame.IntsToWrite(nefc);
+  int* rownnz = frame.IntsToWrite(nefc);
+  int* rowadr = frame.IntsToWrite(nefc);
   int* mark = frame.IntsToWrite(nv);
   std::fill(mark, mark + nv, -1);
   int total = 0;
   for (int r = 0; r < nefc; r++) {
-    y.rowadr[r] = total;
-    y.rownnz[r] = ClosedRowDofs(m, d, r, mark, nullptr);
-    total += y.rownnz[r];
+    rowadr[r] = total;
+    rownnz[r] = ClosedRowDofs(m, d, r, mark, nullptr);
+    total += rownnz[r];
   }
-  y.colind = frame.IntsToWrite(total);
-  y.values = frame.RealsToWrite(total);
+  int* colind = frame.IntsToWrite(total);
+  double* values = frame.RealsToWrite(total);
   std::fill(mark, mark + nv, -1);
   double* x = frame.Reals(nv);
   for (int r = 0; r < nefc; r++) {
-    int* cols = y.colind + y.rowadr[r];
+    int* cols = colind + rowadr[r];
     int n = ClosedRowDofs(m, d, r, mark, cols);
-    // descending for the back-substitution, then ascending as stored
-    std::sort(cols, cols + n, std::greater<int>());
+    std::sort(cols, cols + n);
     for (int k = d.efc_J_rowadr[r]; k < d.efc_J_rowadr[r] + d.efc_J_rownnz[r]; k++) {
       x[d.efc_J_colind[k]] = d.efc_J[k];
     }
     BackSubstituteRow(m, d, cols, n, x);
-    std::reverse(cols, cols + n);
     for (int q = 0; q < n; q++) {
-      y.values[y.rowadr[r] + q] = x[cols[q]] * InverseSqrtPivot(m, d, cols[q]);
+      values[rowadr[r] + q] = x[cols[q]] * InverseSqrtPivot(m, d, cols[q]);
       x[cols[q]] = 0;
     }
   }
-  return y;
-}
-
-// The rows of Y by dof (Y^T): for each dof, the rows that hold it, ascending.
-SparseRows TransposePattern(const SparseRows& y, int nrow, int ncol, SolverFrame& frame) {
-  SparseRows t;
-  t.rownnz = frame.Ints(ncol);
-  t.rowadr = frame.IntsToWrite(ncol);
-  int total = 0;
-  for (int r = 0; r < nrow; r++) {
-    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) t.rownnz[y.colind[q]]++;
-    total += y.rownnz[r];
-  }
-  t.colind = frame.IntsToWrite(total);
-  for (int c = 0, adr = 0; c < ncol; c++) {
-    t.rowadr[c] = adr;
-    adr += t.rownnz[c];
-    t.rownnz[c] = 0;
-  }
-  for (int r = 0; r < nrow; r++) {
-    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) {
-      int c = y.colind[q];
-      t.colind[t.rowadr[c] + t.rownnz[c]++] = r;
-    }
-  }
-  return t;
-}
-
-// Does row r of y hold the same dofs as row r - 1 (as the rows of one contact do)?
-bool RepeatsRow(const SparseRows& y, int r) {
-  if (r == 0 || y.rownnz[r] != y.rownnz[r - 1]) return false;
-  const int* cols = y.colind + y.rowadr[r];
-  return std::equal(cols, cols + y.rownnz[r], y.colind + y.rowadr[r - 1]);
+  return SparseRows{rownnz, rowadr, colind, values};
 }
 
 // The rows of efc that share a dof with row r (r's columns of AR), into `cols` when given;
@@ -457,25 +453,19 @@ int CoupledRows(const SparseRows& y, const SparseRows& yt, int r, int* mark, int
   return n;
 }
 
-// Sparse efc_AR = Y Y^T + diag(R) in compressed rows (efc_AR_rownnz/rowadr/colind, nA
-// entries): row r holds the rows that share a dof with it.
-void ProjectSparse(const Model& m, Data& d) {
-  int nv = m.nv, nefc = d.nefc;
-  SolverFrame frame(d.solver_scratch);
-  SparseRows y = SparseY(m, d, frame);
-  SparseRows yt = TransposePattern(y, nefc, nv, frame);
-  int* mark = frame.IntsToWrite(nefc);
-  std::fill(mark, mark + nefc, -1);
-  // The pattern: counted, then written (a row repeating the one before copies it).
+// efc_AR's compressed-row pattern: row r holds the rows that share a dof with it (a row
+// repeating the dofs of the one before has its columns too); counted, then written.
+void SparseARPattern(const SparseRows& y, const SparseRows& yt, int nefc, int* mark, Data& d) {
   if (d.efc_AR_rownnz.size() < static_cast<size_t>(nefc)) {
     d.efc_AR_rownnz.resize(nefc);
     d.efc_AR_rowadr.resize(nefc);
   }
+  std::fill(mark, mark + nefc, -1);
   int total = 0;
   for (int r = 0; r < nefc; r++) {
     d.efc_AR_rowadr[r] = total;
     d.efc_AR_rownnz[r] =
-        RepeatsRow(y, r) ? d.efc_AR_rownnz[r - 1] : CoupledRows(y, yt, r, mark, nullptr);
+        RepeatsRowBefore(y, r) ? d.efc_AR_rownnz[r - 1] : CoupledRows(y, yt, r, mark, nullptr);
     total += d.efc_AR_rownnz[r];
   }
   d.nA = total;
@@ -484,19 +474,33 @@ void ProjectSparse(const Model& m, Data& d) {
   std::fill(mark, mark + nefc, -1);
   for (int r = 0; r < nefc; r++) {
     int* cols = &d.efc_AR_colind[d.efc_AR_rowadr[r]];
-    if (RepeatsRow(y, r)) {
+    if (RepeatsRowBefore(y, r)) {
       std::copy_n(&d.efc_AR_colind[d.efc_AR_rowadr[r - 1]], d.efc_AR_rownnz[r], cols);
     } else {
       CoupledRows(y, yt, r, mark, cols);
       std::sort(cols, cols + d.efc_AR_rownnz[r]);
     }
   }
-  // The values: row r of Y scattered, dotted with each coupled row.
+}
+
+// Sparse efc_AR = Y Y^T + diag(R) in compressed rows (efc_AR_rownnz/rowadr/colind, nA
+// entries). Each entry below the diagonal is the one already computed above it.
+void ProjectSparse(const Model& m, Data& d) {
+  int nv = m.nv, nefc = d.nefc;
+  SolverFrame frame(d.solver_scratch);
+  SparseRows y = SparseY(m, d, frame);
+  SparseRows yt = TransposeRows(SparseRows{y.rownnz, y.rowadr, y.colind}, nefc, nv, frame);
+  SparseARPattern(y, yt, nefc, frame.IntsToWrite(nefc), d);
   double* x = frame.Reals(nv);
   for (int r = 0; r < nefc; r++) {
+    // (row r of Y scattered, dotted with each coupled row from r on)
     for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) x[y.colind[q]] = y.values[q];
     for (int k = d.efc_AR_rowadr[r]; k < d.efc_AR_rowadr[r] + d.efc_AR_rownnz[r]; k++) {
       int c = d.efc_AR_colind[k];
+      if (c < r) {
+        d.efc_AR[k] = d.efc_AR[AREntry(m, d, c, r)];
+        continue;
+      }
       d.efc_AR[k] = math::DotSparse(y.values + y.rowadr[c], x, y.rownnz[c], y.colind + y.rowadr[c]);
       if (c == r) d.efc_AR[k] += d.efc_R[r];
     }
@@ -505,6 +509,12 @@ void ProjectSparse(const Model& m, Data& d) {
 }
 
 }  // namespace
+
+size_t AREntry(const Model& m, const Data& d, int r, int c) {
+  if (!SparseJacobian(m)) return static_cast<size_t>(r) * d.nefc + c;
+  const int* begin = &d.efc_AR_colind[d.efc_AR_rowadr[r]];
+  return d.efc_AR_rowadr[r] + (std::lower_bound(begin, begin + d.efc_AR_rownnz[r], c) - begin);
+}
 
 void ProjectConstraint(const Model& m, Data& d) {
   bool dual = m.opt.solver == kSolverPGS || m.opt.noslip_iterations > 0;

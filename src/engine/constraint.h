@@ -98,6 +98,18 @@ class SolverFrame {
   size_t nreal_, nint_;
 };
 
+// Rows in compressed form: row r has rownnz[r] entries from rowadr[r] on, at the columns
+// colind[..] (ascending), with their numbers in `values` when the rows carry them.
+struct SparseRows {
+  const int *rownnz = nullptr, *rowadr = nullptr, *colind = nullptr;
+  const double* values = nullptr;
+};
+// The transpose of `rows` (nrow rows over ncol columns): a row per column listing the rows
+// that hold it, ascending, with the values when `rows` has them; in arrays of `frame`.
+SparseRows TransposeRows(const SparseRows& rows, int nrow, int ncol, SolverFrame& frame);
+// Does row r hold the same columns as row r - 1 (as the rows of one contact do)?
+bool RepeatsRowBefore(const SparseRows& rows, int r);
+
 // One constraint problem: the whole model, or one island of it, in arrays of a
 // SolverFrame. Dof arrays have nv entries, row arrays nefc; the first ne rows are
 // equalities, the next nf friction.
@@ -179,6 +191,8 @@ void SolveNoSlip(const Model& m, Data& d);
 void RunDualSweeps(const Model& m, Data& d, int maxiter, double tolerance,
                    const std::function<double(int)>& sweep);
 // (efc_AR is dense or in compressed rows, as the model's efc_J: SparseJacobian.)
+// The index in efc_AR of AR(r, c), in either layout (on compressed rows, row r holds c).
+size_t AREntry(const Model& m, const Data& d, int r, int c);
 // inv = 1 / diag(AR) (or of AR - R, floored at kMinVal) for every row.
 void InverseDiagAR(const Model& m, const Data& d, bool no_r, double* inv);
 // The dim x dim diagonal block of AR at row `start` (minus R, floored at 1e-10).

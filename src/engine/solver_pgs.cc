@@ -62,16 +62,6 @@ void DualState(Data& d) {
   }
 }
 
-}  // namespace
-
-namespace {
-
-// The index in efc_AR of AR(r, c) on compressed rows (row r holds column c).
-size_t SparseAREntry(const Data& d, int r, int c) {
-  const int* begin = &d.efc_AR_colind[d.efc_AR_rowadr[r]];
-  return d.efc_AR_rowadr[r] + (std::lower_bound(begin, begin + d.efc_AR_rownnz[r], c) - begin);
-}
-
 // Row r of AR times f.
 double ARRowDot(const Model& m, const Data& d, int r, const double* f) {
   if (!SparseJacobian(m)) return Dot(&d.efc_AR[static_cast<size_t>(r) * d.nefc], f, d.nefc);
@@ -82,22 +72,16 @@ double ARRowDot(const Model& m, const Data& d, int r, const double* f) {
 }  // namespace
 
 void InverseDiagAR(const Model& m, const Data& d, bool no_r, double* inv) {
-  int nefc = d.nefc;
-  bool sparse = SparseJacobian(m);
-  for (int r = 0; r < nefc; r++) {
-    double diag = sparse ? d.efc_AR[SparseAREntry(d, r, r)]
-                         : d.efc_AR[static_cast<size_t>(r) * (nefc + 1)];
+  for (int r = 0; r < d.nefc; r++) {
+    double diag = d.efc_AR[AREntry(m, d, r, r)];
     inv[r] = 1 / (no_r ? std::max(kMinVal, diag - d.efc_R[r]) : diag);
   }
 }
 
 void BlockAR(const Model& m, const Data& d, int start, int dim, bool no_r, double* block) {
-  int nefc = d.nefc;
   // (on compressed rows the block's rows share their columns: those of one constraint)
-  bool sparse = SparseJacobian(m);
   for (int j = 0; j < dim; j++) {
-    const double* row = sparse ? &d.efc_AR[SparseAREntry(d, start + j, start)]
-                               : &d.efc_AR[static_cast<size_t>(start + j) * nefc + start];
+    const double* row = &d.efc_AR[AREntry(m, d, start + j, start)];
     std::copy(row, row + dim, block + j * dim);
   }
   if (!no_r) return;

@@ -234,15 +234,8 @@ void MulJ(const ConstraintProblem& p, const double* vec, double* res) {
 // (MuJoCo factors every island of a sparse model sparse; the two differ in rounding only.)
 constexpr int kSparseFactorDofs = 60;
 
-// Rows of J by their nonzeros: row r has rownnz[r] values from rowadr[r], at the dofs
-// colind[..], ascending.
-struct CompressedRows {
-  const int *rownnz = nullptr, *rowadr = nullptr, *colind = nullptr;
-  const double* values = nullptr;
-};
-
 // The nonzeros of p's dense rows (each row keeps nv slots).
-CompressedRows CompressDenseRows(const ConstraintProblem& p, SolverFrame& frame) {
+SparseRows CompressDenseRows(const ConstraintProblem& p, SolverFrame& frame) {
   size_t slots = static_cast<size_t>(p.nefc) * p.nv;
   int* rownnz = frame.IntsToWrite(p.nefc);
   int* rowadr = frame.IntsToWrite(p.nefc);
@@ -254,51 +247,14 @@ CompressedRows CompressDenseRows(const ConstraintProblem& p, SolverFrame& frame)
     rownnz[r] = NonzeroColumns(&p.J[at], p.nv, &colind[at]);
     for (int k = 0; k < rownnz[r]; k++) values[at + k] = p.J[at + colind[at + k]];
   }
-  return CompressedRows{rownnz, rowadr, colind, values};
+  return SparseRows{rownnz, rowadr, colind, values};
 }
 
-// J^T by rows (one per dof: the rows that move it, ascending, with their values), for
-// J^T f as MuJoCo computes it on sparse rows (a sparse dot per dof).
-struct Transposed {
-  RowPattern rows;
-  double* values = nullptr;
-};
-
-Transposed Transpose(const ConstraintProblem& p, SolverFrame& frame) {
-  Transposed t;
-  RowPattern& pt = t.rows;
-  pt.n = p.nv;
-  pt.rownnz = frame.Ints(p.nv);
-  pt.rowadr = frame.IntsToWrite(p.nv);
-  int nnz = 0;
-  for (int r = 0; r < p.nefc; r++) {
-    for (int k = p.J_rowadr[r]; k < p.J_rowadr[r] + p.J_rownnz[r]; k++) pt.rownnz[p.J_colind[k]]++;
-    nnz += p.J_rownnz[r];
-  }
-  pt.colind = frame.IntsToWrite(nnz);
-  t.values = frame.RealsToWrite(nnz);
-  for (int v = 0, adr = 0; v < p.nv; v++) {
-    pt.rowadr[v] = adr;
-    adr += pt.rownnz[v];
-    pt.rownnz[v] = 0;
-  }
-  for (int r = 0; r < p.nefc; r++) {
-    for (int k = p.J_rowadr[r]; k < p.J_rowadr[r] + p.J_rownnz[r]; k++) {
-      int v = p.J_colind[k];
-      int at = pt.rowadr[v] + pt.rownnz[v]++;
-      pt.colind[at] = r;
-      t.values[at] = p.J[k];
-    }
-  }
-  return t;
-}
-
-// res (dofs) = J^T f over the transposed rows.
-void MulJT(const Transposed& t, const double* f, double* res) {
-  const RowPattern& pt = t.rows;
-  for (int v = 0; v < pt.n; v++) {
-    int adr = pt.rowadr[v];
-    res[v] = math::DotSparse(t.values + adr, f, pt.rownnz[v], pt.colind + adr);
+// res (dofs) = J^T f over J's transpose (a sparse dot per dof, as MuJoCo on sparse rows).
+void MulJT(const SparseRows& jt, int nv, const double* f, double* res) {
+  for (int v = 0; v < nv; v++) {
+    int adr = jt.rowadr[v];
+    res[v] = math::DotSparse(jt.values + adr, f, jt.rownnz[v], jt.colind + adr);
   }
 }
 
@@ -306,8 +262,8 @@ void MulJT(const Transposed& t, const double* f, double* res) {
 // share a row of J with r, or descend from r in the dof tree), columns ascending: what
 // the symbolic Cholesky reads. Every row of J counts, whatever its state, so that rank-one
 // updates stay within the factor's pattern.
-RowPattern HessianUpperPattern(const ConstraintProblem& p, const CompressedRows& rows,
-                               const Transposed& t, SolverFrame& frame) {
+RowPattern HessianUpperPattern(const ConstraintProblem& p, const SparseRows& rows,
+                               const SparseRows& jt, SolverFrame& frame) {
   int nv = p.nv;
   RowPattern up;
   up.n = nv;
@@ -322,17 +278,13 @@ RowPattern HessianUpperPattern(const ConstraintProblem& p, const CompressedRows&
   }
   // (a row with the dofs of the row before it adds nothing new: the rows of a contact)
   int* repeats = frame.IntsToWrite(p.nefc);
-  for (int e = 0; e < p.nefc; e++) {
-    const int* cols = rows.colind + rows.rowadr[e];
-    repeats[e] = e > 0 && rows.rownnz[e] == rows.rownnz[e - 1] &&
-                 std::equal(cols, cols + rows.rownnz[e], rows.colind + rows.rowadr[e - 1]);
-  }
+  for (int e = 0; e < p.nefc; e++) repeats[e] = RepeatsRowBefore(rows, e);
   int room = 0;
   for (int r = 0; r < nv; r++) {
     up.rowadr[r] = room;
     room += up.rownnz[r];
-    for (int k = t.rows.rowadr[r]; k < t.rows.rowadr[r] + t.rows.rownnz[r]; k++) {
-      int e = t.rows.colind[k];
+    for (int k = jt.rowadr[r]; k < jt.rowadr[r] + jt.rownnz[r]; k++) {
+      int e = jt.colind[k];
       if (!repeats[e]) room += rows.rownnz[e];
     }
     up.rownnz[r] = 0;
@@ -349,8 +301,8 @@ RowPattern HessianUpperPattern(const ConstraintProblem& p, const CompressedRows&
   for (int r = 0; r < nv; r++) {
     int* row = up.colind + up.rowadr[r];
     for (int k = 0; k < up.rownnz[r]; k++) mark[row[k]] = r;
-    for (int k = t.rows.rowadr[r]; k < t.rows.rowadr[r] + t.rows.rownnz[r]; k++) {
-      int e = t.rows.colind[k];
+    for (int k = jt.rowadr[r]; k < jt.rowadr[r] + jt.rownnz[r]; k++) {
+      int e = jt.colind[k];
       if (repeats[e]) continue;
       for (int q = rows.rowadr[e] + rows.rownnz[e] - 1; q >= rows.rowadr[e]; q--) {
         int i = rows.colind[q];
@@ -399,14 +351,14 @@ struct Primal {
   // keeps the previous gradients and the change of the preconditioned one.
   double *ma, *mv, *grad, *mgrad, *search, *gradold, *mgradold, *mgrad_change;
   // Sparse rows (p.sparse()): J^T by dofs, for J^T f.
-  Transposed jt;
+  SparseRows jt;
   // Newton: the rows of J by their nonzeros (`rows`: p's own compressed rows, or the
   // nonzeros of its dense ones); the Cholesky factor of M + J^T D_active J, the same plus
   // the cone-zone contacts' Hessians, and room for update vectors (one per row of a
   // contact). The factors are dense (nv x nv) or, with `sparse_factor`, in the layout of
   // `chol` (its nnz entries each) with two nv arrays of scratch: `dense` for the
   // factorization (zero between uses) and `scattered` for the rank-one updates.
-  CompressedRows rows;
+  SparseRows rows;
   bool sparse_factor = false;
   CholeskyPattern chol;
   double *hessian = nullptr, *hessian_cone = nullptr, *updates = nullptr;
@@ -427,10 +379,12 @@ struct Primal {
          {&ma, &mv, &grad, &mgrad, &search, &gradold, &mgradold, &mgrad_change}) {
       *dof_array = frame.Reals(nv);
     }
-    if (p.sparse()) jt = Transpose(p, frame);
+    if (p.sparse()) {
+      rows = SparseRows{p.J_rownnz, p.J_rowadr, p.J_colind, p.J};
+      jt = TransposeRows(rows, nefc, nv, frame);
+    }
     if (!newton) return;
-    rows = p.sparse() ? CompressedRows{p.J_rownnz, p.J_rowadr, p.J_colind, p.J}
-                      : CompressDenseRows(p, frame);
+    if (!p.sparse()) rows = CompressDenseRows(p, frame);
     // (the factors are filled by FactorHessian and AddConeHessians, the update vectors by
     // their users: not cleared here)
     size_t entries = static_cast<size_t>(nv) * nv;
@@ -456,7 +410,7 @@ void UpdateConstraint(Primal& s) {
   ConstraintUpdate(p.Rows(), s.jaref, p.state, p.force, &s.cost, s.newton && s.elliptic);
   s.ncone = static_cast<int>(std::count(p.state, p.state + p.nefc, kStateCone));
   if (p.sparse()) {
-    MulJT(s.jt, p.force, p.qfrc_constraint);
+    MulJT(s.jt, p.nv, p.force, p.qfrc_constraint);
   } else {
     math::MulMatTVec(p.qfrc_constraint, p.J, p.force, p.nefc, p.nv);
   }
@@ -536,11 +490,11 @@ void AddConeHessians(Primal& s) {
 // ascending order, then M (MuJoCo's order).
 void AddHessianRow(const Primal& s, int r, double* dense) {
   const ConstraintProblem& p = s.p;
-  const RowPattern& jt = s.jt.rows;
+  const SparseRows& jt = s.jt;
   for (int k = jt.rowadr[r]; k < jt.rowadr[r] + jt.rownnz[r]; k++) {
     int e = jt.colind[k];
     if (p.state[e] != kStateQuadratic) continue;
-    double scaled = p.D[e] * s.jt.values[k];
+    double scaled = p.D[e] * jt.values[k];
     for (int q = s.rows.rowadr[e]; q < s.rows.rowadr[e] + s.rows.rownnz[e]; q++) {
       if (s.rows.colind[q] > r) break;
       dense[s.rows.colind[q]] += scaled * s.rows.values[q];
