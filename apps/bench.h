@@ -34,6 +34,7 @@ struct BenchOptions {
   int key = -1;             // -1: keyframe "test" if the model has one
   NoiseOptions noise;
   int threads = 1;
+  bool profiler = true;     // time the pipeline's stages (a clock read per stage edge)
 };
 
 // Registers the subcommand; its callback prints the report to io.out.

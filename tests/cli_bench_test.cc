@@ -108,6 +108,16 @@ TEST(Bench, ThreadsReportTheirTotal) {
   EXPECT_GT(Value(out.str(), "Total steps per second"), 0);
 }
 
+// --no-profiler: the same rollout with no stage timers, so no profile in the report.
+TEST(Bench, NoProfilerLeavesTheProfileOut) {
+  std::ostringstream out, err;
+  const std::string model = Source("models/actuator_bench.xml");
+  const char* argv[] = {"simlab", "bench", model.c_str(), "--steps", "200", "--no-profiler"};
+  ASSERT_EQ(RunSimlab(6, argv, out, err), kExitOk) << err.str();
+  EXPECT_GT(Value(out.str(), "Steps per second"), 0);
+  EXPECT_EQ(out.str().find("Internal profiler"), std::string::npos) << out.str();
+}
+
 TEST(Bench, BadKeyframeIsOneLine) {
   std::ostringstream out, err;
   const std::string model = Source("models/actuator_bench.xml");

@@ -2,7 +2,7 @@
 # Steps per second of simlab beside MuJoCo 3.12 (and Debian's 2.2.2) on the same models,
 # interleaved in one run on one machine, and the ratio simlab / MuJoCo.
 #
-#   tools/bench_vs_mujoco.sh [--rounds R] [--only NAME] [--cpu C] [BUILD_DIR]
+#   tools/bench_vs_mujoco.sh [--rounds R] [--only NAME] [--cpu C] [--no-profiler] [BUILD_DIR]
 #
 # Both engines run the same workload: MuJoCo's own `testspeed` (built from source by
 # ../shared/oracle/native/build.sh into $MUJOCO_NATIVE, default /work/mujoco-native) and
@@ -24,17 +24,25 @@
 # cube: 8 contacts per step against 3.5.1's 7) and mesh-mesh pairs differ slightly (the
 # cubes: 32.6 contacts per step against 32.0).
 #
+# Both engines time their pipeline stages by default (testspeed installs its profiler
+# clock, mjcb_time; `simlab bench` sets Data::timer_clock): some 28 clock reads a step,
+# about a microsecond, the same work in both and half of a small model's step. With
+# --no-profiler neither does: simlab bench --no-profiler, and testspeed rebuilt here from
+# MuJoCo's own testspeed.cc with the one line that installs mjcb_time made conditional
+# (clang++ and the native build's headers and library; the engine is the same library).
+#
 # Debian's MuJoCo 2.2.2 (`mujoco-testspeed`, package libmujoco-samples) is the third
 # column when installed; its control noise is the older process (no relaxation to the
 # centre), so its workload differs slightly, and it cannot load 3.x-only models (-).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
-rounds=9 only="" cpu="" build=$here/build
+rounds=9 only="" cpu="" profiler=1 build=$here/build
 while [ $# -gt 0 ]; do
   case $1 in
     --rounds) rounds=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
     --cpu) cpu=$2; shift 2 ;;
+    --no-profiler) profiler=0; shift ;;
     *) build=$1; shift ;;
   esac
 done
@@ -49,13 +57,24 @@ MuJoCo 3.12's testspeed is missing ($testspeed). Build it from source:
 EOF
   exit 2
 fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+if [ $profiler = 0 ]; then
+  # MuJoCo's testspeed without its profiler clock (the only change), built as build.sh does.
+  sed 's/^  mjcb_time = gettm;$/  if (!getenv("TESTSPEED_NO_PROFILER")) mjcb_time = gettm;/' \
+    "$native/src/sample/testspeed.cc" > "$work/testspeed.cc"
+  grep -q TESTSPEED_NO_PROFILER "$work/testspeed.cc" || { echo "testspeed.cc: mjcb_time line not found" >&2; exit 1; }
+  clang++ -DmjUSEPLATFORMSIMD -I"$native/src/include" -O3 -DNDEBUG -mavx -std=c++20 \
+    "$work/testspeed.cc" -o "$work/testspeed" -L"$native/build/lib" \
+    -Wl,-rpath,"$native/build/lib" -lmujoco -lpthread
+  testspeed=$work/testspeed
+  export TESTSPEED_NO_PROFILER=1
+fi
 [ -x "$build/simlab" ] || { echo "no $build/simlab: build the project first" >&2; exit 2; }
 
 # Models from MuJoCo's source tree (exported by build.sh into $native/src); the cube with
 # multiccd off, as MuJoCo 3.5.1 and simlab default to (3.8 turned it on).
 src=$native/src
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 cp -r "$src/model/cube" "$work/cube"
 sed -i 's|<option \([^/]*\)/>|<option \1><flag multiccd="disable"/></option>|' "$work/cube/cube_3x3x3.xml"
 grep -q 'multiccd="disable"' "$work/cube/cube_3x3x3.xml" || { echo "cube: could not set multiccd" >&2; exit 1; }
@@ -70,15 +89,17 @@ cube-3x3x3|$work/cube/cube_3x3x3.xml|4000
 22-humanoids|$src/model/humanoid/22_humanoids.xml|1000"
 
 old=$(command -v mujoco-testspeed || true)
+[ $profiler = 1 ] || old=""  # (2.2.2 keeps its profiler)
 echo "simlab: $build/simlab ($(git -C "$here" rev-parse --short HEAD))"
 echo "MuJoCo: $testspeed ($(basename "$(readlink -f "$native/build/lib/libmujoco.so")"))"
 echo "Debian MuJoCo 2.2.2: ${old:-not installed (apt-get install libmujoco-samples)}"
 echo "rounds: $rounds, CPU time per process, best round of each engine${cpu:+, all runs on CPU $cpu}"
+[ $profiler = 1 ] || echo "profilers off in both engines (testspeed rebuilt without mjcb_time: $testspeed)"
 echo
 
-python3 - "$build/simlab" "$testspeed" "$old" "$rounds" "$only" "$cpu" <<PY
+python3 - "$build/simlab" "$testspeed" "$old" "$rounds" "$only" "$cpu" "$profiler" <<PY
 import os, resource, statistics, subprocess, sys
-simlab, testspeed, old, rounds, only, cpu = sys.argv[1:7]
+simlab, testspeed, old, rounds, only, cpu, profiler = sys.argv[1:8]
 rounds = int(rounds)
 ncpu = os.cpu_count() or 1
 models = [line.split("|") for line in """$models""".splitlines()]
@@ -103,7 +124,8 @@ def speed(engine, path, n, pin):
     return (n - n0) / (long - short)
 
 engines = {
-    "simlab": lambda f, n: [simlab, "bench", f, "--steps", str(n)],
+    "simlab": lambda f, n: [simlab, "bench", f, "--steps", str(n)]
+                           + ([] if profiler == "1" else ["--no-profiler"]),
     "mujoco": lambda f, n: [testspeed, f, f"--nstep={n}"],
 }
 if old:
