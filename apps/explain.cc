@@ -170,7 +170,7 @@ std::string LawText(const Model& m, int i) {
 
 // What u is in the law: the control, or the activation state.
 std::string InputText(const Model& m, int i) {
-  if (!HasActivation(m, i)) return "ctrl[" + std::to_string(i) + "] (no activation state)";
+  if (!HasActivation(m, i)) return "ctrl[" + std::to_string(m.actuator_ctrladr[i]) + "] (no activation state)";
   std::string text = "act[" + std::to_string(m.actuator_actadr[i]) + "], the activation w";
   if (m.actuator_actearly[i]) text += " (actearly: the force uses next step's w)";
   return text;
@@ -199,7 +199,7 @@ std::string DynamicsText(const Model& m, int i) {
 
 // The 6 gear numbers, or the first alone when the rest are zero.
 std::string GearText(const Model& m, int i) {
-  const double* g = &m.actuator_gear[6 * i];
+  const double* g = &m.actuator_gear[6 * m.actuator_outadr[i]];
   bool scalar = g[1] == 0 && g[2] == 0 && g[3] == 0 && g[4] == 0 && g[5] == 0;
   if (scalar) return Num(g[0]);
   std::string text = "[";
@@ -271,10 +271,11 @@ std::string TargetClampLine(const Model& m, int i) {
 
 // Every clamp, one per line, in the order MuJoCo applies them.
 std::string ClampLines(const Model& m, int i) {
-  std::string ctrl = ClampText(m.actuator_ctrllimited[i], &m.actuator_ctrlrange[2 * i],
+  int u = m.actuator_ctrladr[i];
+  std::string ctrl = ClampText(m.actuator_ctrllimited[u], &m.actuator_ctrlrange[2 * u],
                                "clamps ctrl inside the computation (data.ctrl keeps what was written)");
-  if (m.actuator_ctrllimited[i] && (m.opt.disableflags & kDisableClampctrl)) {
-    ctrl = "set " + Range(&m.actuator_ctrlrange[2 * i]) + " but disabled by <flag clampctrl>";
+  if (m.actuator_ctrllimited[u] && (m.opt.disableflags & kDisableClampctrl)) {
+    ctrl = "set " + Range(&m.actuator_ctrlrange[2 * u]) + " but disabled by <flag clampctrl>";
   }
   std::string text = Line("clamps", "ctrlrange: " + ctrl);
   if (HasActivation(m, i)) {
@@ -344,13 +345,13 @@ std::string ExplainActuator(const Model& m, int i) {
 
 std::string ExplainModel(const Model& m) {
   std::string name = m.model_name.empty() ? "model" : m.model_name;
-  std::string text = name + ": " + std::to_string(m.nu) +
+  std::string text = name + ": " + std::to_string(m.nactuator) +
                      " actuator(s), each an instance of p = a u + b0 + b1 l + b2 l'\n" +
                      "(u: ctrl or activation w; l, l': length and velocity at the transmission)\n";
   if (m.opt.disableflags & kDisableActuation) {
     text += "note: <flag actuation=\"disable\"/>: every actuator force is zero\n";
   }
-  for (int i = 0; i < m.nu; i++) text += "\n" + ExplainActuator(m, i);
+  for (int i = 0; i < m.nactuator; i++) text += "\n" + ExplainActuator(m, i);
   if (m.nsensor > 0) {
     text += "\n" + std::to_string(m.nsensor) + " sensor(s), " + std::to_string(m.nsensordata) +
             " number(s) in sensordata\n";

@@ -284,6 +284,8 @@ Json Header(Model& m, Data& d) {
   h["nv"] = m.nv;
   h["nu"] = m.nu;
   h["na"] = m.na;
+  h["nactuator"] = m.nactuator;  // (as the native MuJoCo's rollout: actuator_* arrays have
+  h["nout"] = m.nout;            // nout entries, ctrl nu)
   h["ntendon"] = m.ntendon;
   h["nsensordata"] = m.nsensordata;
   h["timestep"] = m.opt.timestep;

@@ -139,8 +139,8 @@ struct TimerStat {
   X(int, ten_wrapnum, ntendon, 1)               \
   X(int, wrap_obj, nwrap, 2)                    \
   X(double, wrap_xpos, nwrap, 6)                \
-  X(double, actuator_length, nu, 1)             \
-  X(double, actuator_moment, nu, nv)            \
+  X(double, actuator_length, nout, 1)             \
+  X(double, actuator_moment, nout, nv)            \
   X(double, crb, nbody, 10)                     \
   X(double, M, nM, 1)                           \
   X(double, qM, nM, 1)                          \
@@ -148,7 +148,7 @@ struct TimerStat {
   X(double, qLDiagInv, nv, 1)                   \
   /* velocity-dependent */                      \
   X(double, ten_velocity, ntendon, 1)           \
-  X(double, actuator_velocity, nu, 1)           \
+  X(double, actuator_velocity, nout, 1)           \
   X(double, cvel, nbody, 6)                     \
   X(double, cdof_dot, nv, 6)                    \
   X(double, qfrc_bias, nv, 1)                   \
@@ -160,7 +160,7 @@ struct TimerStat {
   X(double, subtree_linvel, nbody, 3)  /* on demand: SubtreeVel */ \
   X(double, subtree_angmom, nbody, 3)  /* about each subtree's com */ \
   /* acceleration-dependent */                  \
-  X(double, actuator_force, nu, 1)              \
+  X(double, actuator_force, nout, 1)              \
   X(double, qfrc_actuator, nv, 1)               \
   X(double, qfrc_smooth, nv, 1)                 \
   X(double, qacc_smooth, nv, 1)                 \

@@ -361,35 +361,40 @@ struct Statistic {
   X(int, wrap_objid, nwrap, 1)                     \
   X(double, wrap_prm, nwrap, 1)                    \
   /* actuators */                                  \
-  X(int, actuator_trntype, nu, 1)                  \
-  X(int, actuator_dyntype, nu, 1)                  \
-  X(int, actuator_gaintype, nu, 1)                 \
-  X(int, actuator_biastype, nu, 1)                 \
-  X(int, actuator_trnid, nu, 2)                    \
-  X(int, actuator_actadr, nu, 1)                   \
-  X(int, actuator_actnum, nu, 1)                   \
-  X(int, actuator_group, nu, 1)                    \
+  X(int, actuator_trntype, nactuator, 1)           \
+  X(int, actuator_dyntype, nactuator, 1)           \
+  X(int, actuator_gaintype, nactuator, 1)          \
+  X(int, actuator_biastype, nactuator, 1)          \
+  X(int, actuator_ctrladr, nactuator, 1)  /* first control in ctrl */ \
+  X(int, actuator_ctrlnum, nactuator, 1)  /* controls it reads */     \
+  X(int, actuator_ctrlspec, nactuator, 1) /* input signature */       \
+  X(int, actuator_outadr, nactuator, 1)   /* first force output */    \
+  X(int, actuator_outnum, nactuator, 1)   /* force outputs */         \
+  X(int, actuator_trnid, nactuator, 2)             \
+  X(int, actuator_actadr, nactuator, 1)            \
+  X(int, actuator_actnum, nactuator, 1)            \
+  X(int, actuator_group, nactuator, 1)             \
   X(int, actuator_ctrllimited, nu, 1)              \
-  X(int, actuator_forcelimited, nu, 1)             \
-  X(int, actuator_actlimited, nu, 1)               \
-  X(int, actuator_actearly, nu, 1)                 \
-  X(double, actuator_dynprm, nu, kNDyn)            \
-  X(double, actuator_gainprm, nu, kNGain)          \
-  X(double, actuator_biasprm, nu, kNBias)          \
+  X(int, actuator_forcelimited, nactuator, 1)      \
+  X(int, actuator_actlimited, nactuator, 1)        \
+  X(int, actuator_actearly, nactuator, 1)          \
+  X(double, actuator_dynprm, nactuator, kNDyn)     \
+  X(double, actuator_gainprm, nactuator, kNGain)   \
+  X(double, actuator_biasprm, nactuator, kNBias)   \
   X(double, actuator_ctrlrange, nu, 2)             \
-  X(double, actuator_forcerange, nu, 2)            \
-  X(double, actuator_actrange, nu, 2)              \
-  X(double, actuator_gear, nu, 6)                  \
-  X(double, actuator_cranklength, nu, 1)           \
-  X(double, actuator_acc0, nu, 1)                  \
-  X(double, actuator_length0, nu, 1)               \
-  X(double, actuator_lengthrange, nu, 2)           \
-  X(double, actuator_damping, nu, 1)               \
-  X(double, actuator_dampingpoly, nu, kNPoly)      \
-  X(double, actuator_armature, nu, 1)              \
-  X(int, actuator_history, nu, 2)     /* nsample, interp */ \
-  X(int, actuator_historyadr, nu, 1)  /* -1: none */        \
-  X(double, actuator_delay, nu, 1)                 \
+  X(double, actuator_forcerange, nactuator, 2)     \
+  X(double, actuator_actrange, nactuator, 2)       \
+  X(double, actuator_gear, nout, 6)                \
+  X(double, actuator_cranklength, nactuator, 1)    \
+  X(double, actuator_acc0, nout, 1)                \
+  X(double, actuator_length0, nout, 1)             \
+  X(double, actuator_lengthrange, nout, 2)         \
+  X(double, actuator_damping, nactuator, 1)        \
+  X(double, actuator_dampingpoly, nactuator, kNPoly) \
+  X(double, actuator_armature, nactuator, 1)       \
+  X(int, actuator_history, nactuator, 2)  /* nsample, interp */      \
+  X(int, actuator_historyadr, nactuator, 1) /* -1: none */         \
+  X(double, actuator_delay, nactuator, 1)          \
   /* sensors */                                    \
   X(int, sensor_type, nsensor, 1)                  \
   X(int, sensor_datatype, nsensor, 1)              \
@@ -430,7 +435,7 @@ struct Statistic {
   X(exclude, nexclude)        \
   X(eq, neq)                  \
   X(tendon, ntendon)          \
-  X(actuator, nu)             \
+  X(actuator, nactuator)      \
   X(sensor, nsensor)          \
   X(key, nkey)
 
@@ -438,7 +443,9 @@ struct Statistic {
 #define SIMLAB_MODEL_SIZES(X)                                              \
   X(nq)          /* generalized coordinates */                             \
   X(nv)          /* degrees of freedom */                                  \
-  X(nu)          /* actuators (controls) */                                \
+  X(nactuator)   /* actuators */                                           \
+  X(nu)          /* scalar controls, the length of ctrl */                 \
+  X(nout)        /* actuator force outputs (actuator_force rows) */        \
   X(na)          /* activation states */                                   \
   X(nbody)       /* bodies, including the world body 0 */                  \
   X(njnt)        /* joints */                                              \

@@ -10,9 +10,11 @@
 //   double q = finger["qpos"][0];
 //
 // A field belongs to a kind's view when its rows count that kind's objects (actuator_*
-// arrays have nu rows); its attribute name is the field name without the kind's prefix
+// arrays have nactuator rows); its attribute name is the field name without the kind's prefix
 // ("actuator_gainprm" -> "gainprm", "geom_xpos" -> "xpos", "ten_length" -> "length").
 // Joints also see the qpos-sized and dof-sized arrays, sliced at jnt_qposadr/jnt_dofadr;
+// actuators their controls (nu-sized: ctrl, ctrlrange) at actuator_ctrladr and their
+// force outputs (nout-sized: force, length, gear) at actuator_outadr;
 // sensors see their sensor_dim numbers of sensordata as "data"; height fields their
 // elevation grid. Views point into the arrays: writes go through.
 #ifndef SIMLAB_NAMED_H_

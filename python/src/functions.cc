@@ -250,7 +250,7 @@ void DefineHistory(py::module_& m) {
                                  const py::object& values) {
     CheckCompatible(mw, dw);
     const Model& model = *mw.model;
-    const int n = model.actuator_history[2 * CheckedId(id, model.nu, "actuator")];
+    const int n = model.actuator_history[2 * CheckedId(id, model.nactuator, "actuator")];
     InArray t, v;
     const double* tp = OptionalInput(times, n, "times", &t);
     const double* vp = OptionalInput(values, n, "values", &v);

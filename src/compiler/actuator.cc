@@ -91,23 +91,30 @@ bool Limited(const mjcf::ModelSpec& spec, const mjcf::Source& src, int limited,
   return limited == kTrue || (limited == kAuto && range[0] < range[1]);
 }
 
-// Limits: resolve, check.
+// Limits: resolve, check. Ranges of controls are per control entry (from u on, ctrlnum of
+// them), force and activation ranges per actuator, length ranges per output (from o on).
 void Limits(const mjcf::ModelSpec& spec, const mjcf::ActuatorSpec& a,
             const std::array<double, 2>& ctrl, const std::array<double, 2>& act, int i, Model* m) {
+  int u = m->actuator_ctrladr[i], o = m->actuator_outadr[i];
   m->actuator_forcelimited[i] = Limited(spec, a.src, a.forcelimited, a.forcerange, "force");
-  m->actuator_ctrllimited[i] = Limited(spec, a.src, a.ctrllimited, ctrl, "ctrl");
+  bool ctrllimited = Limited(spec, a.src, a.ctrllimited, ctrl, "ctrl");
   m->actuator_actlimited[i] = Limited(spec, a.src, a.actlimited, act, "act");
   if (m->actuator_forcelimited[i] && a.forcerange[0] >= a.forcerange[1]) ThrowAt(a.src, "invalid forcerange");
-  if (m->actuator_ctrllimited[i] && ctrl[0] >= ctrl[1]) ThrowAt(a.src, "invalid ctrlrange");
+  if (ctrllimited && ctrl[0] >= ctrl[1]) ThrowAt(a.src, "invalid ctrlrange");
   if (m->actuator_actlimited[i] && act[0] >= act[1]) ThrowAt(a.src, "invalid actrange");
   if (m->actuator_actlimited[i] && a.dyntype == kDynNone) {
     ThrowAt(a.src, "actrange specified but dyntype is 'none'");
   }
+  for (int c = u; c < u + m->actuator_ctrlnum[i]; c++) {
+    m->actuator_ctrllimited[c] = ctrllimited;
+    for (int k = 0; k < 2; k++) m->actuator_ctrlrange[2 * c + k] = ctrl[k];
+  }
+  for (int out = o; out < o + m->actuator_outnum[i]; out++) {
+    for (int k = 0; k < 2; k++) m->actuator_lengthrange[2 * out + k] = a.lengthrange[k];
+  }
   for (int k = 0; k < 2; k++) {
-    m->actuator_ctrlrange[2 * i + k] = ctrl[k];
     m->actuator_forcerange[2 * i + k] = a.forcerange[k];
     m->actuator_actrange[2 * i + k] = act[k];
-    m->actuator_lengthrange[2 * i + k] = a.lengthrange[k];
   }
 }
 
@@ -148,7 +155,7 @@ void DampingArmature(const mjcf::ActuatorSpec& a, int i, Model* m) {
 void TargetActuatorIds(Model* m) {
   std::fill(m->jnt_actuatorid.begin(), m->jnt_actuatorid.end(), -1);
   std::fill(m->tendon_actuatorid.begin(), m->tendon_actuatorid.end(), -1);
-  for (int i = 0; i < m->nu; i++) {
+  for (int i = 0; i < m->nactuator; i++) {
     bool contributes = m->actuator_damping[i] != 0 || m->actuator_armature[i] != 0;
     for (int k = 0; k < kNPoly; k++) contributes |= m->actuator_dampingpoly[kNPoly * i + k] != 0;
     if (!contributes) continue;
@@ -173,17 +180,31 @@ int ActuatorActDim(const mjcf::ActuatorSpec& a) {
   return a.actdim < 0 ? (a.dyntype != kDynNone ? 1 : 0) : a.actdim;
 }
 
+// Control entries an actuator reads (its slice of ctrl).
+int ActuatorCtrlNum(const mjcf::ActuatorSpec&) { return 1; }
+
+// Force outputs of an actuator (its slice of actuator_force).
+int ActuatorOutNum(const mjcf::ActuatorSpec&) { return 1; }
+
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
   TargetNames targets = {NameIndex(Names(state.joints)), NameIndex(Names(state.sites)),
                          NameIndex(m->tendon_names), NameIndex(m->body_names)};
   NameIndex seen;
-  int adr = 0;
-  for (int i = 0; i < m->nu; i++) {
+  int adr = 0, ctrladr = 0, outadr = 0;
+  for (int i = 0; i < m->nactuator; i++) {
     const mjcf::ActuatorSpec& a = spec.actuators[i];
     if (!seen.Insert(a.src.name, i)) {
       ThrowAt(a.src, "repeated actuator name '" + a.src.name + "'");
     }
     m->actuator_names[i] = a.src.name;
+
+    // Its slices of the controls and of the force outputs.
+    m->actuator_ctrladr[i] = ctrladr;
+    m->actuator_ctrlnum[i] = ActuatorCtrlNum(a);
+    ctrladr += m->actuator_ctrlnum[i];
+    m->actuator_outadr[i] = outadr;
+    m->actuator_outnum[i] = ActuatorOutNum(a);
+    outadr += m->actuator_outnum[i];
 
     // Transmission and ranges.
     int trnid[2];
@@ -207,7 +228,9 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     m->actuator_group[i] = a.group;
     m->actuator_actearly[i] = a.actearly;
     m->actuator_cranklength[i] = a.cranklength;
-    for (int k = 0; k < 6; k++) m->actuator_gear[6 * i + k] = a.gear[k];
+    for (int out = m->actuator_outadr[i]; out < outadr; out++) {
+      for (int k = 0; k < 6; k++) m->actuator_gear[6 * out + k] = a.gear[k];
+    }
     for (int k = 0; k < kNDyn; k++) m->actuator_dynprm[kNDyn * i + k] = a.dynprm[k];
     for (int k = 0; k < kNGain; k++) m->actuator_gainprm[kNGain * i + k] = a.gainprm[k];
     for (int k = 0; k < kNBias; k++) m->actuator_biasprm[kNBias * i + k] = a.biasprm[k];

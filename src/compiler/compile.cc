@@ -21,9 +21,13 @@ void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
   m->ntendon = static_cast<int>(spec.tendons.size());
   m->nwrap = 0;
   for (const mjcf::TendonSpec& t : spec.tendons) m->nwrap += static_cast<int>(t.wraps.size());
-  m->nu = static_cast<int>(spec.actuators.size());
-  m->na = 0;
-  for (const mjcf::ActuatorSpec& a : spec.actuators) m->na += ActuatorActDim(a);
+  m->nactuator = static_cast<int>(spec.actuators.size());
+  m->nu = m->nout = m->na = 0;
+  for (const mjcf::ActuatorSpec& a : spec.actuators) {
+    m->nu += ActuatorCtrlNum(a);
+    m->nout += ActuatorOutNum(a);
+    m->na += ActuatorActDim(a);
+  }
   m->nkey = static_cast<int>(spec.keys.size());
   m->neq = static_cast<int>(spec.equalities.size());
   m->npair = static_cast<int>(spec.pairs.size());

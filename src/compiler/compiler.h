@@ -159,6 +159,9 @@ void CompileContacts(const mjcf::ModelSpec& spec, Model* m);
 // eq_data computed from the body poses at qpos0 (connect and weld between bodies).
 void EqualityConstants(Model* m);
 int ActuatorActDim(const mjcf::ActuatorSpec& a);
+// Control entries an actuator reads and force outputs it has (nu and nout add them up).
+int ActuatorCtrlNum(const mjcf::ActuatorSpec& a);
+int ActuatorOutNum(const mjcf::ActuatorSpec& a);
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 // Sensors (sensor.cc): user numbers per sensor (before allocation), then every sensor,

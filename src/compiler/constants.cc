@@ -97,13 +97,17 @@ void ComputeConstants(Model* m) {
 
   // Actuators: length0, acc0 = |M^-1 moment| and the dampratio damping.
   std::vector<double> acc(m->nv);
-  for (int i = 0; i < m->nu; i++) {
-    const double* moment = RowOf(d.actuator_moment, i, m->nv);
-    m->actuator_length0[i] = d.actuator_length[i];
-    std::copy(moment, moment + m->nv, acc.begin());
-    SolveSparse(*m, d.qLD.data(), d.qLDiagInv.data(), acc.data());
-    m->actuator_acc0[i] = std::sqrt(math::Dot(acc.data(), acc.data(), m->nv));
-    DampRatio(m, i, d, moment);
+  // (per force output; the dampratio of a single-output actuator from its one row)
+  for (int i = 0; i < m->nactuator; i++) {
+    int first = m->actuator_outadr[i], count = m->actuator_outnum[i];
+    for (int o = first; o < first + count; o++) {
+      const double* moment = RowOf(d.actuator_moment, o, m->nv);
+      m->actuator_length0[o] = d.actuator_length[o];
+      std::copy(moment, moment + m->nv, acc.begin());
+      SolveSparse(*m, d.qLD.data(), d.qLDiagInv.data(), acc.data());
+      m->actuator_acc0[o] = std::sqrt(math::Dot(acc.data(), acc.data(), m->nv));
+    }
+    if (count == 1) DampRatio(m, i, d, RowOf(d.actuator_moment, first, m->nv));
   }
 
   // Inverse weights and meaninertia, from the same Data; then the spring lengths.

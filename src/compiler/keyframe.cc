@@ -123,7 +123,7 @@ void OverlayAttachedKey(const mjcf::AttachedKey& key, const CompileState& state,
     return id < 0 ? -1 : m->jnt_dofadr[id];
   };
   std::function<int(int)> actadr = [&](int a) { return m->actuator_actadr[a]; };
-  std::function<int(int)> ctrladr = [](int a) { return a; };
+  std::function<int(int)> ctrladr = [&](int a) { return m->actuator_ctrladr[a]; };
   std::function<int(BodyPtr)> mposadr = [&](BodyPtr b) { return mocap(b) < 0 ? -1 : 3 * mocap(b); };
   std::function<int(BodyPtr)> mquatadr = [&](BodyPtr b) { return mocap(b) < 0 ? -1 : 4 * mocap(b); };
   Overlay(key.qpos, qposadr, RowOf(m->key_qpos, k, m->nq));

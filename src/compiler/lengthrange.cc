@@ -61,7 +61,8 @@ double PushStep(const Model& m, Data& d, const mjcf::LengthRangeSpec& opt, int i
   Step1(m, d);
 
   // qfrc_applied along the moment, scaled so that M^-1 qfrc has norm accel.
-  const double* moment = RowOf(d.actuator_moment, i, nv);
+  int out = m.actuator_outadr[i];
+  const double* moment = RowOf(d.actuator_moment, out, nv);
   std::copy(moment, moment + nv, d.qfrc_applied.begin());
   SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qfrc_applied.data());
   auto norm_of_applied = [&d, nv] {
@@ -74,7 +75,7 @@ double PushStep(const Model& m, Data& d, const mjcf::LengthRangeSpec& opt, int i
     for (double& f : d.qfrc_applied) f *= opt.maxforce / std::max(kMinVal, norm);
   }
   Step2(m, d);
-  return d.actuator_length[i];
+  return d.actuator_length[out];
 }
 
 // Simulates both sides for actuator i of `sim`; writes lengthrange or throws.
@@ -124,8 +125,10 @@ void ComputeLengthRanges(const mjcf::ModelSpec& spec, Model* m) {
                          kDisableDamper | kDisableGravity | kDisableActuation;
   if (opt.timestep > 0) sim.opt.timestep = opt.timestep;
 
-  for (int i = 0; i < m->nu; i++) {
-    double* range = &m->actuator_lengthrange[2 * i];
+  // (actuators of one force output: a length range is a scalar's)
+  for (int i = 0; i < m->nactuator; i++) {
+    if (m->actuator_outnum[i] != 1) continue;
+    double* range = &m->actuator_lengthrange[2 * m->actuator_outadr[i]];
     if (!Selected(opt, *m, i)) continue;
     if (opt.useexisting && range[0] < range[1]) continue;
     if (opt.uselimit && RangeFromLimit(*m, i, range)) continue;

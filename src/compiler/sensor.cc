@@ -307,7 +307,7 @@ void LayoutHistory(const mjcf::ModelSpec& spec, Model* m) {
                        mjcf::ByteSize(mjcf::kMaxArrayBytes) + " budget of one array");
     }
   };
-  for (int i = 0; i < m->nu; i++) {
+  for (int i = 0; i < m->nactuator; i++) {
     const mjcf::ActuatorSpec& a = spec.actuators[i];
     CheckHistory(a.src, a.delay, a.nsample, "history buffer");
     m->actuator_history[2 * i] = a.nsample;

@@ -68,8 +68,8 @@ Data MakeData(const Model& m) {
 #define SIMLAB_X(type, name, rows, cols) d.name.assign(static_cast<size_t>(rows) * (cols), type{});
   SIMLAB_DATA_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
-  d.moment_rownnz.assign(static_cast<size_t>(m.nu), 0);
-  d.moment_colind.assign(static_cast<size_t>(m.nu) * m.nv, 0);
+  d.moment_rownnz.assign(static_cast<size_t>(m.nout), 0);
+  d.moment_colind.assign(static_cast<size_t>(m.nout) * m.nv, 0);
   d.ten_J_rownnz.assign(static_cast<size_t>(m.ntendon), 0);
   d.ten_J_colind.assign(static_cast<size_t>(m.ntendon) * m.nv, 0);
   ResetData(m, d);

@@ -21,7 +21,7 @@ struct ViewSpec {
 // The views MuJoCo's bindings offer on mjModel.
 const std::vector<ViewSpec>& ModelViews() {
   static const std::vector<ViewSpec> views = {
-      {kObjActuator, {"nu"}, {"actuator_"}},
+      {kObjActuator, {"nactuator", "nu", "nout"}, {"actuator_"}},
       {kObjBody, {"nbody"}, {"body_"}},
       {kObjCamera, {"ncam"}, {"cam_"}},
       {kObjEquality, {"neq"}, {"eq_"}},
@@ -42,7 +42,7 @@ const std::vector<ViewSpec>& ModelViews() {
 // The views MuJoCo's bindings offer on mjData.
 const std::vector<ViewSpec>& DataViews() {
   static const std::vector<ViewSpec> views = {
-      {kObjActuator, {"nu"}, {"actuator_", ""}},
+      {kObjActuator, {"nactuator", "nu", "nout"}, {"actuator_", ""}},
       {kObjBody, {"nbody"}, {""}},
       {kObjCamera, {"ncam"}, {"cam_"}},
       {kObjGeom, {"ngeom"}, {"geom_"}},
@@ -90,6 +90,12 @@ void Locate(const Model& m, const FieldView& f, int id, Slice* s) {
     first_row = m.jnt_qposadr[id], nrows = JointQposCount(m.jnt_type[id]);
   } else if (rows == "nv") {
     first_row = m.jnt_dofadr[id], nrows = JointDofCount(m.jnt_type[id]);
+  } else if (rows == "nu" || rows == "nout") {
+    // An actuator's controls and force outputs: one row as one row, several as a block.
+    bool controls = rows == "nu";
+    first_row = controls ? m.actuator_ctrladr[id] : m.actuator_outadr[id];
+    int count = controls ? m.actuator_ctrlnum[id] : m.actuator_outnum[id];
+    nrows = count == 1 ? -1 : count;
   } else if (rows == "nsensordata") {
     first_row = m.sensor_adr[id], nrows = m.sensor_dim[id];
   } else if (rows == "nhfielddata") {

@@ -23,18 +23,21 @@ bool ActuatorDisabled(const Model& m, int i) {
   return group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group));
 }
 
-// The controls as the force law sees them (delayed ones from their history): clamped,
-// or all zero if any is bad.
+// The controls as the force law sees them (delayed ones from their history): clamped
+// per control entry, or all zero if any is bad.
 void EffectiveControls(const Model& m, Data& d, double* ctrl) {
-  for (int i = 0; i < m.nu; i++) {
-    ctrl[i] = ActuatorInput(m, d, i);
-    if (!(m.opt.disableflags & kDisableClampctrl) && m.actuator_ctrllimited[i]) {
-      ctrl[i] = std::clamp(ctrl[i], m.actuator_ctrlrange[2 * i], m.actuator_ctrlrange[2 * i + 1]);
+  std::copy(d.ctrl.begin(), d.ctrl.end(), ctrl);
+  for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_delay[i] != 0) ctrl[m.actuator_ctrladr[i]] = ActuatorInput(m, d, i);
+  }
+  for (int c = 0; c < m.nu; c++) {
+    if (!(m.opt.disableflags & kDisableClampctrl) && m.actuator_ctrllimited[c]) {
+      ctrl[c] = std::clamp(ctrl[c], m.actuator_ctrlrange[2 * c], m.actuator_ctrlrange[2 * c + 1]);
     }
   }
-  for (int i = 0; i < m.nu; i++) {
-    if (std::isnan(ctrl[i]) || std::abs(ctrl[i]) > kMaxVal) {
-      RaiseWarning(d, kWarnBadCtrl, i);
+  for (int c = 0; c < m.nu; c++) {
+    if (std::isnan(ctrl[c]) || std::abs(ctrl[c]) > kMaxVal) {
+      RaiseWarning(d, kWarnBadCtrl, c);
       std::fill(ctrl, ctrl + m.nu, 0.0);
       return;
     }
@@ -59,16 +62,17 @@ double Affine(const double* prm, double length, double velocity) {
   return prm[0] + prm[1] * length + prm[2] * velocity;
 }
 
-// Scalar force of actuator i before clamping.
+// Scalar force of actuator i (its one output, o) before clamping.
 double ActuatorForce(const Model& m, const Data& d, int i, double ctrl) {
-  double l = d.actuator_length[i], ldot = d.actuator_velocity[i];
+  int o = m.actuator_outadr[i];
+  double l = d.actuator_length[o], ldot = d.actuator_velocity[o];
   const double* gainprm = &m.actuator_gainprm[kNGain * i];
   const double* biasprm = &m.actuator_biasprm[kNBias * i];
-  const double* lengthrange = &m.actuator_lengthrange[2 * i];
+  const double* lengthrange = &m.actuator_lengthrange[2 * o];
   double gain = gainprm[0];
   if (m.actuator_gaintype[i] == kGainAffine) gain = Affine(gainprm, l, ldot);
   if (m.actuator_gaintype[i] == kGainMuscle) {
-    gain = MuscleGain(l, ldot, lengthrange, m.actuator_acc0[i], gainprm);
+    gain = MuscleGain(l, ldot, lengthrange, m.actuator_acc0[o], gainprm);
   }
   double input = ctrl;
   if (m.actuator_actadr[i] >= 0) {
@@ -78,7 +82,7 @@ double ActuatorForce(const Model& m, const Data& d, int i, double ctrl) {
   double bias = 0;
   if (m.actuator_biastype[i] == kBiasAffine) bias = Affine(biasprm, l, ldot);
   if (m.actuator_biastype[i] == kBiasMuscle) {
-    bias = MuscleBias(l, lengthrange, m.actuator_acc0[i], biasprm);
+    bias = MuscleBias(l, lengthrange, m.actuator_acc0[o], biasprm);
   }
   return gain * input + bias;
 }
@@ -87,24 +91,27 @@ double ActuatorForce(const Model& m, const Data& d, int i, double ctrl) {
 // push beyond the range, each is scaled by range / total.
 void ClampTendonForces(const Model& m, Data& d) {
   bool any = false;
-  for (int i = 0; i < m.nu && !any; i++) {
+  for (int i = 0; i < m.nactuator && !any; i++) {
     any = m.actuator_trntype[i] == kTrnTendon && m.tendon_actfrclimited[m.actuator_trnid[2 * i]];
   }
   if (!any) return;
   StackFrame frame(d);
   double* total = frame.Alloc(m.ntendon);
-  for (int i = 0; i < m.nu; i++) {
-    if (m.actuator_trntype[i] == kTrnTendon) total[m.actuator_trnid[2 * i]] += d.actuator_force[i];
+  // (a tendon transmission has one output)
+  for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_trntype[i] != kTrnTendon) continue;
+    total[m.actuator_trnid[2 * i]] += d.actuator_force[m.actuator_outadr[i]];
   }
-  for (int i = 0; i < m.nu; i++) {
+  for (int i = 0; i < m.nactuator; i++) {
     if (m.actuator_trntype[i] != kTrnTendon) continue;
     int t = m.actuator_trnid[2 * i];
     if (!m.tendon_actfrclimited[t] || total[t] == 0) continue;
     const double* range = &m.tendon_actfrcrange[2 * t];
+    double& force = d.actuator_force[m.actuator_outadr[i]];
     if (total[t] < range[0]) {
-      d.actuator_force[i] *= range[0] / total[t];
+      force *= range[0] / total[t];
     } else if (total[t] > range[1]) {
-      d.actuator_force[i] *= range[1] / total[t];
+      force *= range[1] / total[t];
     }
   }
 }
@@ -129,35 +136,38 @@ double NextActivation(const Model& m, const Data& d, int i, int act_adr, double 
 void Actuation(const Model& m, Data& d) {
   std::fill(d.actuator_force.begin(), d.actuator_force.end(), 0.0);
   std::fill(d.qfrc_actuator.begin(), d.qfrc_actuator.end(), 0.0);
-  if (m.nu == 0 || (m.opt.disableflags & kDisableActuation)) return;
+  if (m.nactuator == 0 || (m.opt.disableflags & kDisableActuation)) return;
 
   StackFrame frame(d);
   double* ctrl = frame.Alloc(m.nu);
   EffectiveControls(m, d, ctrl);
 
   // Activation dynamics, then forces (disabled actuators stay at zero).
-  for (int i = 0; i < m.nu; i++) {
-    if (m.actuator_actadr[i] >= 0) ActivationRate(m, d, i, ctrl[i]);
+  for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_actadr[i] >= 0) ActivationRate(m, d, i, ctrl[m.actuator_ctrladr[i]]);
   }
-  for (int i = 0; i < m.nu; i++) {
-    if (!ActuatorDisabled(m, i)) d.actuator_force[i] = ActuatorForce(m, d, i, ctrl[i]);
+  for (int i = 0; i < m.nactuator; i++) {
+    if (ActuatorDisabled(m, i)) continue;
+    d.actuator_force[m.actuator_outadr[i]] = ActuatorForce(m, d, i, ctrl[m.actuator_ctrladr[i]]);
   }
 
-  // Clamps: tendon totals, then each actuator (disabled ones too) to its forcerange.
+  // Clamps: tendon totals, then each output (of disabled actuators too) to its
+  // actuator's forcerange.
   ClampTendonForces(m, d);
-  for (int i = 0; i < m.nu; i++) {
-    if (m.actuator_forcelimited[i]) {
-      d.actuator_force[i] = std::clamp(d.actuator_force[i], m.actuator_forcerange[2 * i],
+  for (int i = 0; i < m.nactuator; i++) {
+    if (!m.actuator_forcelimited[i]) continue;
+    for (int o = m.actuator_outadr[i]; o < m.actuator_outadr[i] + m.actuator_outnum[i]; o++) {
+      d.actuator_force[o] = std::clamp(d.actuator_force[o], m.actuator_forcerange[2 * i],
                                        m.actuator_forcerange[2 * i + 1]);
     }
   }
 
   // Joint space, clamped per joint to actuatorfrcrange.
-  for (int i = 0; i < m.nu; i++) {
-    const double* moment = RowOf(d.actuator_moment, i, m.nv);
-    const int* cols = RowOf(d.moment_colind, i, m.nv);
-    for (int k = 0; k < d.moment_rownnz[i]; k++) {
-      d.qfrc_actuator[cols[k]] += moment[cols[k]] * d.actuator_force[i];
+  for (int o = 0; o < m.nout; o++) {
+    const double* moment = RowOf(d.actuator_moment, o, m.nv);
+    const int* cols = RowOf(d.moment_colind, o, m.nv);
+    for (int k = 0; k < d.moment_rownnz[o]; k++) {
+      d.qfrc_actuator[cols[k]] += moment[cols[k]] * d.actuator_force[o];
     }
   }
   AddActuatorGravcomp(m, d);

@@ -13,11 +13,11 @@ template <typename Visit>
 void ForTargetActuators(const Model& m, bool tendon, int id, Visit visit) {
   int owner = tendon ? m.tendon_actuatorid[id] : m.jnt_actuatorid[id];
   if (owner == -1) return;
-  for (int i = owner >= 0 ? owner : 0; i < (owner >= 0 ? owner + 1 : m.nu); i++) {
+  for (int i = owner >= 0 ? owner : 0; i < (owner >= 0 ? owner + 1 : m.nactuator); i++) {
     int type = m.actuator_trntype[i];
     bool on_target = tendon ? type == kTrnTendon : (type == kTrnJoint || type == kTrnJointInParent);
     if (!on_target || m.actuator_trnid[2 * i] != id) continue;
-    double gear = m.actuator_gear[6 * i];
+    double gear = m.actuator_gear[6 * m.actuator_outadr[i]];
     visit(i, gear * gear);
   }
 }

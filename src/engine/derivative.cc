@@ -32,32 +32,33 @@ void AddJtBJ(const Model& m, Data& d, const double* jac, double b) {
 
 void ActuatorDerivative(const Model& m, Data& d) {
   if (m.opt.disableflags & kDisableActuation) return;
-  for (int i = 0; i < m.nu; i++) {
+  for (int i = 0; i < m.nactuator; i++) {
     int group = m.actuator_group[i];
     if (group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group))) continue;
+    int o = m.actuator_outadr[i];
     // A force held at its clamp does not change with velocity.
     if (m.actuator_forcelimited[i]) {
-      double f = d.actuator_force[i];
+      double f = d.actuator_force[o];
       if (f <= m.actuator_forcerange[2 * i] || f >= m.actuator_forcerange[2 * i + 1]) continue;
     }
     double b = m.actuator_biastype[i] == kBiasAffine ? m.actuator_biasprm[kNBias * i + 2] : 0;
     double gain_vel = 0;
     if (m.actuator_gaintype[i] == kGainAffine) gain_vel = m.actuator_gainprm[kNGain * i + 2];
     if (m.actuator_gaintype[i] == kGainMuscle) {
-      gain_vel = MuscleGainVelocity(d.actuator_length[i], d.actuator_velocity[i],
-                                    &m.actuator_lengthrange[2 * i], m.actuator_acc0[i],
+      gain_vel = MuscleGainVelocity(d.actuator_length[o], d.actuator_velocity[o],
+                                    &m.actuator_lengthrange[2 * o], m.actuator_acc0[o],
                                     &m.actuator_gainprm[kNGain * i]);
     }
     if (gain_vel != 0) {
       if (m.actuator_dyntype[i] == kDynNone) {
-        b += gain_vel * d.ctrl[i];
+        b += gain_vel * d.ctrl[m.actuator_ctrladr[i]];
       } else {
         int adr = m.actuator_actadr[i] + m.actuator_actnum[i] - 1;
         double act = m.actuator_actearly[i] ? NextActivation(m, d, i, adr, d.act_dot[adr]) : d.act[adr];
         b += gain_vel * act;
       }
     }
-    if (b != 0) AddJtBJ(m, d, RowOf(d.actuator_moment, i, m.nv), b);
+    if (b != 0) AddJtBJ(m, d, RowOf(d.actuator_moment, o, m.nv), b);
   }
 }
 

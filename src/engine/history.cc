@@ -227,7 +227,7 @@ void ResetHistory(const Model& m, Data& d) {
   if (m.nhistory && dt <= 0) {
     throw Error("history buffers require a positive timestep, got " + std::to_string(dt));
   }
-  for (int i = 0; i < m.nu; i++) {
+  for (int i = 0; i < m.nactuator; i++) {
     if (m.actuator_history[2 * i] <= 0) continue;
     Ring<double> ring = ActuatorRing(m, d, i);
     ClearRing(ring, 0);
@@ -244,8 +244,10 @@ void ResetHistory(const Model& m, Data& d) {
 
 void RecordHistory(const Model& m, Data& d) {
   if (m.nhistory == 0) return;
-  for (int i = 0; i < m.nu; i++) {
-    if (m.actuator_history[2 * i] > 0) *InsertSample(ActuatorRing(m, d, i), d.time) = d.ctrl[i];
+  // (an actuator with a history reads one control)
+  for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_history[2 * i] <= 0) continue;
+    *InsertSample(ActuatorRing(m, d, i), d.time) = d.ctrl[m.actuator_ctrladr[i]];
   }
   for (int i = 0; i < m.nsensor; i++) {
     if (m.sensor_history[2 * i] > 0) RecordSensor(m, d, i);
@@ -253,7 +255,7 @@ void RecordHistory(const Model& m, Data& d) {
 }
 
 double ActuatorInput(const Model& m, const Data& d, int i) {
-  return m.actuator_delay[i] != 0 ? ReadCtrl(m, d, i, d.time) : d.ctrl[i];
+  return m.actuator_delay[i] != 0 ? ReadCtrl(m, d, i, d.time) : d.ctrl[m.actuator_ctrladr[i]];
 }
 
 void ComputeOrReadSensor(const Model& m, Data& d, int i, double* out) {
@@ -271,8 +273,8 @@ void ComputeOrReadSensor(const Model& m, Data& d, int i, double* out) {
 // ---------------------------------------------------------------- public functions
 
 double ReadCtrl(const Model& m, const Data& d, int id, double time, int interp) {
-  CheckId(id, m.nu, "actuator");
-  if (m.actuator_history[2 * id] <= 0) return d.ctrl[id];
+  CheckId(id, m.nactuator, "actuator");
+  if (m.actuator_history[2 * id] <= 0) return d.ctrl[m.actuator_ctrladr[id]];
   if (interp < 0) interp = m.actuator_history[2 * id + 1];
   double value = 0;
   ReadRing(ActuatorRing(m, d, id), time - m.actuator_delay[id], interp, &value);
@@ -291,7 +293,7 @@ void ReadSensor(const Model& m, const Data& d, int id, double time, double* out,
 }
 
 void InitCtrlHistory(const Model& m, Data& d, int id, const double* times, const double* values) {
-  CheckId(id, m.nu, "actuator");
+  CheckId(id, m.nactuator, "actuator");
   if (m.actuator_history[2 * id] <= 0) {
     throw Error("actuator " + std::to_string(id) + " has no history buffer");
   }

@@ -50,7 +50,7 @@ void Advance(const Model& m, Data& d, const double* act_dot, const double* qacc,
   // Delayed and sampled ctrl and sensors record their sample at the current time.
   RecordHistory(m, d);
   if (m.na && !(m.opt.disableflags & kDisableActuation)) {
-    for (int i = 0; i < m.nu; i++) {
+    for (int i = 0; i < m.nactuator; i++) {
       int group = m.actuator_group[i];
       bool off = group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group));
       for (int a = m.actuator_actadr[i]; a >= 0 && a < m.actuator_actadr[i] + m.actuator_actnum[i]; a++) {

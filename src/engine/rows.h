@@ -2,7 +2,7 @@
 //
 // &array[offset] reads array[offset] as a reference first, which is undefined behaviour
 // when offset is not inside the array, and an array can be empty on ordinary models:
-// ten_J and actuator_moment (ntendon x nv, nu x nv) of a model without dofs, the dof
+// ten_J and actuator_moment (ntendon x nv, nout x nv) of a model without dofs, the dof
 // rows of a body without dofs (whose dofadr is -1). These helpers compute the pointer
 // instead, the same address whenever the row exists.
 #ifndef SIMLAB_ENGINE_ROWS_H_

@@ -1,5 +1,5 @@
 // Actuator transmissions (MuJoCo mj_transmission): each actuator's length l(q) and
-// moment arms dl/dq (a row of actuator_moment, nu x nv dense). The actuator's force p
+// moment arms dl/dq (a row of actuator_moment, nout x nv dense, at actuator_outadr). The actuator's force p
 // reaches the joints as qfrc_actuator = moment^T p.
 //
 //   joint (hinge/slide): l = gear0 q, moment = gear0 at the joint's dof
@@ -32,13 +32,13 @@ namespace {
 
 // Transmission through joint `id` for actuator i.
 void JointTransmission(const Model& m, Data& d, int i, int id, double* moment) {
-  const double* gear = &m.actuator_gear[6 * i];
+  const double* gear = &m.actuator_gear[6 * m.actuator_outadr[i]];
   bool in_parent = m.actuator_trntype[i] == kTrnJointInParent;
   int qadr = m.jnt_qposadr[id], dadr = m.jnt_dofadr[id];
   switch (m.jnt_type[id]) {
     case kJointSlide:
     case kJointHinge:
-      d.actuator_length[i] = d.qpos[qadr] * gear[0];
+      d.actuator_length[m.actuator_outadr[i]] = d.qpos[qadr] * gear[0];
       moment[dadr] = gear[0];
       break;
     case kJointBall: {
@@ -52,7 +52,7 @@ void JointTransmission(const Model& m, Data& d, int i, int id, double* moment) {
       } else {
         Copy3(gear_axis, gear);
       }
-      d.actuator_length[i] = Dot3(axis, gear_axis);
+      d.actuator_length[m.actuator_outadr[i]] = Dot3(axis, gear_axis);
       Copy3(moment + dadr, gear_axis);
       break;
     }
@@ -67,7 +67,7 @@ void JointTransmission(const Model& m, Data& d, int i, int id, double* moment) {
       } else {
         Copy3(gear_axis, gear + 3);
       }
-      d.actuator_length[i] = 0;
+      d.actuator_length[m.actuator_outadr[i]] = 0;
       Copy3(moment + dadr, gear);
       Copy3(moment + dadr + 3, gear_axis);
       break;
@@ -104,7 +104,7 @@ void RelativeJacobian(const Model& m, double* jac, const double* jac_ref, int co
 
 // Site transmission without a reference site: the gear is a wrench in the site frame.
 void SiteTransmission(const Model& m, Data& d, int i, int id, double* moment) {
-  const double* gear = &m.actuator_gear[6 * i];
+  const double* gear = &m.actuator_gear[6 * m.actuator_outadr[i]];
   StackFrame frame(d);
   double* jacp = frame.Alloc(3 * m.nv);
   double* jacr = frame.Alloc(3 * m.nv);
@@ -116,13 +116,13 @@ void SiteTransmission(const Model& m, Data& d, int i, int id, double* moment) {
   MulJacTVec(m, jacp, force, moment);
   MulJacTVec(m, jacr, torque, tmp);
   for (int v = 0; v < m.nv; v++) moment[v] += tmp[v];
-  d.actuator_length[i] = 0;
+  d.actuator_length[m.actuator_outadr[i]] = 0;
 }
 
 // Site transmission relative to reference site `ref`: translation and rotation of the
 // site in the refsite frame, each projected on its half of the gear.
 void RefSiteTransmission(const Model& m, Data& d, int i, int id, int ref, double* moment) {
-  const double* gear = &m.actuator_gear[6 * i];
+  const double* gear = &m.actuator_gear[6 * m.actuator_outadr[i]];
   const double* ref_mat = &d.site_xmat[9 * ref];
   int nv = m.nv;
   StackFrame frame(d);
@@ -132,14 +132,14 @@ void RefSiteTransmission(const Model& m, Data& d, int i, int id, int ref, double
   double* tmp = frame.Alloc(nv);
   JacobianSite(m, d, jacp, jacr, id);
   int common = CommonAncestorDof(m, id, ref);
-  d.actuator_length[i] = 0;
+  d.actuator_length[m.actuator_outadr[i]] = 0;
 
   // Translation: the site's position relative to the refsite, in the refsite frame.
   if (gear[0] != 0 || gear[1] != 0 || gear[2] != 0) {
     double dif[3], local[3], force[3];
     Sub3(dif, &d.site_xpos[3 * id], &d.site_xpos[3 * ref]);
     MulMatTVec3(local, ref_mat, dif);
-    d.actuator_length[i] += Dot3(local, gear);
+    d.actuator_length[m.actuator_outadr[i]] += Dot3(local, gear);
     JacobianSite(m, d, jac_ref, nullptr, ref);
     RelativeJacobian(m, jacp, jac_ref, common);
     MulMatVec3(force, ref_mat, gear);
@@ -153,7 +153,7 @@ void RefSiteTransmission(const Model& m, Data& d, int i, int id, int ref, double
     MulQuat(quat, &m.site_quat[4 * id], &d.xquat[4 * m.site_bodyid[id]]);
     MulQuat(ref_quat, &m.site_quat[4 * ref], &d.xquat[4 * m.site_bodyid[ref]]);
     SubQuat(vec, quat, ref_quat);
-    d.actuator_length[i] += Dot3(vec, gear + 3);
+    d.actuator_length[m.actuator_outadr[i]] += Dot3(vec, gear + 3);
     JacobianSite(m, d, nullptr, jac_ref, ref);
     RelativeJacobian(m, jacr, jac_ref, common);
     MulMatVec3(torque, ref_mat, gear + 3);
@@ -178,12 +178,12 @@ void SliderCrankTransmission(const Model& m, Data& d, int i, int id, double* mom
   // Length and its gradients with respect to the axis (dlda) and the vector (dldv).
   double dlda[3], dldv[3];
   if (det <= 0) {
-    d.actuator_length[i] = av;
+    d.actuator_length[m.actuator_outadr[i]] = av;
     Copy3(dlda, vec);
     Copy3(dldv, axis);
   } else {
     double sdet = std::sqrt(det), tmp[3];
-    d.actuator_length[i] = av - sdet;
+    d.actuator_length[m.actuator_outadr[i]] = av - sdet;
     Scale3(dldv, axis, 1 - av / sdet);
     Scale3(tmp, vec, 1 / sdet);
     Add3(dldv, dldv, tmp);
@@ -204,8 +204,8 @@ void SliderCrankTransmission(const Model& m, Data& d, int i, int id, double* mom
   }
 
   // Gear scales length and moment.
-  double gear = m.actuator_gear[6 * i];
-  d.actuator_length[i] *= gear;
+  double gear = m.actuator_gear[6 * m.actuator_outadr[i]];
+  d.actuator_length[m.actuator_outadr[i]] *= gear;
   for (int v = 0; v < nv; v++) moment[v] *= gear;
 }
 
@@ -275,8 +275,9 @@ void BodyMoment(const Model& m, Data& d, int body, double* moment) {
 // Records where actuator i's row may be nonzero: a joint's dofs, a tendon's pattern,
 // else the row's nonzeros.
 void SetMomentPattern(const Model& m, Data& d, int i) {
-  const double* moment = RowOf(d.actuator_moment, i, m.nv);
-  int* cols = RowOf(d.moment_colind, i, m.nv);
+  int o = m.actuator_outadr[i];
+  const double* moment = RowOf(d.actuator_moment, o, m.nv);
+  int* cols = RowOf(d.moment_colind, o, m.nv);
   int n = 0, id = m.actuator_trnid[2 * i];
   int trntype = m.actuator_trntype[i];
   if (trntype == kTrnJoint || trntype == kTrnJointInParent) {
@@ -289,16 +290,17 @@ void SetMomentPattern(const Model& m, Data& d, int i) {
   } else {
     n = NonzeroColumns(moment, m.nv, cols);
   }
-  d.moment_rownnz[i] = n;
+  d.moment_rownnz[o] = n;
 }
 
 }  // namespace
 
 void Transmission(const Model& m, Data& d) {
-  for (int i = 0; i < m.nu; i++) {
+  for (int i = 0; i < m.nactuator; i++) {
     // (zero where the last pattern said it may not be)
-    double* moment = RowOf(d.actuator_moment, i, m.nv);
-    ClearPattern(moment, RowOf(d.moment_colind, i, m.nv), d.moment_rownnz[i]);
+    int o = m.actuator_outadr[i];
+    double* moment = RowOf(d.actuator_moment, o, m.nv);
+    ClearPattern(moment, RowOf(d.moment_colind, o, m.nv), d.moment_rownnz[o]);
     int id = m.actuator_trnid[2 * i];
     switch (m.actuator_trntype[i]) {
       case kTrnJoint:
@@ -306,8 +308,8 @@ void Transmission(const Model& m, Data& d) {
         JointTransmission(m, d, i, id, moment);
         break;
       case kTrnTendon: {
-        double gear = m.actuator_gear[6 * i];
-        d.actuator_length[i] = d.ten_length[id] * gear;
+        double gear = m.actuator_gear[6 * m.actuator_outadr[i]];
+        d.actuator_length[m.actuator_outadr[i]] = d.ten_length[id] * gear;
         const double* jac = RowOf(d.ten_J, id, m.nv);
         const int* cols = RowOf(d.ten_J_colind, id, m.nv);
         for (int k = 0; k < d.ten_J_rownnz[id]; k++) moment[cols[k]] = jac[cols[k]] * gear;
@@ -325,7 +327,7 @@ void Transmission(const Model& m, Data& d) {
         break;
       default:
         // Body transmission (adhesion), from this step's contacts and their rows.
-        d.actuator_length[i] = 0;
+        d.actuator_length[m.actuator_outadr[i]] = 0;
         BodyMoment(m, d, id, moment);
     }
     SetMomentPattern(m, d, i);
@@ -334,10 +336,10 @@ void Transmission(const Model& m, Data& d) {
 
 void ActuatorVelocity(const Model& m, Data& d) {
   bool actuation = !(m.opt.disableflags & kDisableActuation);
-  for (int i = 0; i < m.nu; i++) {
-    d.actuator_velocity[i] = actuation ? PatternDot(RowOf(d.actuator_moment, i, m.nv),
-                                                    RowOf(d.moment_colind, i, m.nv),
-                                                    d.moment_rownnz[i], d.qvel.data())
+  for (int o = 0; o < m.nout; o++) {
+    d.actuator_velocity[o] = actuation ? PatternDot(RowOf(d.actuator_moment, o, m.nv),
+                                                    RowOf(d.moment_colind, o, m.nv),
+                                                    d.moment_rownnz[o], d.qvel.data())
                                        : 0;
   }
 }
