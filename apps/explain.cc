@@ -16,9 +16,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "simlab/simlab.h"
 
@@ -67,6 +70,8 @@ std::string DynName(int dyn) {
     case kDynFilter: return "filter";
     case kDynFilterExact: return "filterexact";
     case kDynMuscle: return "muscle";
+    case kDynDcmotor: return "dcmotor";
+    case kDynPid: return "pid";
     default: return "user";
   }
 }
@@ -88,11 +93,33 @@ std::string ServoShortcut(const Model& m, int i) {
   }
 }
 
+// The names of a pid's inputs in ctrl order ("pos vel ff" minus the absent ones).
+std::vector<std::string> PidInputNames(const Model& m, int i) {
+  std::vector<std::string> names;
+  for (auto [bit, name] : {std::pair{kInputPos, "pos"}, std::pair{kInputVel, "vel"},
+                           std::pair{kInputFf, "ff"}}) {
+    if (m.actuator_ctrlspec[i] & bit) names.push_back(name);
+  }
+  return names;
+}
+
+// pid: its gains and what it integrates or limits.
+std::string PidShortcut(const Model& m, int i) {
+  const double *g = Gain(m, i), *b = Bias(m, i), *p = Dyn(m, i);
+  std::string text = "pid (kp " + Num(-b[1]) + ", kv " + Num(-b[2]);
+  if (g[0] > 0) text += ", ki " + Num(g[0]) + (p[0] > 0 ? ", imax " + Num(p[0]) : "");
+  if (p[1] > 0) text += ", slewmax " + Num(p[1]);
+  std::string inputs;
+  for (const std::string& name : PidInputNames(m, i)) inputs += (inputs.empty() ? "" : " ") + name;
+  return text + "; inputs " + inputs + ")";
+}
+
 // The shortcut element these parameters are an instance of, or "general".
 std::string ReadsAs(const Model& m, int i) {
   const double *g = Gain(m, i), *b = Bias(m, i);
   int dyn = m.actuator_dyntype[i], gain = m.actuator_gaintype[i], bias = m.actuator_biastype[i];
   if (gain == kGainMuscle) return "muscle";
+  if (gain == kGainPid) return PidShortcut(m, i);
   if (m.actuator_trntype[i] == kTrnBody) return "adhesion (gain " + Num(g[0]) + ")";
   if (gain == kGainAffine && bias == kBiasNone && dyn == kDynNone && g[0] == 0 && g[1] == 0) {
     return "damper (kv " + Num(-g[2]) + ")";
@@ -121,6 +148,10 @@ std::string GainText(const Model& m, int i) {
       return "muscle: a = -force * FL(l) * FV(l'), force " + Num(g[2]) + ", scale " + Num(g[3]) +
              ", lengths " + Num(g[4]) + ".." + Num(g[5]) + ", vmax " + Num(g[6]) + ", fvmax " +
              Num(g[8]);
+    case kGainPid:
+      return "pid: a u = kp qref + kv vref + ff" +
+             (g[0] > 0 ? " + ki w (ki = gainprm[0] = " + Num(g[0]) + ")" : std::string()) +
+             ", kp and kv from biasprm";
     default: return "user: computed by a callback";
   }
 }
@@ -148,10 +179,28 @@ std::string BiasText(const Model& m, int i) {
   }
 }
 
+// A pid's law with its numbers and only the setpoints it has: "p = 10 (qref - l) - 2 l'".
+std::string PidLawText(const Model& m, int i) {
+  const double *b = Bias(m, i), *g = Gain(m, i);
+  int spec = m.actuator_ctrlspec[i];
+  double kp = -b[1], kv = -b[2];
+  std::string law;
+  auto add = [&law](const std::string& term) { law += (law.empty() ? "" : " + ") + term; };
+  if (spec & kInputPos) add(Num(kp) + " (qref - l)");
+  if (spec & kInputVel) add(Num(kv) + " (vref - l')");
+  if (spec & kInputFf) add("ff");
+  if (!(spec & kInputPos) && kp != 0) law += Term(-kp, "l");
+  if (!(spec & kInputVel) && kv != 0) law += Term(-kv, "l'");
+  if (g[0] > 0) law += Term(g[0], "w");
+  if (b[0] != 0) law += Term(b[0], "");
+  return "p = " + law;
+}
+
 // The law with this actuator's numbers: "p = 10 u - 10 l - 1 l'".
 std::string LawText(const Model& m, int i) {
   std::string law = "p = ";
   std::string input = HasActivation(m, i) ? "w" : "u";
+  if (m.actuator_gaintype[i] == kGainPid) return PidLawText(m, i);
   if (m.actuator_gaintype[i] == kGainFixed) {
     law += Num(Gain(m, i)[0]) + " " + input;
   } else {
@@ -170,6 +219,17 @@ std::string LawText(const Model& m, int i) {
 
 // What u is in the law: the control, or the activation state.
 std::string InputText(const Model& m, int i) {
+  if (m.actuator_gaintype[i] == kGainPid) {
+    // (setpoints named as in the law; an absent one is zero)
+    static const std::map<std::string, std::string> kSetpoint = {
+        {"pos", "qref"}, {"vel", "vref"}, {"ff", "ff"}};
+    std::string text;
+    int c = m.actuator_ctrladr[i];
+    for (const std::string& name : PidInputNames(m, i)) {
+      text += (text.empty() ? "" : ", ") + kSetpoint.at(name) + " = ctrl[" + std::to_string(c++) + "]";
+    }
+    return text + (m.actuator_ctrlnum[i] < 3 ? "; the absent setpoints are 0" : "");
+  }
   if (!HasActivation(m, i)) return "ctrl[" + std::to_string(m.actuator_ctrladr[i]) + "] (no activation state)";
   std::string text = "act[" + std::to_string(m.actuator_actadr[i]) + "], the activation w";
   if (m.actuator_actearly[i]) text += " (actearly: the force uses next step's w)";
@@ -191,6 +251,10 @@ std::string DynamicsText(const Model& m, int i) {
     case kDynMuscle:
       return "muscle: activation tau " + Num(p[0]) + " s, deactivation tau " + Num(p[1]) +
              " s, smoothing " + Num(p[2]);
+    case kDynPid:
+      if (p[1] > 0) return "pid: qref moves at most slewmax = " + Num(p[1]) + " per s (the state w)";
+      return "pid: w' = qref - l, the integral" +
+             (p[0] > 0 ? ", stops growing past imax = " + Num(p[0]) : std::string(", unbounded"));
     default: return "user: computed by a callback";
   }
 }
@@ -278,6 +342,13 @@ std::string ClampLines(const Model& m, int i) {
     ctrl = "set " + Range(&m.actuator_ctrlrange[2 * u]) + " but disabled by <flag clampctrl>";
   }
   std::string text = Line("clamps", "ctrlrange: " + ctrl);
+  // (a pid's other inputs have their own ranges)
+  for (int k = 1; k < m.actuator_ctrlnum[i]; k++) {
+    int c = u + k;
+    text += Line("", "ctrl[" + std::to_string(c) + "]: " +
+                         ClampText(m.actuator_ctrllimited[c], &m.actuator_ctrlrange[2 * c],
+                                   "clamps this input"));
+  }
   if (HasActivation(m, i)) {
     text += Line("", "actrange: " + ClampText(m.actuator_actlimited[i], &m.actuator_actrange[2 * i],
                                                "clamps the activation w"));

@@ -41,7 +41,8 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 // (tests/conformance/solver/make_goldens.sh); adhesion
 // (tests/conformance/adhesion/make_goldens.sh); contact scenes and the gantry lab
 // scenario (tools/make_contact_goldens.sh); height-field collisions
-// (tools/make_hfield_goldens.sh).
+// (tools/make_hfield_goldens.sh); actuators newer than 3.5.1, from native MuJoCo
+// (tests/conformance/actuators312/make_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
   for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
@@ -54,7 +55,8 @@ std::vector<Case> ReadCases() {
                            "tests/conformance/solver_cases.txt",
                            "tests/conformance/sensor_cases.txt",
                            "tests/conformance/ray_cases.txt",
-                           "tests/conformance/hfield_cases.txt"}) {
+                           "tests/conformance/hfield_cases.txt",
+                           "tests/conformance/actuators312_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {
@@ -111,6 +113,10 @@ TEST_P(Conformance, MatchesMuJoCo) {
   for (const char* size : {"nq", "nv", "nu", "na", "ntendon", "nsensordata"}) {
     EXPECT_EQ(ours[0][size], golden[0][size]) << size;
   }
+  // (native MuJoCo's headers also count actuators and force outputs)
+  for (const char* size : {"nactuator", "nout"}) {
+    if (golden[0].contains(size)) EXPECT_EQ(ours[0][size], golden[0][size]) << size;
+  }
   const double tol = c.tol;
   std::map<std::string, double> worst;
   for (size_t r = 1; r < golden.size(); r++) {
@@ -131,8 +137,9 @@ TEST_P(Conformance, MatchesMuJoCo) {
   RecordProperty("worst_qacc", std::to_string(worst["qacc"]));
 }
 
+// (by the golden: one model can have cases from several states)
 std::string CaseName(const ::testing::TestParamInfo<Case>& info) {
-  std::string name = info.param.model.substr(info.param.model.rfind('/') + 1);
+  std::string name = info.param.golden.substr(info.param.golden.rfind('/') + 1);
   name = name.substr(0, name.find('.'));
   for (char& ch : name) {
     if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';

@@ -34,6 +34,24 @@ TEST(Explain, BenchPositionServoBlock) {
             "                actuatorfrcrange of joint \"position_hinge\": off\n");
 }
 
+// A pid: its inputs as named setpoints at their ctrl entries, the law over the setpoints
+// it has, its integral and each input's range.
+TEST(Explain, PidNamesItsSetpoints) {
+  Model m = LoadXmlString(
+      "<mujoco><compiler autolimits='true'/><worldbody><body><joint name='h'/>"
+      "<geom size='.1'/></body></worldbody><actuator><motor joint='h'/>"
+      "<pid name='servo' joint='h' kp='20' kv='2' ki='5' imax='0.5' input='pos ff' "
+      "ctrlrange='-1 1' ffrange='-3 3'/></actuator></mujoco>");
+  std::string text = ExplainActuator(m, 1);
+  EXPECT_TRUE(Contains(text, "reads as: pid (kp 20, kv 2, ki 5, imax 0.5; inputs pos ff)")) << text;
+  EXPECT_TRUE(Contains(text, "law           p = 20 (qref - l) + ff - 2 l' + 5 w\n")) << text;
+  EXPECT_TRUE(Contains(text, "u             qref = ctrl[1], ff = ctrl[2]; the absent setpoints are 0"))
+      << text;
+  EXPECT_TRUE(Contains(text, "pid: w' = qref - l, the integral, stops growing past imax = 0.5")) << text;
+  EXPECT_TRUE(Contains(text, "ctrl[2]: on  [-3, 3]  clamps this input")) << text;
+  EXPECT_TRUE(Contains(ExplainModel(m), "2 actuator(s)"));
+}
+
 // Every bench actuator: its shortcut, law, gear, dynamics and clamps.
 TEST(Explain, BenchReadsAsTheLessonsTable) {
   std::ostringstream out;

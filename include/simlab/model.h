@@ -55,17 +55,31 @@ enum EnableBit : int {
   kEnableInvdiscrete = 1 << 3, kEnableMulticcd = 1 << 4, kEnableSleep = 1 << 5
 };
 
-// Actuator transmission, dynamics, gain and bias types (mjtTrn, mjtDyn, mjtGain, mjtBias).
+// Actuator transmission, dynamics, gain and bias types (mjtTrn, mjtDyn, mjtGain, mjtBias),
+// numbered as MuJoCo 3.12 (which inserted dcmotor, so3 and pid before the user types).
 enum TrnType : int {
   kTrnJoint = 0, kTrnJointInParent = 1, kTrnSliderCrank = 2, kTrnTendon = 3, kTrnSite = 4,
-  kTrnBody = 5, kTrnUndefined = 1000
+  kTrnBody = 5, kTrnSo3 = 6, kTrnUndefined = 1000
 };
 enum DynType : int {
   kDynNone = 0, kDynIntegrator = 1, kDynFilter = 2, kDynFilterExact = 3, kDynMuscle = 4,
-  kDynUser = 5
+  kDynDcmotor = 5, kDynPid = 6, kDynUser = 7
 };
-enum GainType : int { kGainFixed = 0, kGainAffine = 1, kGainMuscle = 2, kGainUser = 3 };
-enum BiasType : int { kBiasNone = 0, kBiasAffine = 1, kBiasMuscle = 2, kBiasUser = 3 };
+enum GainType : int {
+  kGainFixed = 0, kGainAffine = 1, kGainMuscle = 2, kGainDcmotor = 3, kGainSo3 = 4, kGainPid = 5,
+  kGainUser = 6
+};
+enum BiasType : int {
+  kBiasNone = 0, kBiasAffine = 1, kBiasMuscle = 2, kBiasDcmotor = 3, kBiasSo3 = 4, kBiasUser = 5
+};
+
+// An actuator's input signature (actuator_ctrlspec), read by its gain type: for pid and
+// dcmotor the inputs present (mjtCtrlInput bits, packed in ctrl in this order), for so3
+// the chart of the orientation command (mjtCtrlChart).
+enum CtrlInput : int {
+  kInputPos = 1, kInputVel = 2, kInputFf = 4, kInputVoltage = 8, kInputNone = 16
+};
+enum CtrlChart : int { kChartExpmap = 1, kChartQuat = 2 };
 
 // Equality constraint types (mjtEq).
 enum EqType : int { kEqConnect = 0, kEqWeld = 1, kEqJoint = 2, kEqTendon = 3 };

@@ -60,14 +60,22 @@ void DefineModelEnums(py::module_& m) {
 void DefineActuatorEnums(py::module_& m) {
   DefineEnum<TrnType>(m, "mjtTrn", {
       {"mjTRN_JOINT", 0}, {"mjTRN_JOINTINPARENT", 1}, {"mjTRN_SLIDERCRANK", 2},
-      {"mjTRN_TENDON", 3}, {"mjTRN_SITE", 4}, {"mjTRN_BODY", 5}, {"mjTRN_UNDEFINED", 1000}});
+      {"mjTRN_TENDON", 3}, {"mjTRN_SITE", 4}, {"mjTRN_BODY", 5}, {"mjTRN_SO3", 6},
+      {"mjTRN_UNDEFINED", 1000}});
   DefineEnum<DynType>(m, "mjtDyn", {
       {"mjDYN_NONE", 0}, {"mjDYN_INTEGRATOR", 1}, {"mjDYN_FILTER", 2},
-      {"mjDYN_FILTEREXACT", 3}, {"mjDYN_MUSCLE", 4}, {"mjDYN_USER", 5}});
+      {"mjDYN_FILTEREXACT", 3}, {"mjDYN_MUSCLE", 4}, {"mjDYN_DCMOTOR", 5}, {"mjDYN_PID", 6},
+      {"mjDYN_USER", 7}});
   DefineEnum<GainType>(m, "mjtGain", {
-      {"mjGAIN_FIXED", 0}, {"mjGAIN_AFFINE", 1}, {"mjGAIN_MUSCLE", 2}, {"mjGAIN_USER", 3}});
+      {"mjGAIN_FIXED", 0}, {"mjGAIN_AFFINE", 1}, {"mjGAIN_MUSCLE", 2}, {"mjGAIN_DCMOTOR", 3},
+      {"mjGAIN_SO3", 4}, {"mjGAIN_PID", 5}, {"mjGAIN_USER", 6}});
   DefineEnum<BiasType>(m, "mjtBias", {
-      {"mjBIAS_NONE", 0}, {"mjBIAS_AFFINE", 1}, {"mjBIAS_MUSCLE", 2}, {"mjBIAS_USER", 3}});
+      {"mjBIAS_NONE", 0}, {"mjBIAS_AFFINE", 1}, {"mjBIAS_MUSCLE", 2}, {"mjBIAS_DCMOTOR", 3},
+      {"mjBIAS_SO3", 4}, {"mjBIAS_USER", 5}});
+  DefineEnum<CtrlInput>(m, "mjtCtrlInput", {
+      {"mjINPUT_POS", 1}, {"mjINPUT_VEL", 2}, {"mjINPUT_FF", 4}, {"mjINPUT_VOLTAGE", 8},
+      {"mjINPUT_NONE", 16}});
+  DefineEnum<CtrlChart>(m, "mjtCtrlChart", {{"mjCHART_EXPMAP", 1}, {"mjCHART_QUAT", 2}});
 }
 
 void DefineSensorEnums(py::module_& m) {

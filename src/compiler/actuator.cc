@@ -2,6 +2,7 @@
 // The force law itself (gain, bias, dynamics parameters) was set by the reader.
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "compiler/compiler.h"
 #include "mjcf/error.h"
@@ -50,19 +51,17 @@ void ResolveTarget(const mjcf::ActuatorSpec& a, const TargetNames& names, int* t
   }
 }
 
-// inheritrange: a position (or intvelocity) actuator takes its target's range,
+// inheritrange: a position, intvelocity or pid actuator takes its target's range,
 // scaled about the middle.
 void InheritRange(const mjcf::ActuatorSpec& a, const CompileState& s, const Model& m,
                   const int* trnid, std::array<double, 2>* ctrlrange,
                   std::array<double, 2>* actrange) {
-  if (!(a.gaintype == kGainFixed && a.biastype == kBiasAffine && a.gainprm[0] == -a.biasprm[1] &&
-        a.inheritrange > 0)) {
-    return;
-  }
+  bool servo = (a.gaintype == kGainFixed && a.gainprm[0] == -a.biasprm[1]) || a.gaintype == kGainPid;
+  if (!(servo && a.biastype == kBiasAffine && a.inheritrange > 0)) return;
   std::array<double, 2>* range = nullptr;
-  if (a.dyntype == kDynNone || a.dyntype == kDynFilterExact) range = ctrlrange;
+  if (a.dyntype == kDynNone || a.dyntype == kDynFilterExact || a.dyntype == kDynPid) range = ctrlrange;
   if (a.dyntype == kDynIntegrator) range = actrange;
-  if (!range) ThrowAt(a.src, "inheritrange is only available for position and intvelocity actuators");
+  if (!range) ThrowAt(a.src, "inheritrange is only available for position, intvelocity and pid actuators");
   const double* target = nullptr;
   if (a.trntype == kTrnJoint) {
     int type = s.joints[trnid[0]].spec->type;
@@ -108,6 +107,16 @@ void Limits(const mjcf::ModelSpec& spec, const mjcf::ActuatorSpec& a,
   for (int c = u; c < u + m->actuator_ctrlnum[i]; c++) {
     m->actuator_ctrllimited[c] = ctrllimited;
     for (int k = 0; k < 2; k++) m->actuator_ctrlrange[2 * c + k] = ctrl[k];
+  }
+  // A pid's velocity and feedforward inputs have their own ranges, limited when lo < hi.
+  if (a.gaintype == kGainPid) {
+    int spec = m->actuator_ctrlspec[i], c = u + ((spec & kInputPos) ? 1 : 0);
+    for (auto [bit, range] : {std::pair{kInputVel, &a.velrange}, std::pair{kInputFf, &a.ffrange}}) {
+      if (!(spec & bit)) continue;
+      m->actuator_ctrllimited[c] = (*range)[0] < (*range)[1];
+      for (int k = 0; k < 2; k++) m->actuator_ctrlrange[2 * c + k] = (*range)[k];
+      c++;
+    }
   }
   for (int out = o; out < o + m->actuator_outnum[i]; out++) {
     for (int k = 0; k < 2; k++) m->actuator_lengthrange[2 * out + k] = a.lengthrange[k];
@@ -169,22 +178,70 @@ void TargetActuatorIds(Model* m) {
 
 }  // namespace
 
-// Activation states per actuator (checked): actdim, else 1 with dynamics.
-int ActuatorActDim(const mjcf::ActuatorSpec& a) {
+namespace {
+
+int PopCount(int bits) {
+  int n = 0;
+  for (; bits; bits &= bits - 1) n++;
+  return n;
+}
+
+// A pid's checks (MuJoCo 3.12 mjCActuator::Compile): the bias is the servo's affine one,
+// the state an integral (ki > 0) and/or a slew limit (slewmax > 0), the inputs a subset
+// of pos, vel, ff (pos, vel by default). Returns the resolved signature and sets actdim.
+int PidInputs(const mjcf::ActuatorSpec& a, int* actdim) {
+  if (a.biastype != kBiasAffine) ThrowAt(a.src, "pid requires biastype 'affine'");
+  if (a.dyntype != kDynNone && a.dyntype != kDynPid) ThrowAt(a.src, "pid requires dyntype 'none' or 'pid'");
+  if (a.dyntype == kDynNone && a.gainprm[0] != 0) {
+    ThrowAt(a.src, "a stateless pid needs gainprm[0] (ki) = 0");
+  }
+  if (a.trntype == kTrnBody) ThrowAt(a.src, "pid cannot use a body transmission");
+  if (a.dyntype == kDynPid) {
+    if (a.dynprm[0] < 0 || a.dynprm[1] < 0) ThrowAt(a.src, "pid imax and slewmax cannot be negative");
+    int slots = (a.dynprm[1] > 0) + (a.gainprm[0] > 0);
+    if (a.actdim > 0 && a.actdim != slots) ThrowAt(a.src, "pid actdim must equal its number of states");
+    *actdim = slots;
+  }
+  int spec = a.ctrlspec ? a.ctrlspec : kInputPos | kInputVel;
+  if (spec & ~(kInputPos | kInputVel | kInputFf)) ThrowAt(a.src, "pid inputs are a subset of [pos, vel, ff]");
+  if (a.dyntype == kDynPid && !(spec & kInputPos)) {
+    ThrowAt(a.src, "a pid with an integral or a slew limit needs the pos input");
+  }
+  return spec;
+}
+
+}  // namespace
+
+ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a) {
   if (a.dyntype == kDynUser || a.gaintype == kGainUser || a.biastype == kBiasUser) {
     ThrowAt(a.src, "user-defined actuator dynamics, gain or bias are not supported yet");
   }
-  if (a.actdim > 1 && a.dyntype != kDynUser) ThrowAt(a.src, "actdim > 1 is only allowed for dyntype 'user'");
-  if (a.actdim == 1 && a.dyntype == kDynNone) ThrowAt(a.src, "invalid actdim 1 in a stateless actuator");
-  if (a.actdim == 0 && a.dyntype != kDynNone) ThrowAt(a.src, "invalid actdim 0 in a stateful actuator");
-  return a.actdim < 0 ? (a.dyntype != kDynNone ? 1 : 0) : a.actdim;
+  bool so3 = a.gaintype == kGainSo3 || a.biastype == kBiasSo3;
+  if (so3 || a.gaintype == kGainDcmotor || a.biastype == kBiasDcmotor || a.dyntype == kDynDcmotor) {
+    ThrowAt(a.src, "dcmotor and orientation actuators are not supported yet");
+  }
+  ActuatorShape shape;
+  int actdim = a.actdim;
+  if (a.gaintype == kGainPid) {
+    shape.ctrlspec = PidInputs(a, &actdim);
+    shape.ctrlnum = PopCount(shape.ctrlspec & (kInputPos | kInputVel | kInputFf));
+  } else if (a.ctrlspec != 0) {
+    ThrowAt(a.src, "input is only available for pid, dcmotor and orientation actuators");
+  }
+  if (a.dyntype == kDynPid && a.gaintype != kGainPid) ThrowAt(a.src, "dyntype 'pid' requires gaintype 'pid'");
+  if (actdim > 1 && a.dyntype != kDynUser) {
+    ThrowAt(a.src, a.dyntype == kDynPid
+                       ? "a pid can have an integral (ki) or a slew limit (slewmax), not both"
+                       : "actdim > 1 is only allowed for dyntype 'user'");
+  }
+  if (actdim == 1 && a.dyntype == kDynNone) ThrowAt(a.src, "invalid actdim 1 in a stateless actuator");
+  if (actdim == 0 && a.dyntype != kDynNone) ThrowAt(a.src, "invalid actdim 0 in a stateful actuator");
+  shape.actnum = actdim < 0 ? (a.dyntype != kDynNone ? 1 : 0) : actdim;
+  if (a.delay > 0 && shape.ctrlnum != 1) {
+    ThrowAt(a.src, "delay needs an actuator with one control (its history holds one number)");
+  }
+  return shape;
 }
-
-// Control entries an actuator reads (its slice of ctrl).
-int ActuatorCtrlNum(const mjcf::ActuatorSpec&) { return 1; }
-
-// Force outputs of an actuator (its slice of actuator_force).
-int ActuatorOutNum(const mjcf::ActuatorSpec&) { return 1; }
 
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
   TargetNames targets = {NameIndex(Names(state.joints)), NameIndex(Names(state.sites)),
@@ -198,13 +255,18 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     }
     m->actuator_names[i] = a.src.name;
 
-    // Its slices of the controls and of the force outputs.
+    // Its slices of the controls, the force outputs and the activations.
+    ActuatorShape shape = ActuatorShapeOf(a);
     m->actuator_ctrladr[i] = ctrladr;
-    m->actuator_ctrlnum[i] = ActuatorCtrlNum(a);
-    ctrladr += m->actuator_ctrlnum[i];
+    m->actuator_ctrlnum[i] = shape.ctrlnum;
+    m->actuator_ctrlspec[i] = shape.ctrlspec;
+    ctrladr += shape.ctrlnum;
     m->actuator_outadr[i] = outadr;
-    m->actuator_outnum[i] = ActuatorOutNum(a);
-    outadr += m->actuator_outnum[i];
+    m->actuator_outnum[i] = shape.outnum;
+    outadr += shape.outnum;
+    m->actuator_actnum[i] = shape.actnum;
+    m->actuator_actadr[i] = shape.actnum ? adr : -1;
+    adr += shape.actnum;
 
     // Transmission and ranges.
     int trnid[2];
@@ -220,11 +282,7 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     m->actuator_dyntype[i] = a.dyntype;
     m->actuator_gaintype[i] = a.gaintype;
     m->actuator_biastype[i] = a.biastype;
-    int actnum = ActuatorActDim(a);
     CheckMuscle(a);
-    m->actuator_actnum[i] = actnum;
-    m->actuator_actadr[i] = actnum ? adr : -1;
-    adr += actnum;
     m->actuator_group[i] = a.group;
     m->actuator_actearly[i] = a.actearly;
     m->actuator_cranklength[i] = a.cranklength;

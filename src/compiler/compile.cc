@@ -24,9 +24,10 @@ void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
   m->nactuator = static_cast<int>(spec.actuators.size());
   m->nu = m->nout = m->na = 0;
   for (const mjcf::ActuatorSpec& a : spec.actuators) {
-    m->nu += ActuatorCtrlNum(a);
-    m->nout += ActuatorOutNum(a);
-    m->na += ActuatorActDim(a);
+    ActuatorShape shape = ActuatorShapeOf(a);
+    m->nu += shape.ctrlnum;
+    m->nout += shape.outnum;
+    m->na += shape.actnum;
   }
   m->nkey = static_cast<int>(spec.keys.size());
   m->neq = static_cast<int>(spec.equalities.size());

@@ -158,10 +158,12 @@ void AutoSpringDamper(const CompileState& state, Model* m);
 void CompileContacts(const mjcf::ModelSpec& spec, Model* m);
 // eq_data computed from the body poses at qpos0 (connect and weld between bodies).
 void EqualityConstants(Model* m);
-int ActuatorActDim(const mjcf::ActuatorSpec& a);
-// Control entries an actuator reads and force outputs it has (nu and nout add them up).
-int ActuatorCtrlNum(const mjcf::ActuatorSpec& a);
-int ActuatorOutNum(const mjcf::ActuatorSpec& a);
+// What an actuator reads and writes (checked): its input signature and control entries
+// (nu adds them up), force outputs (nout) and activation states (na).
+struct ActuatorShape {
+  int ctrlspec = 0, ctrlnum = 1, outnum = 1, actnum = 0;
+};
+ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a);
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 // Sensors (sensor.cc): user numbers per sensor (before allocation), then every sensor,

@@ -38,14 +38,16 @@ void TendonSpringLengths(Model* m, Data& d) {
 void DampRatio(Model* m, int i, const Data& d, const double* moment) {
   double* gain = &m->actuator_gainprm[kNGain * i];
   double* bias = &m->actuator_biasprm[kNBias * i];
-  if (gain[0] != -bias[1] || bias[2] <= 0) return;
+  bool pid = m->actuator_gaintype[i] == kGainPid;
+  if ((!pid && gain[0] != -bias[1]) || bias[2] <= 0) return;
+  double kp = pid ? -bias[1] : gain[0];
   double reflected = 0;
   for (int v = 0; v < m->nv; v++) {
     double t2 = moment[v] * moment[v];
     double mass = d.M[m->M_rowadr[v] + m->M_rownnz[v] - 1];
     if (moment[v] != 0 && t2 > kMinVal) reflected += mass / t2;
   }
-  bias[2] = -bias[2] * 2 * std::sqrt(gain[0] * reflected);
+  bias[2] = -bias[2] * 2 * std::sqrt(kp * reflected);
 }
 
 }  // namespace

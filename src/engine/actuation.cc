@@ -5,9 +5,11 @@
 // with ctrl clamped to ctrlrange (in a copy: data.ctrl is never rewritten), act_dot from
 // the dynamics type, p clamped to forcerange, then qfrc_actuator = moment^T p clamped
 // to each joint's actuatorfrcrange. Forces on a tendon are first scaled so their total
-// respects the tendon's actuatorfrcrange. Muscles: see muscle.cc.
+// respects the tendon's actuatorfrcrange. Muscles: see muscle.cc. A pid (MuJoCo 3.12)
+// reads several controls (its setpoints) and has its own law (PidForce).
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "engine/engine.h"
@@ -61,6 +63,88 @@ void ActivationRate(const Model& m, Data& d, int i, double ctrl) {
 double Affine(const double* prm, double length, double velocity) {
   return prm[0] + prm[1] * length + prm[2] * velocity;
 }
+
+// ---------------------------------------------------------------- pid
+
+// The period of a pid's setpoints on a rotational transmission (a ball joint, or a site
+// and refsite turning about the gear's axis): 2 pi |gear axis|, else 0 (no wrapping).
+double WrapPeriod(const Model& m, int i) {
+  const double* gear = &m.actuator_gear[6 * m.actuator_outadr[i]];
+  int type = m.actuator_trntype[i], id = m.actuator_trnid[2 * i];
+  const double* axis = nullptr;
+  if (type == kTrnSite && m.actuator_trnid[2 * i + 1] >= 0 && gear[0] == 0 && gear[1] == 0 &&
+      gear[2] == 0) {
+    axis = gear + 3;
+  } else if ((type == kTrnJoint || type == kTrnJointInParent) && m.jnt_type[id] == kJointBall) {
+    axis = gear;
+  }
+  if (!axis) return 0;
+  return 2 * std::numbers::pi * std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+}
+
+// The representative of setpoint u nearest to ref, on a circle of the period.
+double WrapSetpoint(double u, double ref, double period) {
+  return u - period * std::round((u - ref) / period);
+}
+
+// A pid's setpoints [pos, vel, ff] from its packed inputs (absent ones zero).
+void PidInputs(const Model& m, int i, const double* ctrl, double setpoint[3]) {
+  int spec = m.actuator_ctrlspec[i];
+  const double* u = ctrl + m.actuator_ctrladr[i];
+  int k = 0;
+  for (int bit = 0; bit < 3; bit++) setpoint[bit] = (spec & (1 << bit)) ? u[k++] : 0;
+}
+
+// act_dot of a stateful pid: the slew-limited position setpoint (written back into the
+// local ctrl, which the force then reads), then the integral of the position error,
+// which stops growing past imax.
+void PidActivation(const Model& m, Data& d, int i, double* ctrl) {
+  double h = m.opt.timestep, period = WrapPeriod(m, i);
+  double imax = m.actuator_dynprm[kNDyn * i], slewmax = m.actuator_dynprm[kNDyn * i + 1];
+  double ki = m.actuator_gainprm[kNGain * i];
+  int a = m.actuator_actadr[i];
+  double& u = ctrl[m.actuator_ctrladr[i]];
+  if (slewmax > 0) {
+    double previous = d.act[a];
+    double target = period > 0 ? WrapSetpoint(u, previous, period) : u;
+    double step = slewmax * h;
+    double limited = std::clamp(target, previous - step, previous + step);
+    d.act_dot[a] = (limited - previous) / h;
+    u = limited;
+    a++;
+  }
+  if (ki > 0) {
+    double error = u - d.actuator_length[m.actuator_outadr[i]];
+    if (period > 0) error -= period * std::round(error / period);
+    if (imax > 0) {
+      if (d.act[a] >= imax) error = std::min(error, 0.0);
+      else if (d.act[a] <= -imax) error = std::max(error, 0.0);
+    }
+    d.act_dot[a] = error;
+  }
+}
+
+// A pid's force before clamping: kp qref + kv vref + ff (+ ki times the integral), then
+// the servo's affine bias -kp l - kv l' (summed in MuJoCo's order).
+double PidForce(const Model& m, const Data& d, int i, const double* ctrl) {
+  int o = m.actuator_outadr[i];
+  double l = d.actuator_length[o], ldot = d.actuator_velocity[o];
+  const double* prm = &m.actuator_biasprm[kNBias * i];
+  double setpoint[3];
+  PidInputs(m, i, ctrl, setpoint);
+  double period = WrapPeriod(m, i);
+  if (period > 0) setpoint[0] = WrapSetpoint(setpoint[0], l, period);
+  double force = -prm[1] * setpoint[0] - prm[2] * setpoint[1] + setpoint[2];
+  double ki = m.actuator_gainprm[kNGain * i];
+  if (m.actuator_actnum[i] > 0 && ki > 0) {
+    int last = m.actuator_actadr[i] + m.actuator_actnum[i] - 1;
+    double z = m.actuator_actearly[i] ? NextActivation(m, d, i, last, d.act_dot[last]) : d.act[last];
+    force += ki * z;
+  }
+  return force + Affine(prm, l, ldot);
+}
+
+// ---------------------------------------------------------------- the other types
 
 // Scalar force of actuator i (its one output, o) before clamping.
 double ActuatorForce(const Model& m, const Data& d, int i, double ctrl) {
@@ -144,11 +228,18 @@ void Actuation(const Model& m, Data& d) {
 
   // Activation dynamics, then forces (disabled actuators stay at zero).
   for (int i = 0; i < m.nactuator; i++) {
-    if (m.actuator_actadr[i] >= 0) ActivationRate(m, d, i, ctrl[m.actuator_ctrladr[i]]);
+    if (m.actuator_actadr[i] < 0) continue;
+    if (m.actuator_dyntype[i] == kDynPid) {
+      PidActivation(m, d, i, ctrl);
+    } else {
+      ActivationRate(m, d, i, ctrl[m.actuator_ctrladr[i]]);
+    }
   }
   for (int i = 0; i < m.nactuator; i++) {
     if (ActuatorDisabled(m, i)) continue;
-    d.actuator_force[m.actuator_outadr[i]] = ActuatorForce(m, d, i, ctrl[m.actuator_ctrladr[i]]);
+    d.actuator_force[m.actuator_outadr[i]] = m.actuator_gaintype[i] == kGainPid
+                                                 ? PidForce(m, d, i, ctrl)
+                                                 : ActuatorForce(m, d, i, ctrl[m.actuator_ctrladr[i]]);
   }
 
   // Clamps: tendon totals, then each output (of disabled actuators too) to its

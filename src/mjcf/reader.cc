@@ -169,9 +169,7 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
     } else if (tag == "material") {
       // Settings for features that do not change the compiled fields we produce.
       continue;
-    } else if (tag == "general" || tag == "motor" || tag == "position" ||
-               tag == "velocity" || tag == "intvelocity" || tag == "damper" ||
-               tag == "cylinder" || tag == "muscle" || tag == "adhesion") {
+    } else if (IsActuatorElement(tag)) {
       ReadActuator(c, &def->actuator, true);
     } else {
       Unknown(c);

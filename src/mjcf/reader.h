@@ -30,6 +30,9 @@ ModelSpec ReadMjcf(const std::string& text, const std::string& file,
 void ReadModel(const std::string& text, const std::string& file, ParsedModel* out,
                const AssetFilesPtr& assets = nullptr);
 
+// Is `tag` one of the <actuator> section's elements (general, motor, ..., pid)?
+bool IsActuatorElement(const std::string& tag);
+
 // The reader's state while walking one document.
 class Reader {
  public:

@@ -3,7 +3,10 @@
 // default class holds one actuator default whatever shortcut set it.
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mjcf/error.h"
 #include "mjcf/reader.h"
@@ -20,13 +23,28 @@ std::vector<const char*> ActuatorAttributes(const std::string& tag, bool in_defa
       return {"ctrllimited", "forcelimited", "actlimited", "ctrlrange", "forcerange",
               "actrange", "gear", "cranklength", "user", "group", "nsample", "interp",
               "delay", "actdim", "dyntype", "gaintype", "biastype", "dynprm", "gainprm",
-              "biasprm", "actearly"};
+              "biasprm", "actearly", "input", "velrange", "ffrange"};
     }
     return {"name", "class", "group", "nsample", "interp", "delay", "ctrllimited",
             "forcelimited", "actlimited", "ctrlrange", "forcerange", "actrange",
             "lengthrange", "gear", "cranklength", "user", "joint", "jointinparent", "tendon",
             "slidersite", "cranksite", "site", "refsite", "body", "actdim", "dyntype",
-            "gaintype", "biastype", "dynprm", "gainprm", "biasprm", "actearly"};
+            "gaintype", "biastype", "dynprm", "gainprm", "biasprm", "actearly", "input",
+            "velrange", "ffrange"};
+  }
+  if (tag == "pid") {
+    std::vector<const char*> pid = {"group", "nsample", "interp", "delay", "ctrllimited",
+                                    "forcelimited", "ctrlrange", "posrange", "velrange",
+                                    "ffrange", "forcerange", "inheritrange", "gear",
+                                    "cranklength", "user", "kp", "kv", "dampratio", "ki",
+                                    "imax", "slewmax", "input"};
+    if (!in_default) {
+      for (const char* attr : {"name", "class", "lengthrange", "joint", "jointinparent", "tendon",
+                               "slidersite", "cranksite", "site", "refsite"}) {
+        pid.push_back(attr);
+      }
+    }
+    return pid;
   }
   if (in_default) {
     if (tag == "motor") {
@@ -122,7 +140,48 @@ Maybe ReadMaybe(const XmlElement& e, const char* name) {
   return m;
 }
 
+// The input signature of an actuator (MuJoCo's ReadInputSpec): a chart keyword (expmap,
+// quat), "none", or inputs among pos, vel, ff, voltage listed once each in that order.
+// An empty text means the type's default; an absent attribute keeps what was inherited.
+void ReadInputSpec(const XmlElement& e, int* spec) {
+  std::string text;
+  if (!e.Text("input", &text)) return;
+  std::istringstream words(text);
+  std::vector<std::string> tokens;
+  for (std::string w; words >> w;) tokens.push_back(w);
+  if (tokens.size() == 1 && tokens[0] == "expmap") *spec = kChartExpmap;
+  if (tokens.size() == 1 && tokens[0] == "quat") *spec = kChartQuat;
+  if (tokens.size() == 1 && tokens[0] == "none") *spec = kInputNone;
+  if (tokens.size() == 1 && (tokens[0] == "expmap" || tokens[0] == "quat" || tokens[0] == "none")) {
+    return;
+  }
+  static const std::pair<const char*, int> kInputs[] = {
+      {"pos", kInputPos}, {"vel", kInputVel}, {"ff", kInputFf}, {"voltage", kInputVoltage}};
+  int bits = 0, last = 0;
+  for (const std::string& token : tokens) {
+    int bit = 0;
+    for (const auto& [name, value] : kInputs) {
+      if (token == name) bit = value;
+    }
+    if (!bit) e.Fail("unknown input '" + token + "' (pos, vel, ff, voltage, none, expmap or quat)");
+    if (bit <= last) e.Fail("inputs must be listed once each, in the order pos, vel, ff, voltage");
+    bits |= bit;
+    last = bit;
+  }
+  *spec = bits;
+}
+
 }  // namespace
+
+bool IsActuatorElement(const std::string& tag) {
+  static const char* const kTags[] = {"general", "motor",   "position", "velocity",
+                                      "intvelocity", "damper", "cylinder", "muscle",
+                                      "adhesion", "pid"};
+  for (const char* t : kTags) {
+    if (tag == t) return true;
+  }
+  return false;
+}
 
 // ---------------------------------------------------------------- common attributes
 
@@ -148,6 +207,8 @@ void Reader::ReadActuator(const XmlElement& e, ActuatorSpec* a, bool in_default)
   e.Numbers("forcerange", a->forcerange);
   e.Numbers("actrange", a->actrange);
   e.Numbers("lengthrange", a->lengthrange);
+  e.Numbers("velrange", a->velrange);
+  e.Numbers("ffrange", a->ffrange);
   e.Numbers("gear", a->gear, false);
   ReadTransmission(e, a);
   ReadShortcut(e, a);
@@ -307,6 +368,41 @@ void SetMuscle(const XmlElement& e, ActuatorSpec* a, const MuscleAttrs& m) {
   a->biastype = kBiasMuscle;
 }
 
+// pid (MuJoCo 3.12): force kp (qref - l) + kv (vref - l') + ff + ki * integral, its
+// inputs packed in ctrl as `input` lists them; an integral (ki) or a slew limit (slewmax)
+// is its activation state. kp and kv sit in biasprm as a position servo's (so that a pid
+// with a zero velocity setpoint is that servo), ki in gainprm[0], imax and slewmax in
+// dynprm[0] and [1]; dampratio is stored as a positive biasprm[2] and turned into a
+// damping at compile time.
+struct PidAttrs {
+  double kp = 0, ki = 0, imax = 0, slewmax = 0, inheritrange = 0;
+  Maybe kv, dampratio;
+};
+
+void SetPid(const XmlElement& e, ActuatorSpec* a, const PidAttrs& p) {
+  if (p.kv.has && p.dampratio.has) e.Fail("kv and dampratio cannot both be defined");
+  a->biasprm[1] = -p.kp;
+  if (p.kv.has) {
+    if (p.kv.value < 0) e.Fail("kv cannot be negative");
+    a->biasprm[2] = -p.kv.value;
+  }
+  if (p.dampratio.has) {
+    if (p.dampratio.value < 0) e.Fail("dampratio cannot be negative");
+    a->biasprm[2] = p.dampratio.value;
+  }
+  if (p.slewmax < 0) e.Fail("slewmax cannot be negative");
+  a->gainprm[0] = p.ki;
+  a->dynprm[1] = p.slewmax;
+  a->dyntype = p.ki != 0 || p.slewmax != 0 ? kDynPid : kDynNone;
+  if (p.ki != 0) a->dynprm[0] = p.imax;
+  a->inheritrange = p.inheritrange;
+  if (p.inheritrange > 0 && (a->ctrlrange[0] != 0 || a->ctrlrange[1] != 0)) {
+    e.Fail("posrange and inheritrange cannot both be defined");
+  }
+  a->gaintype = kGainPid;
+  a->biastype = kBiasAffine;
+}
+
 }  // namespace
 
 void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
@@ -314,12 +410,16 @@ void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
   if (tag == "general") {
     static const std::initializer_list<Keyword> kDyn = {
         {"none", kDynNone},           {"integrator", kDynIntegrator}, {"filter", kDynFilter},
-        {"filterexact", kDynFilterExact}, {"muscle", kDynMuscle},     {"user", kDynUser}};
+        {"filterexact", kDynFilterExact}, {"muscle", kDynMuscle},     {"dcmotor", kDynDcmotor},
+        {"pid", kDynPid},             {"user", kDynUser}};
     e.Enum("dyntype", &a->dyntype, kDyn);
     e.Enum("gaintype", &a->gaintype,
-           {{"fixed", kGainFixed}, {"affine", kGainAffine}, {"muscle", kGainMuscle}, {"user", kGainUser}});
+           {{"fixed", kGainFixed}, {"affine", kGainAffine}, {"muscle", kGainMuscle},
+            {"dcmotor", kGainDcmotor}, {"so3", kGainSo3}, {"pid", kGainPid}, {"user", kGainUser}});
     e.Enum("biastype", &a->biastype,
-           {{"none", kBiasNone}, {"affine", kBiasAffine}, {"muscle", kBiasMuscle}, {"user", kBiasUser}});
+           {{"none", kBiasNone}, {"affine", kBiasAffine}, {"muscle", kBiasMuscle},
+            {"dcmotor", kBiasDcmotor}, {"so3", kBiasSo3}, {"user", kBiasUser}});
+    ReadInputSpec(e, &a->ctrlspec);
     e.Bool("actearly", &a->actearly);
     e.Numbers("dynprm", a->dynprm, false);
     e.Numbers("gainprm", a->gainprm, false);
@@ -377,6 +477,25 @@ void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
     double gain = a->gainprm[0];
     e.Number("gain", &gain);
     SetAdhesion(e, a, gain);
+  } else if (tag == "pid") {
+    // (a class of any kind passes its kp; ki, imax and slewmax only from a stateful pid)
+    PidAttrs p;
+    bool stateful_pid = a->dyntype == kDynPid;
+    p.kp = -a->biasprm[1];
+    p.ki = stateful_pid ? a->gainprm[0] : 0;
+    p.imax = stateful_pid ? a->dynprm[0] : 0;
+    p.slewmax = stateful_pid ? a->dynprm[1] : 0;
+    p.inheritrange = a->inheritrange;
+    e.Number("kp", &p.kp);
+    p.kv = ReadMaybe(e, "kv");
+    p.dampratio = ReadMaybe(e, "dampratio");
+    e.Number("ki", &p.ki);
+    e.Number("imax", &p.imax);
+    e.Number("slewmax", &p.slewmax);
+    e.Number("inheritrange", &p.inheritrange);
+    ReadInputSpec(e, &a->ctrlspec);
+    e.Numbers("posrange", a->ctrlrange);  // the position input's range: ctrlrange
+    SetPid(e, a, p);
   }
 }
 

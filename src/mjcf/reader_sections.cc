@@ -410,11 +410,7 @@ void Reader::Actuator(const XmlElement& e) {
     XmlElement c = Element(n);
     const std::string& tag = c.tag();
     if (tag == "plugin") NotSupported(c, "actuator plugins");
-    if (tag != "general" && tag != "motor" && tag != "position" && tag != "velocity" &&
-        tag != "intvelocity" && tag != "damper" && tag != "cylinder" && tag != "muscle" &&
-        tag != "adhesion") {
-      Unknown(c);
-    }
+    if (!IsActuatorElement(tag)) Unknown(c);
     const DefaultClass* cls = FindClass(c, "class");
     ActuatorSpec act = cls ? cls->actuator : classes_.at("main")->actuator;
     ReadActuator(c, &act, false);

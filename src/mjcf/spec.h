@@ -242,6 +242,10 @@ struct ActuatorSpec {
   std::array<double, 2> forcerange = {0, 0};
   std::array<double, 2> actrange = {0, 0};
   std::array<double, 2> lengthrange = {0, 0};
+  // ranges of a pid's velocity and feedforward inputs (limited when lo < hi)
+  std::array<double, 2> velrange = {0, 0};
+  std::array<double, 2> ffrange = {0, 0};
+  int ctrlspec = 0;  // input signature (CtrlInput bits or CtrlChart); 0: the type's default
   std::array<double, 6> gear = {1, 0, 0, 0, 0, 0};
   double cranklength = 0;
   int trntype = kTrnUndefined;
