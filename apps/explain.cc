@@ -93,14 +93,36 @@ std::string ServoShortcut(const Model& m, int i) {
   }
 }
 
-// The names of a pid's inputs in ctrl order ("pos vel ff" minus the absent ones).
-std::vector<std::string> PidInputNames(const Model& m, int i) {
+// The names of a pid's or dcmotor's inputs in ctrl order (of pos vel ff voltage).
+std::vector<std::string> InputNames(const Model& m, int i) {
   std::vector<std::string> names;
+  if (m.actuator_ctrlspec[i] == kInputNone) return names;
   for (auto [bit, name] : {std::pair{kInputPos, "pos"}, std::pair{kInputVel, "vel"},
-                           std::pair{kInputFf, "ff"}}) {
+                           std::pair{kInputFf, "ff"}, std::pair{kInputVoltage, "voltage"}}) {
     if (m.actuator_ctrlspec[i] & bit) names.push_back(name);
   }
   return names;
+}
+
+// "pos vel", or "none".
+std::string InputList(const Model& m, int i) {
+  std::string list;
+  for (const std::string& name : InputNames(m, i)) list += (list.empty() ? "" : " ") + name;
+  return list.empty() ? "none" : list;
+}
+
+// dcmotor: its constants and the features in use.
+std::string DcmotorShortcut(const Model& m, int i) {
+  const double *g = Gain(m, i), *p = Dyn(m, i), *b = Bias(m, i);
+  std::string text = "dcmotor (K " + Num(g[1]) + ", R " + Num(g[0]);
+  if (p[0] > 0) text += ", te " + Num(p[0]) + " s";
+  if (g[4] != 0 || g[5] != 0 || g[6] != 0) {
+    text += ", controller kp " + Num(g[4]) + " ki " + Num(g[5]) + " kd " + Num(g[6]);
+  }
+  if (p[2] > 0) text += ", thermal";
+  if (p[5] > 0) text += ", LuGre friction";
+  if (b[0] != 0) text += ", cogging";
+  return text + "; inputs " + InputList(m, i) + ")";
 }
 
 // pid: its gains and what it integrates or limits.
@@ -109,9 +131,7 @@ std::string PidShortcut(const Model& m, int i) {
   std::string text = "pid (kp " + Num(-b[1]) + ", kv " + Num(-b[2]);
   if (g[0] > 0) text += ", ki " + Num(g[0]) + (p[0] > 0 ? ", imax " + Num(p[0]) : "");
   if (p[1] > 0) text += ", slewmax " + Num(p[1]);
-  std::string inputs;
-  for (const std::string& name : PidInputNames(m, i)) inputs += (inputs.empty() ? "" : " ") + name;
-  return text + "; inputs " + inputs + ")";
+  return text + "; inputs " + InputList(m, i) + ")";
 }
 
 // The shortcut element these parameters are an instance of, or "general".
@@ -120,6 +140,7 @@ std::string ReadsAs(const Model& m, int i) {
   int dyn = m.actuator_dyntype[i], gain = m.actuator_gaintype[i], bias = m.actuator_biastype[i];
   if (gain == kGainMuscle) return "muscle";
   if (gain == kGainPid) return PidShortcut(m, i);
+  if (gain == kGainDcmotor) return DcmotorShortcut(m, i);
   if (m.actuator_trntype[i] == kTrnBody) return "adhesion (gain " + Num(g[0]) + ")";
   if (gain == kGainAffine && bias == kBiasNone && dyn == kDynNone && g[0] == 0 && g[1] == 0) {
     return "damper (kv " + Num(-g[2]) + ")";
@@ -148,6 +169,10 @@ std::string GainText(const Model& m, int i) {
       return "muscle: a = -force * FL(l) * FV(l'), force " + Num(g[2]) + ", scale " + Num(g[3]) +
              ", lengths " + Num(g[4]) + ".." + Num(g[5]) + ", vmax " + Num(g[6]) + ", fvmax " +
              Num(g[8]);
+    case kGainDcmotor:
+      return Dyn(m, i)[0] > 0 ? "dcmotor: a = K = " + Num(g[1]) + " on the current w"
+                              : "dcmotor: a = K / R = " + Num(g[1]) + " / " + Num(g[0]) +
+                                    " on the voltage (R rises with temperature)";
     case kGainPid:
       return "pid: a u = kp qref + kv vref + ff" +
              (g[0] > 0 ? " + ki w (ki = gainprm[0] = " + Num(g[0]) + ")" : std::string()) +
@@ -175,6 +200,10 @@ std::string BiasText(const Model& m, int i) {
     case kBiasAffine:
       return "affine: b0 = " + Num(b[0]) + ", b1 = " + Num(b[1]) + ", b2 = " + Num(b[2]);
     case kBiasMuscle: return "muscle: passive force of the muscle, fpmax " + Num(b[7]);
+    case kBiasDcmotor:
+      return std::string(Dyn(m, i)[0] > 0 ? "dcmotor: back-EMF acts through the current"
+                                          : "dcmotor: back-EMF b = -a K l'") +
+             "; cogging and LuGre friction are added after forcerange";
     default: return "user: computed by a callback";
   }
 }
@@ -201,6 +230,11 @@ std::string LawText(const Model& m, int i) {
   std::string law = "p = ";
   std::string input = HasActivation(m, i) ? "w" : "u";
   if (m.actuator_gaintype[i] == kGainPid) return PidLawText(m, i);
+  if (m.actuator_gaintype[i] == kGainDcmotor) {
+    return Dyn(m, i)[0] > 0 ? "p = K i = " + Num(Gain(m, i)[1]) + " w  (w: the current)"
+                            : "p = K / R (V - K l') with K " + Num(Gain(m, i)[1]) + ", R " +
+                                  Num(Gain(m, i)[0]);
+  }
   if (m.actuator_gaintype[i] == kGainFixed) {
     law += Num(Gain(m, i)[0]) + " " + input;
   } else {
@@ -219,16 +253,18 @@ std::string LawText(const Model& m, int i) {
 
 // What u is in the law: the control, or the activation state.
 std::string InputText(const Model& m, int i) {
-  if (m.actuator_gaintype[i] == kGainPid) {
+  if (m.actuator_gaintype[i] == kGainPid || m.actuator_gaintype[i] == kGainDcmotor) {
     // (setpoints named as in the law; an absent one is zero)
     static const std::map<std::string, std::string> kSetpoint = {
-        {"pos", "qref"}, {"vel", "vref"}, {"ff", "ff"}};
+        {"pos", "qref"}, {"vel", "vref"}, {"ff", "ff"}, {"voltage", "V"}};
+    if (m.actuator_ctrlnum[i] == 0) return "no inputs (input=\"none\"): V = 0";
     std::string text;
     int c = m.actuator_ctrladr[i];
-    for (const std::string& name : PidInputNames(m, i)) {
+    for (const std::string& name : InputNames(m, i)) {
       text += (text.empty() ? "" : ", ") + kSetpoint.at(name) + " = ctrl[" + std::to_string(c++) + "]";
     }
-    return text + (m.actuator_ctrlnum[i] < 3 ? "; the absent setpoints are 0" : "");
+    bool all = m.actuator_ctrlnum[i] == (m.actuator_gaintype[i] == kGainPid ? 3 : 4);
+    return text + (all ? "" : "; the absent ones are 0");
   }
   if (!HasActivation(m, i)) return "ctrl[" + std::to_string(m.actuator_ctrladr[i]) + "] (no activation state)";
   std::string text = "act[" + std::to_string(m.actuator_actadr[i]) + "], the activation w";
@@ -251,6 +287,15 @@ std::string DynamicsText(const Model& m, int i) {
     case kDynMuscle:
       return "muscle: activation tau " + Num(p[0]) + " s, deactivation tau " + Num(p[1]) +
              " s, smoothing " + Num(p[2]);
+    case kDynDcmotor: {
+      std::string states;
+      if (p[7] > 0) states += ", slew-limited setpoint";
+      if (Gain(m, i)[5] > 0) states += ", position error integral";
+      if (p[2] > 0) states += ", winding temperature";
+      if (p[5] > 0) states += ", LuGre bristle";
+      if (p[0] > 0) states += ", current (te " + Num(p[0]) + " s, exact steps)";
+      return "dcmotor: " + (states.empty() ? std::string("no state") : "states" + states.substr(1));
+    }
     case kDynPid:
       if (p[1] > 0) return "pid: qref moves at most slewmax = " + Num(p[1]) + " per s (the state w)";
       return "pid: w' = qref - l, the integral" +

@@ -45,11 +45,25 @@ TEST(Explain, PidNamesItsSetpoints) {
   std::string text = ExplainActuator(m, 1);
   EXPECT_TRUE(Contains(text, "reads as: pid (kp 20, kv 2, ki 5, imax 0.5; inputs pos ff)")) << text;
   EXPECT_TRUE(Contains(text, "law           p = 20 (qref - l) + ff - 2 l' + 5 w\n")) << text;
-  EXPECT_TRUE(Contains(text, "u             qref = ctrl[1], ff = ctrl[2]; the absent setpoints are 0"))
+  EXPECT_TRUE(Contains(text, "u             qref = ctrl[1], ff = ctrl[2]; the absent ones are 0"))
       << text;
   EXPECT_TRUE(Contains(text, "pid: w' = qref - l, the integral, stops growing past imax = 0.5")) << text;
   EXPECT_TRUE(Contains(text, "ctrl[2]: on  [-3, 3]  clamps this input")) << text;
   EXPECT_TRUE(Contains(ExplainModel(m), "2 actuator(s)"));
+}
+
+// A DC motor: constants, inputs, states and the law it follows without inductance.
+TEST(Explain, DcmotorListsItsStates) {
+  Model m = LoadXmlString(
+      "<mujoco><worldbody><body><joint name='h'/><geom size='.1'/></body></worldbody>"
+      "<actuator><dcmotor joint='h' motorconst='0.05' resistance='2' input='pos voltage' "
+      "controller='1 0.5' thermal='10 5'/></actuator></mujoco>");
+  std::string text = ExplainActuator(m, 0);
+  EXPECT_TRUE(Contains(text, "reads as: dcmotor (K 0.05, R 2, controller kp 1 ki 0.5 kd 0, thermal; "
+                             "inputs pos voltage)")) << text;
+  EXPECT_TRUE(Contains(text, "p = K / R (V - K l') with K 0.05, R 2")) << text;
+  EXPECT_TRUE(Contains(text, "qref = ctrl[0], V = ctrl[1]; the absent ones are 0")) << text;
+  EXPECT_TRUE(Contains(text, "dcmotor: states position error integral, winding temperature")) << text;
 }
 
 // Every bench actuator: its shortcut, law, gear, dynamics and clamps.

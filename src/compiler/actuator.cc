@@ -210,33 +210,75 @@ int PidInputs(const mjcf::ActuatorSpec& a, int* actdim) {
   return spec;
 }
 
+// A DC motor's number of states: slew, integral, temperature, bristle, current, each when
+// its parameter is set (the engine's DcmotorSlots).
+int DcmotorStates(const mjcf::ActuatorSpec& a) {
+  return (a.dynprm[7] > 0) + (a.gainprm[5] > 0) + (a.dynprm[2] > 0) + (a.dynprm[5] > 0) +
+         (a.dynprm[0] > 0);
+}
+
+// A dcmotor's checks: gain, bias and dynamics all dcmotor, always actearly; inputs "none"
+// or a subset of pos, vel, ff, voltage (voltage by default), the controller's gains only
+// with a controller input (and K > 0), the integral only with pos, the slew limit only
+// with a controller. Returns the resolved signature.
+int DcmotorInputs(const mjcf::ActuatorSpec& a, int actdim) {
+  if (a.gaintype != kGainDcmotor || a.biastype != kBiasDcmotor || a.dyntype != kDynDcmotor) {
+    ThrowAt(a.src, "dcmotor gain, bias and dynamics types go together");
+  }
+  if (!a.actearly) ThrowAt(a.src, "a dcmotor needs actearly");
+  if (actdim != DcmotorStates(a)) {
+    ThrowAt(a.src, "dcmotor actdim must equal its number of states (" +
+                       std::to_string(DcmotorStates(a)) + ")");
+  }
+  int spec = a.ctrlspec ? a.ctrlspec : kInputVoltage;
+  int all = kInputPos | kInputVel | kInputFf | kInputVoltage;
+  if (spec != kInputNone && (spec & ~all)) ThrowAt(a.src, "dcmotor inputs are none or a subset of [pos, vel, ff, voltage]");
+  int controller = spec == kInputNone ? 0 : spec & (kInputPos | kInputVel | kInputFf);
+  if (controller && a.gainprm[1] <= 0) ThrowAt(a.src, "a dcmotor controller needs a positive motor constant");
+  if (!controller && (a.gainprm[4] != 0 || a.gainprm[5] != 0 || a.gainprm[6] != 0)) {
+    ThrowAt(a.src, "dcmotor controller gains need a pos, vel or ff input");
+  }
+  if (a.gainprm[5] > 0 && !(spec & kInputPos)) ThrowAt(a.src, "a dcmotor integral (ki) needs the pos input");
+  if (a.dynprm[7] > 0 && !controller) ThrowAt(a.src, "a dcmotor slew limit needs a pos, vel or ff input");
+  return spec;
+}
+
 }  // namespace
 
 ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a) {
   if (a.dyntype == kDynUser || a.gaintype == kGainUser || a.biastype == kBiasUser) {
     ThrowAt(a.src, "user-defined actuator dynamics, gain or bias are not supported yet");
   }
-  bool so3 = a.gaintype == kGainSo3 || a.biastype == kBiasSo3;
-  if (so3 || a.gaintype == kGainDcmotor || a.biastype == kBiasDcmotor || a.dyntype == kDynDcmotor) {
-    ThrowAt(a.src, "dcmotor and orientation actuators are not supported yet");
+  if (a.gaintype == kGainSo3 || a.biastype == kBiasSo3) {
+    ThrowAt(a.src, "orientation actuators are not supported yet");
   }
   ActuatorShape shape;
   int actdim = a.actdim;
+  bool dcmotor = a.gaintype == kGainDcmotor || a.biastype == kBiasDcmotor || a.dyntype == kDynDcmotor;
   if (a.gaintype == kGainPid) {
     shape.ctrlspec = PidInputs(a, &actdim);
     shape.ctrlnum = PopCount(shape.ctrlspec & (kInputPos | kInputVel | kInputFf));
+  } else if (dcmotor) {
+    if (actdim < 0) actdim = 0;
+    shape.ctrlspec = DcmotorInputs(a, actdim);
+    shape.ctrlnum = shape.ctrlspec == kInputNone ? 0 : PopCount(shape.ctrlspec);
   } else if (a.ctrlspec != 0) {
     ThrowAt(a.src, "input is only available for pid, dcmotor and orientation actuators");
   }
   if (a.dyntype == kDynPid && a.gaintype != kGainPid) ThrowAt(a.src, "dyntype 'pid' requires gaintype 'pid'");
-  if (actdim > 1 && a.dyntype != kDynUser) {
+  if (actdim > 1 && a.dyntype != kDynUser && !dcmotor) {
     ThrowAt(a.src, a.dyntype == kDynPid
                        ? "a pid can have an integral (ki) or a slew limit (slewmax), not both"
                        : "actdim > 1 is only allowed for dyntype 'user'");
   }
   if (actdim == 1 && a.dyntype == kDynNone) ThrowAt(a.src, "invalid actdim 1 in a stateless actuator");
-  if (actdim == 0 && a.dyntype != kDynNone) ThrowAt(a.src, "invalid actdim 0 in a stateful actuator");
+  if (actdim == 0 && a.dyntype != kDynNone && !dcmotor) {
+    ThrowAt(a.src, "invalid actdim 0 in a stateful actuator");
+  }
   shape.actnum = actdim < 0 ? (a.dyntype != kDynNone ? 1 : 0) : actdim;
+  if ((a.delay > 0 || a.nsample > 0) && shape.ctrlnum == 0) {
+    ThrowAt(a.src, "an actuator without inputs has no control history");
+  }
   if (a.delay > 0 && shape.ctrlnum != 1) {
     ThrowAt(a.src, "delay needs an actuator with one control (its history holds one number)");
   }

@@ -6,7 +6,8 @@
 // the dynamics type, p clamped to forcerange, then qfrc_actuator = moment^T p clamped
 // to each joint's actuatorfrcrange. Forces on a tendon are first scaled so their total
 // respects the tendon's actuatorfrcrange. Muscles: see muscle.cc. A pid (MuJoCo 3.12)
-// reads several controls (its setpoints) and has its own law (PidForce).
+// reads several controls (its setpoints) and has its own law (PidForce); so does the DC
+// motor (dcmotor.cc).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -203,6 +204,7 @@ void ClampTendonForces(const Model& m, Data& d) {
 }  // namespace
 
 double NextActivation(const Model& m, const Data& d, int i, int act_adr, double act_dot) {
+  if (m.actuator_dyntype[i] == kDynDcmotor) return DcmotorNextActivation(m, d, i, act_adr, act_dot);
   double act = d.act[act_adr];
   // Exact filter: act moves toward ctrl by 1 - exp(-h/tau) of the gap; else Euler.
   if (m.actuator_dyntype[i] == kDynFilterExact) {
@@ -231,15 +233,20 @@ void Actuation(const Model& m, Data& d) {
     if (m.actuator_actadr[i] < 0) continue;
     if (m.actuator_dyntype[i] == kDynPid) {
       PidActivation(m, d, i, ctrl);
+    } else if (m.actuator_dyntype[i] == kDynDcmotor) {
+      DcmotorActivation(m, d, i, ctrl);
     } else {
       ActivationRate(m, d, i, ctrl[m.actuator_ctrladr[i]]);
     }
   }
   for (int i = 0; i < m.nactuator; i++) {
     if (ActuatorDisabled(m, i)) continue;
-    d.actuator_force[m.actuator_outadr[i]] = m.actuator_gaintype[i] == kGainPid
-                                                 ? PidForce(m, d, i, ctrl)
-                                                 : ActuatorForce(m, d, i, ctrl[m.actuator_ctrladr[i]]);
+    double& force = d.actuator_force[m.actuator_outadr[i]];
+    switch (m.actuator_gaintype[i]) {
+      case kGainPid: force = PidForce(m, d, i, ctrl); break;
+      case kGainDcmotor: force = DcmotorForce(m, d, i, ctrl); break;
+      default: force = ActuatorForce(m, d, i, ctrl[m.actuator_ctrladr[i]]);
+    }
   }
 
   // Clamps: tendon totals, then each output (of disabled actuators too) to its
@@ -251,6 +258,10 @@ void Actuation(const Model& m, Data& d) {
       d.actuator_force[o] = std::clamp(d.actuator_force[o], m.actuator_forcerange[2 * i],
                                        m.actuator_forcerange[2 * i + 1]);
     }
+  }
+  // A DC motor's cogging and friction are mechanical: past the electrical clamp.
+  for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_biastype[i] == kBiasDcmotor && !ActuatorDisabled(m, i)) DcmotorMechanics(m, d, i);
   }
 
   // Joint space, clamped per joint to actuatorfrcrange.

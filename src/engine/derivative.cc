@@ -42,6 +42,7 @@ void ActuatorDerivative(const Model& m, Data& d) {
       if (f <= m.actuator_forcerange[2 * i] || f >= m.actuator_forcerange[2 * i + 1]) continue;
     }
     double b = m.actuator_biastype[i] == kBiasAffine ? m.actuator_biasprm[kNBias * i + 2] : 0;
+    if (m.actuator_gaintype[i] == kGainDcmotor) b = DcmotorDampingDerivative(m, i);
     double gain_vel = 0;
     if (m.actuator_gaintype[i] == kGainAffine) gain_vel = m.actuator_gainprm[kNGain * i + 2];
     if (m.actuator_gaintype[i] == kGainMuscle) {

@@ -129,6 +129,15 @@ double MuscleGainVelocity(double len, double vel, const double* lengthrange, dou
                           const double* prm);
 double MuscleBias(double len, const double* lengthrange, double acc0, const double* prm);
 double MuscleDynamics(double ctrl, double act, const double* prm);
+// The DC motor (dcmotor.cc): act_dot of its states (the slew limit rewrites ctrl, the
+// local clamped copy), its force before the clamp (ctrl[ctrladr] becomes the voltage),
+// cogging and LuGre friction added after the clamp, one state's next value, and
+// d force / d velocity for the implicit integrators.
+void DcmotorActivation(const Model& m, Data& d, int i, double* ctrl);
+double DcmotorForce(const Model& m, const Data& d, int i, double* ctrl);
+void DcmotorMechanics(const Model& m, Data& d, int i);
+double DcmotorNextActivation(const Model& m, const Data& d, int i, int act_adr, double act_dot);
+double DcmotorDampingDerivative(const Model& m, int i);
 // qfrc_smooth, qacc_smooth (acceleration.cc).
 void SmoothAcceleration(const Model& m, Data& d);
 // qfrc_constraint, qacc (constraint.cc).

@@ -1,6 +1,7 @@
 // MJCF reader: actuators. Every shortcut (motor, position, ...) writes MuJoCo's
 // general actuator parameters (dyn/gain/bias type and prm) into the same spec, so a
 // default class holds one actuator default whatever shortcut set it.
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -31,6 +32,19 @@ std::vector<const char*> ActuatorAttributes(const std::string& tag, bool in_defa
             "slidersite", "cranksite", "site", "refsite", "body", "actdim", "dyntype",
             "gaintype", "biastype", "dynprm", "gainprm", "biasprm", "actearly", "input",
             "velrange", "ffrange"};
+  }
+  if (tag == "dcmotor") {
+    std::vector<const char*> dc = {"group", "nsample", "interp", "delay", "ctrllimited",
+                                   "ctrlrange", "gear", "cranklength", "user", "motorconst",
+                                   "resistance", "nominal", "saturation", "inductance",
+                                   "cogging", "controller", "thermal", "lugre", "input"};
+    if (!in_default) {
+      for (const char* attr : {"name", "class", "lengthrange", "joint", "jointinparent", "tendon",
+                               "slidersite", "cranksite", "site", "refsite"}) {
+        dc.push_back(attr);
+      }
+    }
+    return dc;
   }
   if (tag == "pid") {
     std::vector<const char*> pid = {"group", "nsample", "interp", "delay", "ctrllimited",
@@ -176,7 +190,7 @@ void ReadInputSpec(const XmlElement& e, int* spec) {
 bool IsActuatorElement(const std::string& tag) {
   static const char* const kTags[] = {"general", "motor",   "position", "velocity",
                                       "intvelocity", "damper", "cylinder", "muscle",
-                                      "adhesion", "pid"};
+                                      "adhesion", "pid", "dcmotor"};
   for (const char* t : kTags) {
     if (tag == t) return true;
   }
@@ -403,6 +417,96 @@ void SetPid(const XmlElement& e, ActuatorSpec* a, const PidAttrs& p) {
   a->biastype = kBiasAffine;
 }
 
+// dcmotor (MuJoCo 3.7, controller redesigned in 3.12): a DC motor's electrical law with
+// optional states. Each attribute is a vector of which a prefix may be given:
+//   motorconst (Kt Ke), resistance R, nominal (volts, stall torque, no-load speed),
+//   saturation (torque, current, current rate), inductance (L, or 0 then te),
+//   cogging (amplitude, poles, phase), controller (kp ki kd slewmax imax vmax),
+//   thermal (RT C tau alpha T0 Tambient), lugre (sigma0 sigma1 Fcoulomb Fstatic vstribeck).
+// Stored as gainprm = [R K alpha T0 kp ki kd vmax 0 0], dynprm = [te di/dt RT C Ta sigma0
+// sigma1 slewmax imax 0], biasprm = [A Np phase Fc Fs vs ...]; one state per feature in
+// use (slew, integral, temperature, bristle, current).
+struct DcmotorAttrs {
+  std::array<double, 2> motorconst = {0, 0}, inductance = {0, 0};
+  double resistance = 0;
+  std::array<double, 3> nominal = {0, 0, 0}, saturation = {0, 0, 0}, cogging = {0, 0, 0};
+  std::array<double, 6> controller = {0, 0, 0, 0, 0, 0}, thermal = {0, 0, 0, 0, 0, 0};
+  std::array<double, 5> lugre = {0, 0, 0, 0, 0};
+};
+
+// The back-EMF constant from nominal ratings (volts vn, stall torque tau0, no-load speed
+// omega0), given the viscous damping b of the actuator.
+double BackEmfFromNominal(double vn, double tau0, double omega0, double b, double r) {
+  if (b > 0 && r > 0) {
+    double disc = vn * vn - 4 * r * b * omega0 * omega0;
+    return disc > 0 ? (vn + std::sqrt(disc)) / (2 * omega0) : vn / omega0;
+  }
+  if (b > 0 && tau0 > 0) {
+    double ke = vn / omega0 - vn * b / tau0;
+    return ke <= 0 ? vn / omega0 : ke;
+  }
+  return vn / omega0;
+}
+
+// The winding's thermal resistance and capacitance, the one missing found from the time
+// constant tau = RT C.
+void ThermalConstants(const XmlElement& e, const std::array<double, 6>& t, double* rt, double* c) {
+  *rt = t[0], *c = t[1];
+  double tau = t[2];
+  if (tau > 0 && *rt > 0 && *c == 0) *c = tau / *rt;
+  else if (tau > 0 && *c > 0 && *rt == 0) *rt = tau / *c;
+  if (*rt <= 0 || *c <= 0) e.Fail("dcmotor thermal needs a positive resistance and capacitance");
+}
+
+void SetDcmotor(const XmlElement& e, ActuatorSpec* a, const DcmotorAttrs& p) {
+  double r = p.resistance, kt = p.motorconst[0], ke = p.motorconst[1];
+  double vn = p.nominal[0], tau0 = p.nominal[1], omega0 = p.nominal[2];
+  if (vn > 0 && ke <= 0 && omega0 > 0) ke = BackEmfFromNominal(vn, tau0, omega0, a->damping[0], r);
+  double k = kt > 0 && ke > 0 ? std::sqrt(kt * ke) : (kt > 0 ? kt : ke);
+  if (r == 0 && vn > 0 && tau0 > 0 && k > 0) r = k * vn / tau0;
+  if (k <= 0) e.Fail("DC motor: motor constant K must be positive");
+  if (r <= 0) e.Fail("DC motor: resistance R must be positive");
+  a->dyntype = kDynDcmotor;
+  a->gaintype = kGainDcmotor;
+  a->biastype = kBiasDcmotor;
+  a->gainprm[0] = r;
+  a->gainprm[1] = k;
+  for (int j = 0; j < 3; j++) a->gainprm[4 + j] = p.controller[j];
+  a->dynprm[7] = p.controller[3];
+  a->dynprm[8] = p.controller[4];
+  if (p.controller[5] > 0) a->gainprm[7] = p.controller[5];
+  // Saturation: a torque limit (or a current limit times K), and a current rate limit.
+  if (p.saturation[0] > 0 || p.saturation[1] > 0) {
+    double limit = p.saturation[0] == 0 ? k * p.saturation[1] : p.saturation[0];
+    a->forcerange = {-limit, limit};
+    a->forcelimited = kTrue;
+  }
+  if (p.saturation[2] > 0) a->dynprm[1] = p.saturation[2];
+  for (int j = 0; j < 3; j++) a->biasprm[j] = p.cogging[j];
+  // The states: current (te = L / R), slew, integral, temperature, bristle.
+  if (p.inductance[0] < 0 || p.inductance[1] < 0) e.Fail("dcmotor inductance cannot be negative");
+  double te = p.inductance[0] > 0 ? p.inductance[0] / r : p.inductance[1];
+  a->dynprm[0] = te;
+  int states = (te > 0) + (p.controller[3] > 0) + (p.controller[1] > 0);
+  if (p.thermal[0] > 0 || p.thermal[1] > 0 || p.thermal[2] > 0) {
+    ThermalConstants(e, p.thermal, &a->dynprm[2], &a->dynprm[3]);
+    a->dynprm[4] = p.thermal[5];
+    a->gainprm[2] = p.thermal[3];
+    a->gainprm[3] = p.thermal[4];
+    states++;
+  }
+  if (p.lugre[0] > 0) {
+    a->dynprm[5] = p.lugre[0];
+    a->dynprm[6] = p.lugre[1];
+    for (int j = 0; j < 3; j++) a->biasprm[3 + j] = p.lugre[2 + j];
+    states++;
+  }
+  a->gainprm[8] = 0;
+  a->actdim = states;
+  a->actlimited = kFalse;
+  a->actearly = true;
+}
+
 }  // namespace
 
 void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
@@ -477,6 +581,33 @@ void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
     double gain = a->gainprm[0];
     e.Number("gain", &gain);
     SetAdhesion(e, a, gain);
+  } else if (tag == "dcmotor") {
+    // (a dcmotor class passes its parameters; nominal ratings are never inherited)
+    DcmotorAttrs p;
+    if (a->gaintype == kGainDcmotor) {
+      const auto &g = a->gainprm, &dyn = a->dynprm, &b = a->biasprm;
+      p.motorconst = {g[1], 0};
+      p.resistance = g[0];
+      p.saturation = {0, 0, dyn[1]};
+      p.controller = {g[4], g[5], g[6], dyn[7], dyn[8], g[7]};
+      p.inductance = {0, dyn[0]};
+      p.cogging = {b[0], b[1], b[2]};
+      p.thermal = {dyn[2], dyn[3], 0, g[2], g[3], dyn[4]};
+      p.lugre = {dyn[5], dyn[6], b[3], b[4], b[5]};
+    } else {
+      a->ctrlspec = 0;
+    }
+    e.Numbers("motorconst", p.motorconst, false);
+    e.Number("resistance", &p.resistance);
+    e.Numbers("nominal", p.nominal, false);
+    e.Numbers("saturation", p.saturation, false);
+    e.Numbers("inductance", p.inductance, false);
+    e.Numbers("cogging", p.cogging, false);
+    e.Numbers("controller", p.controller, false);
+    e.Numbers("thermal", p.thermal, false);
+    e.Numbers("lugre", p.lugre, false);
+    ReadInputSpec(e, &a->ctrlspec);
+    SetDcmotor(e, a, p);
   } else if (tag == "pid") {
     // (a class of any kind passes its kp; ki, imax and slewmax only from a stateful pid)
     PidAttrs p;
