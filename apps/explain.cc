@@ -141,6 +141,11 @@ std::string ReadsAs(const Model& m, int i) {
   if (gain == kGainMuscle) return "muscle";
   if (gain == kGainPid) return PidShortcut(m, i);
   if (gain == kGainDcmotor) return DcmotorShortcut(m, i);
+  if (gain == kGainSo3) {
+    std::string kind = dyn == kDynIntegrator ? "general so3 integrator" : "orientation";
+    return kind + " (kp " + Num(g[0]) + ", kv " + Num(-b[2]) + "; input " +
+           (m.actuator_ctrlspec[i] == kChartQuat ? "quat" : "expmap") + ")";
+  }
   if (m.actuator_trntype[i] == kTrnBody) return "adhesion (gain " + Num(g[0]) + ")";
   if (gain == kGainAffine && bias == kBiasNone && dyn == kDynNone && g[0] == 0 && g[1] == 0) {
     return "damper (kv " + Num(-g[2]) + ")";
@@ -169,6 +174,9 @@ std::string GainText(const Model& m, int i) {
       return "muscle: a = -force * FL(l) * FV(l'), force " + Num(g[2]) + ", scale " + Num(g[3]) +
              ", lengths " + Num(g[4]) + ".." + Num(g[5]) + ", vmax " + Num(g[6]) + ", fvmax " +
              Num(g[8]);
+    case kGainSo3:
+      return "so3: a u = kp log(q(l)^-1 q_target), the rotation from where it is to the "
+             "target, kp = " + Num(g[0]);
     case kGainDcmotor:
       return Dyn(m, i)[0] > 0 ? "dcmotor: a = K = " + Num(g[1]) + " on the current w"
                               : "dcmotor: a = K / R = " + Num(g[1]) + " / " + Num(g[0]) +
@@ -200,6 +208,7 @@ std::string BiasText(const Model& m, int i) {
     case kBiasAffine:
       return "affine: b0 = " + Num(b[0]) + ", b1 = " + Num(b[1]) + ", b2 = " + Num(b[2]);
     case kBiasMuscle: return "muscle: passive force of the muscle, fpmax " + Num(b[7]);
+    case kBiasSo3: return "so3: b = b0 + b2 l' on each output, b2 = " + Num(b[2]);
     case kBiasDcmotor:
       return std::string(Dyn(m, i)[0] > 0 ? "dcmotor: back-EMF acts through the current"
                                           : "dcmotor: back-EMF b = -a K l'") +
@@ -230,6 +239,10 @@ std::string LawText(const Model& m, int i) {
   std::string law = "p = ";
   std::string input = HasActivation(m, i) ? "w" : "u";
   if (m.actuator_gaintype[i] == kGainPid) return PidLawText(m, i);
+  if (m.actuator_gaintype[i] == kGainSo3) {
+    return "p = " + Num(Gain(m, i)[0]) + " log(q(l)^-1 q_target)" + Term(Bias(m, i)[2], "l'") +
+           "  (3 outputs)";
+  }
   if (m.actuator_gaintype[i] == kGainDcmotor) {
     return Dyn(m, i)[0] > 0 ? "p = K i = " + Num(Gain(m, i)[1]) + " w  (w: the current)"
                             : "p = K / R (V - K l') with K " + Num(Gain(m, i)[1]) + ", R " +
@@ -253,6 +266,13 @@ std::string LawText(const Model& m, int i) {
 
 // What u is in the law: the control, or the activation state.
 std::string InputText(const Model& m, int i) {
+  if (m.actuator_gaintype[i] == kGainSo3) {
+    int u = m.actuator_ctrladr[i];
+    std::string range = "ctrl[" + std::to_string(u) + ".." + std::to_string(u + m.actuator_ctrlnum[i] - 1) + "]";
+    if (m.actuator_ctrlspec[i] == kChartQuat) return "q_target = " + range + " (w x y z, normalized; 0 is the identity)";
+    if (HasActivation(m, i)) return "q_target from act[" + std::to_string(m.actuator_actadr[i]) + "..], w' = " + range;
+    return "q_target = exp(" + range + "), a rotation vector";
+  }
   if (m.actuator_gaintype[i] == kGainPid || m.actuator_gaintype[i] == kGainDcmotor) {
     // (setpoints named as in the law; an absent one is zero)
     static const std::map<std::string, std::string> kSetpoint = {
@@ -350,6 +370,11 @@ std::string TransmissionText(const Model& m, int i) {
              Quoted(m.site_names[ref]) + ", crank length " + Num(m.actuator_cranklength[i]) +
              ", gear " + gear;
     case kTrnBody: return "body " + Quoted(m.body_names[id]) + " (adhesion through contacts)";
+    case kTrnSo3:
+      return (ref >= 0 ? "the rotation of site " + Quoted(m.site_names[id]) + " relative to refsite " +
+                             Quoted(m.site_names[ref])
+                       : "the rotation of ball joint " + Quoted(m.jnt_names[id])) +
+             ": l = its rotation vector (3 outputs, in the child frame)";
     default: return "undefined";
   }
 }
@@ -399,7 +424,10 @@ std::string ClampLines(const Model& m, int i) {
                                                "clamps the activation w"));
   }
   text += Line("", "forcerange: " + ClampText(m.actuator_forcelimited[i],
-                                               &m.actuator_forcerange[2 * i], "clamps p"));
+                                               &m.actuator_forcerange[2 * i],
+                                               m.actuator_gaintype[i] == kGainSo3
+                                                   ? "clamps the norm of p to the upper bound"
+                                                   : "clamps p"));
   return text + TargetClampLine(m, i);
 }
 

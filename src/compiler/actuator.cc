@@ -210,6 +210,47 @@ int PidInputs(const mjcf::ActuatorSpec& a, int* actdim) {
   return spec;
 }
 
+// An orientation's checks (MuJoCo 3.11): gain and bias so3, kp in both, no dynamics or an
+// integrator of the rotation vector (3 states), the command a rotation vector (expmap,
+// default) or a quaternion (stateless only), a force limit on the norm (lower bound 0).
+// Returns the chart and sets actdim. (Its target is checked with the transmission.)
+int So3Inputs(const mjcf::ActuatorSpec& a, int* actdim) {
+  if (a.gaintype != kGainSo3 || a.biastype != kBiasSo3) {
+    ThrowAt(a.src, "so3 gaintype and biastype must both be 'so3'");
+  }
+  if (a.dyntype != kDynNone && a.dyntype != kDynIntegrator) {
+    ThrowAt(a.src, "an so3 actuator has dyntype 'none' or 'integrator'");
+  }
+  if (a.gainprm[0] != -a.biasprm[1]) ThrowAt(a.src, "so3 needs gainprm[0] = -biasprm[1] (kp)");
+  if (a.dyntype == kDynIntegrator) {
+    if (a.actdim > 0 && a.actdim != 3) ThrowAt(a.src, "an so3 integrator has actdim 3");
+    *actdim = 3;
+  }
+  int chart = a.ctrlspec ? a.ctrlspec : kChartExpmap;
+  if (chart != kChartExpmap && chart != kChartQuat) {
+    ThrowAt(a.src, "an orientation's input is expmap or quat");
+  }
+  if (chart == kChartQuat && a.dyntype != kDynNone) {
+    ThrowAt(a.src, "a quaternion command needs dyntype 'none'");
+  }
+  bool forcelimited = a.forcelimited == kTrue || (a.forcelimited == kAuto && a.forcerange[0] < a.forcerange[1]);
+  if (forcelimited && a.forcerange[0] != 0) {
+    ThrowAt(a.src, "an orientation limits the force's norm: forcerange lower bound must be 0");
+  }
+  return chart;
+}
+
+// An orientation's target: a ball joint, or a site relative to a refsite.
+void CheckSo3Target(const mjcf::ActuatorSpec& a, const CompileState& s, const int* trnid) {
+  if (a.trntype == kTrnSite) {
+    if (trnid[1] < 0) ThrowAt(a.src, "an orientation on a site needs a refsite");
+    return;
+  }
+  if (a.trntype != kTrnJoint || s.joints[trnid[0]].spec->type != kJointBall) {
+    ThrowAt(a.src, "an orientation needs a ball joint or a site with a refsite");
+  }
+}
+
 // A DC motor's number of states: slew, integral, temperature, bristle, current, each when
 // its parameter is set (the engine's DcmotorSlots).
 int DcmotorStates(const mjcf::ActuatorSpec& a) {
@@ -249,13 +290,15 @@ ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a) {
   if (a.dyntype == kDynUser || a.gaintype == kGainUser || a.biastype == kBiasUser) {
     ThrowAt(a.src, "user-defined actuator dynamics, gain or bias are not supported yet");
   }
-  if (a.gaintype == kGainSo3 || a.biastype == kBiasSo3) {
-    ThrowAt(a.src, "orientation actuators are not supported yet");
-  }
   ActuatorShape shape;
   int actdim = a.actdim;
+  bool so3 = a.gaintype == kGainSo3 || a.biastype == kBiasSo3;
   bool dcmotor = a.gaintype == kGainDcmotor || a.biastype == kBiasDcmotor || a.dyntype == kDynDcmotor;
-  if (a.gaintype == kGainPid) {
+  if (so3) {
+    shape.ctrlspec = So3Inputs(a, &actdim);
+    shape.ctrlnum = shape.ctrlspec == kChartQuat ? 4 : 3;
+    shape.outnum = 3;
+  } else if (a.gaintype == kGainPid) {
     shape.ctrlspec = PidInputs(a, &actdim);
     shape.ctrlnum = PopCount(shape.ctrlspec & (kInputPos | kInputVel | kInputFf));
   } else if (dcmotor) {
@@ -266,7 +309,7 @@ ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a) {
     ThrowAt(a.src, "input is only available for pid, dcmotor and orientation actuators");
   }
   if (a.dyntype == kDynPid && a.gaintype != kGainPid) ThrowAt(a.src, "dyntype 'pid' requires gaintype 'pid'");
-  if (actdim > 1 && a.dyntype != kDynUser && !dcmotor) {
+  if (actdim > 1 && a.dyntype != kDynUser && !dcmotor && !so3) {
     ThrowAt(a.src, a.dyntype == kDynPid
                        ? "a pid can have an integral (ki) or a slew limit (slewmax), not both"
                        : "actdim > 1 is only allowed for dyntype 'user'");
@@ -313,12 +356,17 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     // Transmission and ranges.
     int trnid[2];
     ResolveTarget(a, targets, trnid);
+    bool so3 = a.gaintype == kGainSo3;
+    if (so3) CheckSo3Target(a, state, trnid);
     std::array<double, 2> ctrl = a.ctrlrange, act = a.actrange;
     InheritRange(a, state, *m, trnid, &ctrl, &act);
-    Limits(spec, a, ctrl, act, i, m);
+    // (an so3 integrator limited with no range is unlimited)
+    mjcf::ActuatorSpec limits = a;
+    if (so3 && a.actlimited == kTrue && act[0] == 0 && act[1] == 0) limits.actlimited = mjcf::kFalse;
+    Limits(spec, limits, ctrl, act, i, m);
 
     // Types, parameters, activation layout.
-    m->actuator_trntype[i] = a.trntype;
+    m->actuator_trntype[i] = so3 ? kTrnSo3 : a.trntype;
     m->actuator_trnid[2 * i] = trnid[0];
     m->actuator_trnid[2 * i + 1] = trnid[1];
     m->actuator_dyntype[i] = a.dyntype;

@@ -99,7 +99,7 @@ void ComputeConstants(Model* m) {
 
   // Actuators: length0, acc0 = |M^-1 moment| and the dampratio damping.
   std::vector<double> acc(m->nv);
-  // (per force output; the dampratio of a single-output actuator from its one row)
+  // (per force output; the dampratio from the first output's row, as MuJoCo)
   for (int i = 0; i < m->nactuator; i++) {
     int first = m->actuator_outadr[i], count = m->actuator_outnum[i];
     for (int o = first; o < first + count; o++) {
@@ -109,7 +109,7 @@ void ComputeConstants(Model* m) {
       SolveSparse(*m, d.qLD.data(), d.qLDiagInv.data(), acc.data());
       m->actuator_acc0[o] = std::sqrt(math::Dot(acc.data(), acc.data(), m->nv));
     }
-    if (count == 1) DampRatio(m, i, d, RowOf(d.actuator_moment, first, m->nv));
+    DampRatio(m, i, d, RowOf(d.actuator_moment, first, m->nv));
   }
 
   // Inverse weights and meaninertia, from the same Data; then the spring lengths.

@@ -90,6 +90,9 @@ int64_t SensorDim(const Model& m, const SensorSpec& s, int objid) {
     case kSensTactile: return 3 * m.mesh_vertnum[objid];
     case kSensRangefinder: return RayDataSize(s.intprm[0]) * RayCount(m, s, objid);
     case kSensUser: return s.dim;
+    // (one number per force output: 3 for an orientation)
+    case kSensActuatorPos: case kSensActuatorVel: case kSensActuatorFrc:
+      return m.actuator_outnum[objid];
     default: return 1;
   }
 }

@@ -235,12 +235,20 @@ void Actuation(const Model& m, Data& d) {
       PidActivation(m, d, i, ctrl);
     } else if (m.actuator_dyntype[i] == kDynDcmotor) {
       DcmotorActivation(m, d, i, ctrl);
+    } else if (m.actuator_ctrlnum[i] > 1) {
+      // (an integrator of several controls: the last states, one per control)
+      int n = m.actuator_ctrlnum[i], first = m.actuator_actadr[i] + m.actuator_actnum[i] - n;
+      for (int k = 0; k < n; k++) d.act_dot[first + k] = ctrl[m.actuator_ctrladr[i] + k];
     } else {
       ActivationRate(m, d, i, ctrl[m.actuator_ctrladr[i]]);
     }
   }
   for (int i = 0; i < m.nactuator; i++) {
     if (ActuatorDisabled(m, i)) continue;
+    if (m.actuator_gaintype[i] == kGainSo3) {
+      So3Force(m, d, i, ctrl, d.actuator_force.data());
+      continue;
+    }
     double& force = d.actuator_force[m.actuator_outadr[i]];
     switch (m.actuator_gaintype[i]) {
       case kGainPid: force = PidForce(m, d, i, ctrl); break;
@@ -254,6 +262,10 @@ void Actuation(const Model& m, Data& d) {
   ClampTendonForces(m, d);
   for (int i = 0; i < m.nactuator; i++) {
     if (!m.actuator_forcelimited[i]) continue;
+    if (m.actuator_gaintype[i] == kGainSo3) {
+      So3ClampForce(m, d, i);
+      continue;
+    }
     for (int o = m.actuator_outadr[i]; o < m.actuator_outadr[i] + m.actuator_outnum[i]; o++) {
       d.actuator_force[o] = std::clamp(d.actuator_force[o], m.actuator_forcerange[2 * i],
                                        m.actuator_forcerange[2 * i + 1]);

@@ -36,12 +36,16 @@ void ActuatorDerivative(const Model& m, Data& d) {
     int group = m.actuator_group[i];
     if (group >= 0 && group < 31 && (m.opt.disableactuator & (1 << group))) continue;
     int o = m.actuator_outadr[i];
-    // A force held at its clamp does not change with velocity.
+    // A force held at its clamp does not change with velocity (an orientation's: its norm).
+    bool so3 = m.actuator_gaintype[i] == kGainSo3;
     if (m.actuator_forcelimited[i]) {
+      const double* range = &m.actuator_forcerange[2 * i];
+      if (so3 && math::Norm3(&d.actuator_force[o]) >= range[1]) continue;
       double f = d.actuator_force[o];
-      if (f <= m.actuator_forcerange[2 * i] || f >= m.actuator_forcerange[2 * i + 1]) continue;
+      if (!so3 && (f <= range[0] || f >= range[1])) continue;
     }
-    double b = m.actuator_biastype[i] == kBiasAffine ? m.actuator_biasprm[kNBias * i + 2] : 0;
+    bool affine = m.actuator_biastype[i] == kBiasAffine || m.actuator_biastype[i] == kBiasSo3;
+    double b = affine ? m.actuator_biasprm[kNBias * i + 2] : 0;
     if (m.actuator_gaintype[i] == kGainDcmotor) b = DcmotorDampingDerivative(m, i);
     double gain_vel = 0;
     if (m.actuator_gaintype[i] == kGainAffine) gain_vel = m.actuator_gainprm[kNGain * i + 2];
@@ -59,7 +63,10 @@ void ActuatorDerivative(const Model& m, Data& d) {
         b += gain_vel * act;
       }
     }
-    if (b != 0) AddJtBJ(m, d, RowOf(d.actuator_moment, o, m.nv), b);
+    if (b == 0) continue;
+    for (int k = 0; k < m.actuator_outnum[i]; k++) {
+      AddJtBJ(m, d, RowOf(d.actuator_moment, o + k, m.nv), b);
+    }
   }
 }
 

@@ -57,6 +57,17 @@ void FactorInertia(const Model& m, Data& d);
 // actuator_length, actuator_moment (transmission.cc). Body transmissions (adhesion)
 // read the contacts and their constraint rows: run after MakeConstraint.
 void Transmission(const Model& m, Data& d);
+// For rows relative to a refsite: the last dof shared by two sites' dof chains (or -1),
+// and jac -= jac_ref with the shared chain's columns cleared (transmission.cc).
+int CommonAncestorDof(const Model& m, int site0, int site1);
+void RelativeJacobian(const Model& m, double* jac, const double* jac_ref, int common);
+// The orientation actuator (orientation.cc): its 3 lengths and moment rows, its 3 forces
+// before the clamp, the clamp of their norm, and the integrator's setpoints brought back
+// within a half turn after a step.
+void So3Transmission(const Model& m, Data& d, int i);
+void So3Force(const Model& m, const Data& d, int i, const double* ctrl, double* force);
+void So3ClampForce(const Model& m, Data& d, int i);
+void So3Rewind(const Model& m, Data& d);
 // actuator_velocity = actuator_moment qvel, zero with actuation disabled (transmission.cc).
 void ActuatorVelocity(const Model& m, Data& d);
 

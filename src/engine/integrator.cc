@@ -57,6 +57,7 @@ void Advance(const Model& m, Data& d, const double* act_dot, const double* qacc,
         d.act[a] = NextActivation(m, d, i, a, off ? 0 : act_dot[a]);
       }
     }
+    So3Rewind(m, d);
   }
   for (int v = 0; v < m.nv; v++) d.qvel[v] += qacc[v] * h;
   IntegratePos(m, d.qpos.data(), qvel_for_pos ? qvel_for_pos : d.qvel.data(), h);

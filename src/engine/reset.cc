@@ -46,7 +46,13 @@ void ResetData(const Model& m, Data& d) {
   d.ne = d.nf = d.nl = d.nisland = 0;
   for (auto& w : d.warning) w = WarningStat{};
   for (auto& t : d.timer) t = TimerStat{};
-  // ...except the configuration and the mocap poses, which come from the model.
+  // ...except the configuration and the mocap poses, which come from the model, and a
+  // quaternion command, which starts at the identity.
+  for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_gaintype[i] == kGainSo3 && m.actuator_ctrlspec[i] == kChartQuat) {
+      d.ctrl[m.actuator_ctrladr[i]] = 1;
+    }
+  }
   d.qpos = m.qpos0;
   ResetMocap(m, d);
   // Equality constraints start as the model declares them (active or not).

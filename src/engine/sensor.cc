@@ -101,7 +101,7 @@ void ComputePos(const Model& m, Data& d, int i, double* out) {
       break;
     case kSensJointPos: out[0] = d.qpos[m.jnt_qposadr[id]]; break;
     case kSensTendonPos: out[0] = d.ten_length[id]; break;
-    case kSensActuatorPos: out[0] = d.actuator_length[m.actuator_outadr[id]]; break;
+    case kSensActuatorPos: std::copy_n(&d.actuator_length[m.actuator_outadr[id]], m.sensor_dim[i], out); break;
     case kSensBallQuat:
       math::CopyQuat(out, &d.qpos[m.jnt_qposadr[id]]);
       math::NormalizeQuat(out);
@@ -144,7 +144,7 @@ void ComputeVel(const Model& m, Data& d, int i, double* out) {
       break;
     case kSensJointVel: out[0] = d.qvel[m.jnt_dofadr[id]]; break;
     case kSensTendonVel: out[0] = d.ten_velocity[id]; break;
-    case kSensActuatorVel: out[0] = d.actuator_velocity[m.actuator_outadr[id]]; break;
+    case kSensActuatorVel: std::copy_n(&d.actuator_velocity[m.actuator_outadr[id]], m.sensor_dim[i], out); break;
     case kSensBallAngVel: math::Copy3(out, &d.qvel[m.jnt_dofadr[id]]); break;
     case kSensJointLimitVel: out[0] = LimitValue(d, kCnstrLimitJoint, id, d.efc_vel); break;
     case kSensTendonLimitVel: out[0] = LimitValue(d, kCnstrLimitTendon, id, d.efc_vel); break;
@@ -160,7 +160,7 @@ void ComputeVel(const Model& m, Data& d, int i, double* out) {
 void ComputeAcc(const Model& m, Data& d, int i, double* out) {
   int id = m.sensor_objid[i];
   switch (m.sensor_type[i]) {
-    case kSensActuatorFrc: out[0] = d.actuator_force[m.actuator_outadr[id]]; break;
+    case kSensActuatorFrc: std::copy_n(&d.actuator_force[m.actuator_outadr[id]], m.sensor_dim[i], out); break;
     case kSensJointActFrc: out[0] = d.qfrc_actuator[m.jnt_dofadr[id]]; break;
     case kSensTendonActFrc: {
       // Every actuator pulling on the tendon.

@@ -16,6 +16,7 @@
 //                        vector v from slider to crank site and the rod length r
 //   body (adhesion):     l = 0, moment = minus the mean normal Jacobian of the contacts
 //                        that involve the body (so Transmission runs after MakeConstraint)
+//   so3 (orientation):   3 lengths and 3 rows, see orientation.cc
 #include <algorithm>
 #include <cmath>
 
@@ -27,6 +28,35 @@
 namespace simlab {
 
 using namespace math;
+
+// ---------------------------------------------------------------- shared with orientation.cc
+
+// The last dof shared by the dof chains of two sites' bodies, or -1.
+int CommonAncestorDof(const Model& m, int site0, int site1) {
+  int b0 = m.body_weldid[m.site_bodyid[site0]], b1 = m.body_weldid[m.site_bodyid[site1]];
+  int dof0 = m.body_dofadr[b0] + m.body_dofnum[b0] - 1;
+  int dof1 = m.body_dofadr[b1] + m.body_dofnum[b1] - 1;
+  if (dof0 < 0 || dof1 < 0) return -1;
+  while (dof0 != dof1) {
+    if (dof0 < dof1) {
+      dof1 = m.dof_parentid[dof1];
+    } else {
+      dof0 = m.dof_parentid[dof0];
+    }
+    if (dof0 < 0 || dof1 < 0) return -1;
+  }
+  return dof0;
+}
+
+// jac -= jac_ref, then the columns of the shared chain (which move both sites alike)
+// are cleared exactly.
+void RelativeJacobian(const Model& m, double* jac, const double* jac_ref, int common) {
+  int nv = m.nv;
+  for (int k = 0; k < 3 * nv; k++) jac[k] -= jac_ref[k];
+  for (int v = common; v >= 0; v = m.dof_parentid[v]) {
+    jac[v] = jac[nv + v] = jac[2 * nv + v] = 0;
+  }
+}
 
 namespace {
 
@@ -72,33 +102,6 @@ void JointTransmission(const Model& m, Data& d, int i, int id, double* moment) {
       Copy3(moment + dadr + 3, gear_axis);
       break;
     }
-  }
-}
-
-// The last dof shared by the dof chains of two sites' bodies, or -1.
-int CommonAncestorDof(const Model& m, int site0, int site1) {
-  int b0 = m.body_weldid[m.site_bodyid[site0]], b1 = m.body_weldid[m.site_bodyid[site1]];
-  int dof0 = m.body_dofadr[b0] + m.body_dofnum[b0] - 1;
-  int dof1 = m.body_dofadr[b1] + m.body_dofnum[b1] - 1;
-  if (dof0 < 0 || dof1 < 0) return -1;
-  while (dof0 != dof1) {
-    if (dof0 < dof1) {
-      dof1 = m.dof_parentid[dof1];
-    } else {
-      dof0 = m.dof_parentid[dof0];
-    }
-    if (dof0 < 0 || dof1 < 0) return -1;
-  }
-  return dof0;
-}
-
-// jac -= jac_ref, then the columns of the shared chain (which move both sites alike)
-// are cleared exactly.
-void RelativeJacobian(const Model& m, double* jac, const double* jac_ref, int common) {
-  int nv = m.nv;
-  for (int k = 0; k < 3 * nv; k++) jac[k] -= jac_ref[k];
-  for (int v = common; v >= 0; v = m.dof_parentid[v]) {
-    jac[v] = jac[nv + v] = jac[2 * nv + v] = 0;
   }
 }
 
@@ -297,6 +300,10 @@ void SetMomentPattern(const Model& m, Data& d, int i) {
 
 void Transmission(const Model& m, Data& d) {
   for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_trntype[i] == kTrnSo3) {
+      So3Transmission(m, d, i);  // (3 rows: orientation.cc)
+      continue;
+    }
     // (zero where the last pattern said it may not be)
     int o = m.actuator_outadr[i];
     double* moment = RowOf(d.actuator_moment, o, m.nv);

@@ -33,6 +33,15 @@ std::vector<const char*> ActuatorAttributes(const std::string& tag, bool in_defa
             "gaintype", "biastype", "dynprm", "gainprm", "biasprm", "actearly", "input",
             "velrange", "ffrange"};
   }
+  if (tag == "orientation") {
+    std::vector<const char*> so3 = {"group", "nsample", "interp", "delay", "ctrlrange", "user",
+                                    "forcelimited", "forcerange", "kp", "kv", "dampratio",
+                                    "input"};
+    if (!in_default) {
+      for (const char* attr : {"name", "class", "joint", "site", "refsite"}) so3.push_back(attr);
+    }
+    return so3;
+  }
   if (tag == "dcmotor") {
     std::vector<const char*> dc = {"group", "nsample", "interp", "delay", "ctrllimited",
                                    "ctrlrange", "gear", "cranklength", "user", "motorconst",
@@ -190,7 +199,7 @@ void ReadInputSpec(const XmlElement& e, int* spec) {
 bool IsActuatorElement(const std::string& tag) {
   static const char* const kTags[] = {"general", "motor",   "position", "velocity",
                                       "intvelocity", "damper", "cylinder", "muscle",
-                                      "adhesion", "pid", "dcmotor"};
+                                      "adhesion", "pid", "dcmotor", "orientation"};
   for (const char* t : kTags) {
     if (tag == t) return true;
   }
@@ -417,6 +426,26 @@ void SetPid(const XmlElement& e, ActuatorSpec* a, const PidAttrs& p) {
   a->biastype = kBiasAffine;
 }
 
+// orientation (MuJoCo 3.11): a geodesic servo on SO(3), force kp log(q^-1 q_target) -
+// kv w on 3 outputs, commanded by a rotation vector (3 controls) or a quaternion (4).
+// kp also sits in biasprm[1] (as a position servo's, for dampratio), kv in biasprm[2].
+void SetOrientation(const XmlElement& e, ActuatorSpec* a, double kp, Maybe kv, Maybe dampratio) {
+  if (kv.has && dampratio.has) e.Fail("kv and dampratio cannot both be defined");
+  a->gainprm[0] = kp;
+  a->biasprm[1] = -kp;
+  if (kv.has) {
+    if (kv.value < 0) e.Fail("kv cannot be negative");
+    a->biasprm[2] = -kv.value;
+  }
+  if (dampratio.has) {
+    if (dampratio.value < 0) e.Fail("dampratio cannot be negative");
+    a->biasprm[2] = dampratio.value;
+  }
+  a->gaintype = kGainSo3;
+  a->biastype = kBiasSo3;
+  a->dyntype = kDynNone;
+}
+
 // dcmotor (MuJoCo 3.7, controller redesigned in 3.12): a DC motor's electrical law with
 // optional states. Each attribute is a vector of which a prefix may be given:
 //   motorconst (Kt Ke), resistance R, nominal (volts, stall torque, no-load speed),
@@ -581,6 +610,13 @@ void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
     double gain = a->gainprm[0];
     e.Number("gain", &gain);
     SetAdhesion(e, a, gain);
+  } else if (tag == "orientation") {
+    double kp = a->gainprm[0];
+    e.Number("kp", &kp);
+    Maybe kv = ReadMaybe(e, "kv");
+    Maybe dampratio = ReadMaybe(e, "dampratio");
+    ReadInputSpec(e, &a->ctrlspec);
+    SetOrientation(e, a, kp, kv, dampratio);
   } else if (tag == "dcmotor") {
     // (a dcmotor class passes its parameters; nominal ratings are never inherited)
     DcmotorAttrs p;

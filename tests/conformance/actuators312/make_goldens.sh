@@ -7,13 +7,17 @@
 #
 # Usage:  tests/conformance/actuators312/make_goldens.sh      (from any working directory)
 #
-#   1. base/<name>.xml in each integrator I of (Euler RK4 implicit implicitfast):
+#   1. base/<name>.xml in each integrator I of (Euler RK4 implicit implicitfast), or of
+#      those a comment "integrators: LIST -->" in the base names:
 #      models/<name>__I.xml is the base with integrator="I" added to its <option> tag;
 #      ctrl/<name>__I.csv = tools/ctrl_sines.py (a smooth sine on every control entry;
 #      ctrlgen.mjs cannot load these models; a comment "ctrl_sines: ARGS -->" in the
 #      base adds ARGS, e.g. a ramp), goldens/<model>.jsonl = rollout MODEL --steps 500
 #      --every 10 --ctrl CTRL.
-#   2. Each base from its keyframe 0 (the keyframe's ctrl held: no control file).
+#   2. Each base from its keyframe 0 (the keyframe's ctrl held: no control file), when it
+#      has one.
+#   3. mujoco/<name>.xml, MuJoCo's own test models (unchanged but for a comment naming
+#      their source), as they are, under the same smooth controls.
 #   Writes tests/conformance/actuators312_cases.txt.
 # Requirements: bash, GNU sed, python3, and the native build.
 set -euo pipefail
@@ -52,7 +56,9 @@ native_case() {
 for base in "$OUT"/base/*.xml; do
   name="$(basename "$base" .xml)"
   read -r -a extra <<< "$(sed -n 's/.*ctrl_sines:\(.*\)-->.*/\1/p' "$base")"
-  for integrator in Euler RK4 implicit implicitfast; do
+  read -r -a integrators <<< "$(sed -n 's/.*integrators:\(.*\)-->.*/\1/p' "$base")"
+  [ ${#integrators[@]} -gt 0 ] || integrators=(Euler RK4 implicit implicitfast)
+  for integrator in "${integrators[@]}"; do
     model="$OUT/models/${name}__$integrator.xml"
     sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
     cmp -s "$model" "$base" && { echo "$base: no <option timestep=...>" >&2; exit 1; }
@@ -61,6 +67,11 @@ for base in "$OUT"/base/*.xml; do
       ${extra[@]+"${extra[@]}"} > "$ctrl"
     native_case "$model" - "$ctrl"
   done
-  native_case "$OUT/models/${name}__implicitfast.xml" key:0 -
+  if grep -q '<key ' "$base"; then native_case "$OUT/models/${name}__implicitfast.xml" key:0 -; fi
+done
+for model in "$OUT"/mujoco/*.xml; do
+  ctrl="$OUT/ctrl/$(basename "$model" .xml).csv"
+  tools/ctrl_sines.py "$(header "$model" nu)" "$STEPS" "$(header "$model" timestep)" > "$ctrl"
+  native_case "$model" - "$ctrl"
 done
 echo "wrote $(wc -l < "$CASES") cases to $CASES"
