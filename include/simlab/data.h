@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -171,6 +172,7 @@ struct TimerStat {
   X(double, cfrc_int, nbody, 6)                 \
   X(double, cfrc_ext, nbody, 6)                 \
   X(double, sensordata, nsensordata, 1)         \
+  X(double, plugin_state, npluginstate, 1)      \
   X(double, history, nhistory, 1)  /* delayed actuators' and sensors' samples */ \
   /* implicit integration */                    \
   X(double, qDeriv, nv, nv)                     \
@@ -197,6 +199,27 @@ struct TimerStat {
   X(double, efc_force, 1)       /* constraint force in constraint space */            \
   X(int, efc_state, 1)          /* mjtConstraintState of the solution */             \
   X(int, efc_island, 1)         /* island of the row */
+
+// What a plugin instance keeps beside its numbers in plugin_state (MuJoCo's plugin_data):
+// made by the plugin's init, copied with the Data through Clone.
+class PluginInstanceData {
+ public:
+  virtual ~PluginInstanceData() = default;
+  virtual std::unique_ptr<PluginInstanceData> Clone() const = 0;
+};
+
+// Owns one instance's data; copies clone it (so a Data stays copyable).
+struct PluginDataSlot {
+  std::unique_ptr<PluginInstanceData> data;
+  PluginDataSlot() = default;
+  PluginDataSlot(const PluginDataSlot& o) : data(o.data ? o.data->Clone() : nullptr) {}
+  PluginDataSlot& operator=(const PluginDataSlot& o) {
+    data = o.data ? o.data->Clone() : nullptr;
+    return *this;
+  }
+  PluginDataSlot(PluginDataSlot&&) = default;
+  PluginDataSlot& operator=(PluginDataSlot&&) = default;
+};
 
 struct Data {
   double time = 0;
@@ -273,6 +296,9 @@ struct Data {
   std::vector<Contact> distance_scratch;
   BroadPhaseScratch broadphase;
   SolverScratch solver_scratch;
+
+  // Each plugin instance's data (nplugin; see simlab/plugin.h).
+  std::vector<PluginDataSlot> plugin_data;
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData for
   // the model's integrator (StackDoubles). A stage that finds it short takes the rest

@@ -409,6 +409,7 @@ struct Statistic {
   X(int, actuator_history, nactuator, 2)  /* nsample, interp */      \
   X(int, actuator_historyadr, nactuator, 1) /* -1: none */         \
   X(double, actuator_delay, nactuator, 1)          \
+  X(int, actuator_plugin, nactuator, 1) /* plugin instance, or -1 */ \
   /* sensors */                                    \
   X(int, sensor_type, nsensor, 1)                  \
   X(int, sensor_datatype, nsensor, 1)              \
@@ -427,6 +428,11 @@ struct Statistic {
   X(double, sensor_delay, nsensor, 1)              \
   X(double, sensor_interval, nsensor, 2) /* period, phase */ \
   X(double, sensor_user, nsensor, nuser_sensor)    \
+  /* plugin instances */                           \
+  X(int, plugin, nplugin, 1)        /* registry slot */ \
+  X(int, plugin_stateadr, nplugin, 1)              \
+  X(int, plugin_statenum, nplugin, 1)              \
+  X(int, plugin_attradr, nplugin, 1) /* in plugin_attr */ \
   /* keyframes */                                  \
   X(double, key_time, nkey, 1)                     \
   X(double, key_qpos, nkey, nq)                    \
@@ -487,7 +493,9 @@ struct Statistic {
   X(nmocap3)     /* 3 * nmocap (row width of key_mpos) */                  \
   X(nmocap4)     /* 4 * nmocap (row width of key_mquat) */                 \
   X(nM)          /* nonzeros of the inertia matrix in tree layout */       \
-  X(ngravcomp)   /* bodies with positive gravcomp */
+  X(ngravcomp)   /* bodies with positive gravcomp */                       \
+  X(nplugin)     /* plugin instances (<extension>, or implicit ones) */    \
+  X(npluginstate) /* numbers in plugin_state, all instances */
 
 // A view of one array of a Model or Data by its MuJoCo name (for bindings and the lab).
 struct FieldView {
@@ -520,6 +528,10 @@ struct Model {
 #define SIMLAB_X(type, name, rows, cols) std::vector<type> name;
   SIMLAB_MODEL_FIELDS(SIMLAB_X)
 #undef SIMLAB_X
+
+  // Plugin instances' configuration: for each, its plugin's attributes in declared order,
+  // each a string ended by '\0' ("" when not given), from plugin_attradr on.
+  std::string plugin_attr;
 
   // names of objects, one vector per named kind (body_names[i] is body i's name, or "")
 #define SIMLAB_X(kind, count) std::vector<std::string> kind##_names;

@@ -287,6 +287,13 @@ int DcmotorInputs(const mjcf::ActuatorSpec& a, int actdim) {
 }  // namespace
 
 ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a) {
+  // A plugin's actuator: one control and one output, its states as actdim says (the
+  // built-in dynamics' one by default), none of the built-in types' checks.
+  if (a.is_plugin) {
+    ActuatorShape shape;
+    shape.actnum = a.actdim > 0 ? a.actdim : (a.dyntype != kDynNone ? 1 : 0);
+    return shape;
+  }
   if (a.dyntype == kDynUser || a.gaintype == kGainUser || a.biastype == kBiasUser) {
     ThrowAt(a.src, "user-defined actuator dynamics, gain or bias are not supported yet");
   }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "compiler/compiler.h"
+#include "simlab/plugin.h"
 #include "mjcf/assets.h"
 #include "mjcf/error.h"
 #include "mjcf/limits.h"
@@ -34,6 +35,7 @@ void SectionSizes(const mjcf::ModelSpec& spec, Model* m) {
   m->npair = static_cast<int>(spec.pairs.size());
   m->nexclude = static_cast<int>(spec.excludes.size());
   m->nsensor = static_cast<int>(spec.sensors.size());
+  m->nplugin = static_cast<int>(spec.plugin_instances.size() + spec.implicit_instances.size());
   m->nuser_sensor = NUserSensor(spec);
 
   // <size nuser_sensor> numbers for each sensor: within the budget of one array.
@@ -122,13 +124,19 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);
   CompileActuators(spec, state, &m);
+  CompilePlugins(spec, &m);
   CompileKeyframes(spec, state, &m);
   CompileSensors(spec, &m);
   CheckDataBudget(spec, m);
 
   // Whole-model adjustments and constants at qpos0.
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
-  ComputeConstants(&m);
+  // (the first Data made runs the plugins' init: a bad configuration fails here)
+  try {
+    ComputeConstants(&m);
+  } catch (const PluginInitError& e) {
+    mjcf::ThrowAt(PluginInstanceSource(spec, e.instance), e.what());
+  }
   CameraConstants(&m);
   EqualityConstants(&m);
   AutoSpringDamper(state, &m);

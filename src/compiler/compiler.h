@@ -165,6 +165,10 @@ struct ActuatorShape {
 };
 ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a);
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
+// Plugin instances, their configuration and state sizes, actuator_plugin (plugin.cc);
+// where instance `instance` was written (for its plugin's errors at init).
+void CompilePlugins(const mjcf::ModelSpec& spec, Model* m);
+const mjcf::Source& PluginInstanceSource(const mjcf::ModelSpec& spec, int instance);
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 // Sensors (sensor.cc): user numbers per sensor (before allocation), then every sensor,
 // sensordata addresses and the actuator/sensor history buffer layout.

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/field_view.h"
+#include "engine/engine.h"
 #include "mjcf/limits.h"
 #include "simlab/data.h"
 #include "simlab/simlab.h"
@@ -72,6 +73,7 @@ Data MakeData(const Model& m) {
   d.moment_colind.assign(static_cast<size_t>(m.nout) * m.nv, 0);
   d.ten_J_rownnz.assign(static_cast<size_t>(m.ntendon), 0);
   d.ten_J_colind.assign(static_cast<size_t>(m.ntendon) * m.nv, 0);
+  InitPlugins(m, d);
   ResetData(m, d);
   return d;
 }

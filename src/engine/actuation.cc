@@ -231,6 +231,11 @@ void Actuation(const Model& m, Data& d) {
   // Activation dynamics, then forces (disabled actuators stay at zero).
   for (int i = 0; i < m.nactuator; i++) {
     if (m.actuator_actadr[i] < 0) continue;
+    // (a plugin's own states wait for its act_dot; the built-in dynamics has the last)
+    if (m.actuator_plugin[i] >= 0) {
+      std::fill_n(&d.act_dot[m.actuator_actadr[i]], m.actuator_actnum[i], 0.0);
+      if (m.actuator_dyntype[i] == kDynNone) continue;
+    }
     if (m.actuator_dyntype[i] == kDynPid) {
       PidActivation(m, d, i, ctrl);
     } else if (m.actuator_dyntype[i] == kDynDcmotor) {
@@ -243,8 +248,9 @@ void Actuation(const Model& m, Data& d) {
       ActivationRate(m, d, i, ctrl[m.actuator_ctrladr[i]]);
     }
   }
+  PluginActDot(m, d);
   for (int i = 0; i < m.nactuator; i++) {
-    if (ActuatorDisabled(m, i)) continue;
+    if (ActuatorDisabled(m, i) || m.actuator_plugin[i] >= 0) continue;
     if (m.actuator_gaintype[i] == kGainSo3) {
       So3Force(m, d, i, ctrl, d.actuator_force.data());
       continue;
@@ -256,6 +262,8 @@ void Actuation(const Model& m, Data& d) {
       default: force = ActuatorForce(m, d, i, ctrl[m.actuator_ctrladr[i]]);
     }
   }
+
+  PluginActuatorForces(m, d);
 
   // Clamps: tendon totals, then each output (of disabled actuators too) to its
   // actuator's forcerange.
@@ -273,7 +281,8 @@ void Actuation(const Model& m, Data& d) {
   }
   // A DC motor's cogging and friction are mechanical: past the electrical clamp.
   for (int i = 0; i < m.nactuator; i++) {
-    if (m.actuator_biastype[i] == kBiasDcmotor && !ActuatorDisabled(m, i)) DcmotorMechanics(m, d, i);
+    if (m.actuator_biastype[i] != kBiasDcmotor || ActuatorDisabled(m, i) || m.actuator_plugin[i] >= 0) continue;
+    DcmotorMechanics(m, d, i);
   }
 
   // Joint space, clamped per joint to actuatorfrcrange.

@@ -126,6 +126,14 @@ void EnergyVel(const Model& m, Data& d);
 
 // ------------------------------------------------------------ acceleration stage
 
+// The plugin instances' hooks (plugin.cc): init when a Data is made (plugin_data),
+// reset, actuator act_dot and forces, passive forces, and after a step.
+void InitPlugins(const Model& m, Data& d);
+void ResetPlugins(const Model& m, Data& d);
+void PluginActDot(const Model& m, Data& d);
+void PluginActuatorForces(const Model& m, Data& d);
+void PluginPassiveForces(const Model& m, Data& d);
+void PluginAdvance(const Model& m, Data& d);
 // act_dot, actuator_force, qfrc_actuator (actuation.cc).
 void Actuation(const Model& m, Data& d);
 // The activation after one step of its dynamics, clamped to actrange (actuation.cc).

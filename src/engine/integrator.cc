@@ -63,6 +63,7 @@ void Advance(const Model& m, Data& d, const double* act_dot, const double* qacc,
   IntegratePos(m, d.qpos.data(), qvel_for_pos ? qvel_for_pos : d.qvel.data(), h);
   d.time += h;
   d.qacc_warmstart = d.qacc;
+  PluginAdvance(m, d);
 }
 
 }  // namespace

@@ -159,11 +159,14 @@ void Passive(const Model& m, Data& d) {
   FluidForces(m, d);
 
   // Gravity compensation: passive, except on joints that route it through actuation.
-  if (!GravcompActive(m)) return;
-  GravityCompensation(m, d);
-  for (int v = 0; v < m.nv; v++) {
-    if (!m.jnt_actgravcomp[m.dof_jntid[v]]) d.qfrc_passive[v] += d.qfrc_gravcomp[v];
+  if (GravcompActive(m)) {
+    GravityCompensation(m, d);
+    for (int v = 0; v < m.nv; v++) {
+      if (!m.jnt_actgravcomp[m.dof_jntid[v]]) d.qfrc_passive[v] += d.qfrc_gravcomp[v];
+    }
   }
+  // Passive-force plugins add theirs last.
+  PluginPassiveForces(m, d);
 }
 
 }  // namespace simlab

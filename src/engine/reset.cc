@@ -2,6 +2,7 @@
 // (MuJoCo mj_resetData, mj_resetDataKeyframe).
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/engine.h"
@@ -31,6 +32,8 @@ void CopyKeyRow(const std::vector<double>& array, int key, int n, std::vector<do
 }  // namespace
 
 void ResetData(const Model& m, Data& d) {
+  // (plugins keep their state numbers for their reset to set)
+  std::vector<double> plugin_state = d.plugin_state;
   // Everything computed or applied goes to zero...
 #define SIMLAB_X(type, name, rows, cols) std::fill(d.name.begin(), d.name.end(), type{});
   SIMLAB_DATA_FIELDS(SIMLAB_X)
@@ -65,6 +68,8 @@ void ResetData(const Model& m, Data& d) {
   if (d.stack.size() < need) d.stack.assign(need, 0.0);
   d.stack_top = 0;
   d.stack_overflow = 0;
+  d.plugin_state = std::move(plugin_state);
+  ResetPlugins(m, d);
 }
 
 void ResetDataKeyframe(const Model& m, Data& d, int key) {

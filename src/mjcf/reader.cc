@@ -12,7 +12,7 @@ namespace {
 
 // Top-level sections that MuJoCo accepts but simlab does not implement yet.
 bool IsUnsupportedSection(const std::string& tag) {
-  for (const char* name : {"extension", "deformable"}) {
+  for (const char* name : {"deformable"}) {
     if (tag == name) return true;
   }
   return false;
@@ -84,7 +84,7 @@ void Reader::Root(pugi::xml_node root) {
   static const char* kSections[] = {"compiler", "option",  "size",     "visual",
                                     "statistic", "default", "custom",   "asset",
                                     "contact",  "tendon",  "actuator", "keyframe",
-                                    "worldbody", "sensor", "equality"};
+                                    "worldbody", "sensor", "equality", "extension"};
   for (pugi::xml_node child : root.children()) {
     if (child.type() != pugi::node_element) continue;
     XmlElement e = Element(child);
@@ -104,6 +104,7 @@ void Reader::Root(pugi::xml_node root) {
   each("visual", [&](const XmlElement& e) { Visual(e); });
   each("statistic", [&](const XmlElement& e) { Statistic(e); });
   each("default", [&](const XmlElement& e) { Default(e, nullptr); });
+  each("extension", [&](const XmlElement& e) { Extension(e); });
   each("custom", [&](const XmlElement& e) { Custom(e); });
   each("asset", [&](const XmlElement& e) { Asset(e); });
   each("contact", [&](const XmlElement& e) { Contact(e); });

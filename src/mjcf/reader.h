@@ -101,6 +101,12 @@ class Reader {
   void ReadTendon(const XmlElement& e, TendonSpec* tendon, bool in_default) const;
   WrapSpec ReadWrap(const XmlElement& e, bool spatial) const;
   void ReadActuator(const XmlElement& e, ActuatorSpec* act, bool in_default) const;
+  // <extension>: the plugins used and their named instances; an element's <config>
+  // children (key/value pairs).
+  void Extension(const XmlElement& e);
+  std::vector<std::pair<std::string, std::string>> ReadConfigs(const XmlElement& e) const;
+  // <actuator><plugin>: an actuator computed by a plugin.
+  void ReadPluginActuator(const XmlElement& e, ActuatorSpec* act);
   void ReadTransmission(const XmlElement& e, ActuatorSpec* act) const;
   void ReadShortcut(const XmlElement& e, ActuatorSpec* act) const;
 

@@ -33,6 +33,12 @@ std::vector<const char*> ActuatorAttributes(const std::string& tag, bool in_defa
             "gaintype", "biastype", "dynprm", "gainprm", "biasprm", "actearly", "input",
             "velrange", "ffrange"};
   }
+  if (tag == "plugin") {  // (an <actuator><plugin>; there is no plugin default)
+    return {"name", "class", "group", "nsample", "interp", "delay", "ctrlrange", "user",
+            "plugin", "instance", "ctrllimited", "forcelimited", "actlimited", "forcerange",
+            "actrange", "lengthrange", "gear", "cranklength", "joint", "jointinparent", "site",
+            "tendon", "cranksite", "slidersite", "actdim", "dyntype", "dynprm", "actearly"};
+  }
   if (tag == "orientation") {
     std::vector<const char*> so3 = {"group", "nsample", "interp", "delay", "ctrlrange", "user",
                                     "forcelimited", "forcerange", "kp", "kv", "dampratio",
@@ -272,6 +278,20 @@ void Reader::ReadTransmission(const XmlElement& e, ActuatorSpec* a) const {
 
 namespace {
 
+// A servo's damping: kv (stored negative in biasprm[2]) or a dampratio (stored positive,
+// turned into a damping at compile time), not both.
+void SetDamping(const XmlElement& e, ActuatorSpec* a, Maybe kv, Maybe dampratio) {
+  if (kv.has && dampratio.has) e.Fail("kv and dampratio cannot both be defined");
+  if (kv.has) {
+    if (kv.value < 0) e.Fail("kv cannot be negative");
+    a->biasprm[2] = -kv.value;
+  }
+  if (dampratio.has) {
+    if (dampratio.value < 0) e.Fail("dampratio cannot be negative");
+    a->biasprm[2] = dampratio.value;
+  }
+}
+
 // motor: unit gain, no dynamics or bias.
 void SetMotor(ActuatorSpec* a) {
   a->gainprm[0] = 1;
@@ -286,15 +306,7 @@ void SetPosition(const XmlElement& e, ActuatorSpec* a, double kp, Maybe kv, Mayb
                  Maybe timeconst, double inheritrange) {
   a->gainprm[0] = kp;
   a->biasprm[1] = -kp;
-  if (kv.has && dampratio.has) e.Fail("kv and dampratio cannot both be defined");
-  if (kv.has) {
-    if (kv.value < 0) e.Fail("kv cannot be negative");
-    a->biasprm[2] = -kv.value;
-  }
-  if (dampratio.has) {
-    if (dampratio.value < 0) e.Fail("dampratio cannot be negative");
-    a->biasprm[2] = dampratio.value;
-  }
+  SetDamping(e, a, kv, dampratio);
   if (timeconst.has) {
     if (timeconst.value < 0) e.Fail("timeconst cannot be negative");
     a->dynprm[0] = timeconst.value;
@@ -403,16 +415,8 @@ struct PidAttrs {
 };
 
 void SetPid(const XmlElement& e, ActuatorSpec* a, const PidAttrs& p) {
-  if (p.kv.has && p.dampratio.has) e.Fail("kv and dampratio cannot both be defined");
   a->biasprm[1] = -p.kp;
-  if (p.kv.has) {
-    if (p.kv.value < 0) e.Fail("kv cannot be negative");
-    a->biasprm[2] = -p.kv.value;
-  }
-  if (p.dampratio.has) {
-    if (p.dampratio.value < 0) e.Fail("dampratio cannot be negative");
-    a->biasprm[2] = p.dampratio.value;
-  }
+  SetDamping(e, a, p.kv, p.dampratio);
   if (p.slewmax < 0) e.Fail("slewmax cannot be negative");
   a->gainprm[0] = p.ki;
   a->dynprm[1] = p.slewmax;
@@ -430,17 +434,9 @@ void SetPid(const XmlElement& e, ActuatorSpec* a, const PidAttrs& p) {
 // kv w on 3 outputs, commanded by a rotation vector (3 controls) or a quaternion (4).
 // kp also sits in biasprm[1] (as a position servo's, for dampratio), kv in biasprm[2].
 void SetOrientation(const XmlElement& e, ActuatorSpec* a, double kp, Maybe kv, Maybe dampratio) {
-  if (kv.has && dampratio.has) e.Fail("kv and dampratio cannot both be defined");
   a->gainprm[0] = kp;
   a->biasprm[1] = -kp;
-  if (kv.has) {
-    if (kv.value < 0) e.Fail("kv cannot be negative");
-    a->biasprm[2] = -kv.value;
-  }
-  if (dampratio.has) {
-    if (dampratio.value < 0) e.Fail("dampratio cannot be negative");
-    a->biasprm[2] = dampratio.value;
-  }
+  SetDamping(e, a, kv, dampratio);
   a->gaintype = kGainSo3;
   a->biastype = kBiasSo3;
   a->dyntype = kDynNone;
@@ -540,11 +536,18 @@ void SetDcmotor(const XmlElement& e, ActuatorSpec* a, const DcmotorAttrs& p) {
 
 void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
   const std::string& tag = e.tag();
-  if (tag == "general") {
-    static const std::initializer_list<Keyword> kDyn = {
-        {"none", kDynNone},           {"integrator", kDynIntegrator}, {"filter", kDynFilter},
-        {"filterexact", kDynFilterExact}, {"muscle", kDynMuscle},     {"dcmotor", kDynDcmotor},
-        {"pid", kDynPid},             {"user", kDynUser}};
+  static const std::initializer_list<Keyword> kDyn = {
+      {"none", kDynNone},           {"integrator", kDynIntegrator}, {"filter", kDynFilter},
+      {"filterexact", kDynFilterExact}, {"muscle", kDynMuscle},     {"dcmotor", kDynDcmotor},
+      {"pid", kDynPid},             {"user", kDynUser}};
+  if (tag == "plugin") {
+    e.Text("plugin", &a->plugin);
+    e.Text("instance", &a->instance);
+    e.Int("actdim", &a->actdim);
+    e.Enum("dyntype", &a->dyntype, kDyn);
+    e.Numbers("dynprm", a->dynprm, false);
+    e.Bool("actearly", &a->actearly);
+  } else if (tag == "general") {
     e.Enum("dyntype", &a->dyntype, kDyn);
     e.Enum("gaintype", &a->gaintype,
            {{"fixed", kGainFixed}, {"affine", kGainAffine}, {"muscle", kGainMuscle},

@@ -409,11 +409,14 @@ void Reader::Actuator(const XmlElement& e) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     const std::string& tag = c.tag();
-    if (tag == "plugin") NotSupported(c, "actuator plugins");
-    if (!IsActuatorElement(tag)) Unknown(c);
+    if (!IsActuatorElement(tag) && tag != "plugin") Unknown(c);
     const DefaultClass* cls = FindClass(c, "class");
     ActuatorSpec act = cls ? cls->actuator : classes_.at("main")->actuator;
-    ReadActuator(c, &act, false);
+    if (tag == "plugin") {
+      ReadPluginActuator(c, &act);
+    } else {
+      ReadActuator(c, &act, false);
+    }
     spec_->actuators.push_back(std::move(act));
   }
 }

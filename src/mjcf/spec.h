@@ -267,6 +267,19 @@ struct ActuatorSpec {
   // damping at the transmission target: linear, then |v| v and v^3 terms (MuJoCo 3.7+)
   std::array<double, 1 + kNPoly> damping = {0, 0, 0};
   double armature = 0;
+  // An actuator plugin (<actuator><plugin>): the plugin and/or a named instance of it, or
+  // its own (implicit) instance, ModelSpec::implicit_instances[implicit_instance].
+  bool is_plugin = false;
+  std::string plugin, instance;
+  int implicit_instance = -1;
+};
+
+// A plugin instance: <extension><plugin plugin=P><instance name=N> with its <config>
+// key/values, or one made by an element that uses a plugin without naming an instance.
+struct PluginInstanceSpec {
+  Source src;
+  std::string plugin, name;
+  std::vector<std::pair<std::string, std::string>> config;
 };
 
 // A sensor (MuJoCo's mjsSensor): what it measures (type, object, reference object),
@@ -431,6 +444,10 @@ struct ModelSpec {
   std::vector<TendonSpec> tendons;
   std::vector<ActuatorSpec> actuators;
   std::vector<SensorSpec> sensors;
+  // Plugins: those <extension> activates, its named instances, and implicit instances.
+  std::vector<std::pair<std::string, Source>> active_plugins;
+  std::vector<PluginInstanceSpec> plugin_instances;
+  std::vector<PluginInstanceSpec> implicit_instances;
   std::vector<EqualitySpec> equalities;
   std::vector<PairSpec> pairs;
   std::vector<ExcludeSpec> excludes;

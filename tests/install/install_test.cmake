@@ -6,4 +6,4 @@ add_test(NAME install_find_package
          COMMAND bash ${CMAKE_SOURCE_DIR}/tests/install/run_install_test.sh
                  ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR} ${CMAKE_COMMAND} "${CMAKE_GENERATOR}"
                  ${CMAKE_CXX_COMPILER} $<CONFIG>)
-set_tests_properties(install_find_package PROPERTIES TIMEOUT 120)
+set_tests_properties(install_find_package PROPERTIES TIMEOUT 300)
