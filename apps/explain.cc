@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "simlab/plugin.h"
 #include "simlab/simlab.h"
 
 namespace simlab::apps {
@@ -136,6 +137,7 @@ std::string PidShortcut(const Model& m, int i) {
 
 // The shortcut element these parameters are an instance of, or "general".
 std::string ReadsAs(const Model& m, int i) {
+  if (m.actuator_plugin[i] >= 0) return "plugin " + Quoted(PluginAt(m.plugin[m.actuator_plugin[i]]).name);
   const double *g = Gain(m, i), *b = Bias(m, i);
   int dyn = m.actuator_dyntype[i], gain = m.actuator_gaintype[i], bias = m.actuator_biastype[i];
   if (gain == kGainMuscle) return "muscle";
@@ -481,6 +483,22 @@ std::string ExplainSensor(const Model& m, int i) {
 std::string ExplainActuator(const Model& m, int i) {
   std::string head = "actuator " + std::to_string(i) + " " + Quoted(m.actuator_names[i]) +
                      ", reads as: " + ReadsAs(m, i) + "\n";
+  if (m.actuator_plugin[i] >= 0) {
+    // (a plugin computes p: the law's gain and bias are not used)
+    const Plugin& plugin = PluginAt(m.plugin[m.actuator_plugin[i]]);
+    std::string config;
+    for (const std::string& key : plugin.attributes) {
+      std::string value = PluginConfig(m, m.actuator_plugin[i], key);
+      if (!value.empty()) config += (config.empty() ? "" : ", ") + key + " " + value;
+    }
+    return head + Line("law", "p computed by plugin " + Quoted(plugin.name) + " (instance " +
+                                  std::to_string(m.actuator_plugin[i]) + ": " +
+                                  (config.empty() ? "no config" : config) + ")") +
+           Line("u", "ctrl[" + std::to_string(m.actuator_ctrladr[i]) + "], read by the plugin") +
+           Line("dynamics", DynamicsText(m, i) +
+                                (m.actuator_actnum[i] ? "; the plugin's states first" : "")) +
+           Line("transmission", TransmissionText(m, i)) + ClampLines(m, i);
+  }
   return head + Line("law", LawText(m, i)) + Line("a (gain)", GainText(m, i)) +
          Line("b (bias)", BiasText(m, i)) + Line("u", InputText(m, i)) +
          Line("dynamics", DynamicsText(m, i)) + Line("transmission", TransmissionText(m, i)) +

@@ -66,6 +66,19 @@ TEST(Explain, DcmotorListsItsStates) {
   EXPECT_TRUE(Contains(text, "dcmotor: states position error integral, winding temperature")) << text;
 }
 
+// An actuator computed by a plugin reads as that plugin, with its configuration.
+TEST(Explain, PluginActuatorNamesItsPlugin) {
+  Model m = LoadXmlString(
+      "<mujoco><extension><plugin plugin='mujoco.pid'><instance name='p'>"
+      "<config key='kp' value='20'/><config key='kd' value='1.5'/></instance></plugin></extension>"
+      "<worldbody><body><joint name='h'/><geom size='.1'/></body></worldbody>"
+      "<actuator><plugin joint='h' instance='p'/></actuator></mujoco>");
+  std::string text = ExplainActuator(m, 0);
+  EXPECT_TRUE(Contains(text, "reads as: plugin \"mujoco.pid\"")) << text;
+  EXPECT_TRUE(Contains(text, "p computed by plugin \"mujoco.pid\" (instance 0: kp 20, kd 1.5)")) << text;
+  EXPECT_FALSE(Contains(text, "a (gain)")) << text;
+}
+
 // Every bench actuator: its shortcut, law, gear, dynamics and clamps.
 TEST(Explain, BenchReadsAsTheLessonsTable) {
   std::ostringstream out;
