@@ -97,7 +97,10 @@ void Limits(const mjcf::ModelSpec& spec, const mjcf::ActuatorSpec& a,
   int u = m->actuator_ctrladr[i], o = m->actuator_outadr[i];
   m->actuator_forcelimited[i] = Limited(spec, a.src, a.forcelimited, a.forcerange, "force");
   bool ctrllimited = Limited(spec, a.src, a.ctrllimited, ctrl, "ctrl");
-  m->actuator_actlimited[i] = Limited(spec, a.src, a.actlimited, act, "act");
+  // (an so3 integrator limited with no range is unlimited, as MuJoCo)
+  bool so3 = a.gaintype == kGainSo3;
+  int actlimited = so3 && a.actlimited == kTrue && act[0] == 0 && act[1] == 0 ? mjcf::kFalse : a.actlimited;
+  m->actuator_actlimited[i] = Limited(spec, a.src, actlimited, act, "act");
   if (m->actuator_forcelimited[i] && a.forcerange[0] >= a.forcerange[1]) ThrowAt(a.src, "invalid forcerange");
   if (ctrllimited && ctrl[0] >= ctrl[1]) ThrowAt(a.src, "invalid ctrlrange");
   if (m->actuator_actlimited[i] && act[0] >= act[1]) ThrowAt(a.src, "invalid actrange");
@@ -367,10 +370,7 @@ void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Mo
     if (so3) CheckSo3Target(a, state, trnid);
     std::array<double, 2> ctrl = a.ctrlrange, act = a.actrange;
     InheritRange(a, state, *m, trnid, &ctrl, &act);
-    // (an so3 integrator limited with no range is unlimited)
-    mjcf::ActuatorSpec limits = a;
-    if (so3 && a.actlimited == kTrue && act[0] == 0 && act[1] == 0) limits.actlimited = mjcf::kFalse;
-    Limits(spec, limits, ctrl, act, i, m);
+    Limits(spec, a, ctrl, act, i, m);
 
     // Types, parameters, activation layout.
     m->actuator_trntype[i] = so3 ? kTrnSo3 : a.trntype;

@@ -15,6 +15,7 @@
 
 #include "engine/engine.h"
 #include "engine/rows.h"
+#include "engine/servo.h"
 #include "engine/stack.h"
 
 namespace simlab {
@@ -47,12 +48,18 @@ void EffectiveControls(const Model& m, Data& d, double* ctrl) {
   }
 }
 
-// act_dot of actuator i from its dynamics type.
-void ActivationRate(const Model& m, Data& d, int i, double ctrl) {
+// act_dot of actuator i from its dynamics type and its controls `u` (an integrator
+// integrates each of them into its last states; the others read one).
+void ActivationRate(const Model& m, Data& d, int i, const double* u) {
   int adr = m.actuator_actadr[i] + m.actuator_actnum[i] - 1;
+  double ctrl = u[0];
   const double* prm = &m.actuator_dynprm[kNDyn * i];
   switch (m.actuator_dyntype[i]) {
-    case kDynIntegrator: d.act_dot[adr] = ctrl; break;
+    case kDynIntegrator: {
+      int n = m.actuator_ctrlnum[i];
+      for (int k = 0; k < n; k++) d.act_dot[adr - n + 1 + k] = u[k];
+      break;
+    }
     case kDynFilter:
     case kDynFilterExact: d.act_dot[adr] = (ctrl - d.act[adr]) / std::max(kMinVal, prm[0]); break;
     case kDynMuscle: d.act_dot[adr] = MuscleDynamics(ctrl, d.act[adr], prm); break;
@@ -108,20 +115,13 @@ void PidActivation(const Model& m, Data& d, int i, double* ctrl) {
   if (slewmax > 0) {
     double previous = d.act[a];
     double target = period > 0 ? WrapSetpoint(u, previous, period) : u;
-    double step = slewmax * h;
-    double limited = std::clamp(target, previous - step, previous + step);
-    d.act_dot[a] = (limited - previous) / h;
-    u = limited;
+    u = SlewLimit(target, previous, slewmax, h, &d.act_dot[a]);
     a++;
   }
   if (ki > 0) {
     double error = u - d.actuator_length[m.actuator_outadr[i]];
     if (period > 0) error -= period * std::round(error / period);
-    if (imax > 0) {
-      if (d.act[a] >= imax) error = std::min(error, 0.0);
-      else if (d.act[a] <= -imax) error = std::max(error, 0.0);
-    }
-    d.act_dot[a] = error;
+    d.act_dot[a] = IntegralRate(error, d.act[a], imax);
   }
 }
 
@@ -240,12 +240,8 @@ void Actuation(const Model& m, Data& d) {
       PidActivation(m, d, i, ctrl);
     } else if (m.actuator_dyntype[i] == kDynDcmotor) {
       DcmotorActivation(m, d, i, ctrl);
-    } else if (m.actuator_ctrlnum[i] > 1) {
-      // (an integrator of several controls: the last states, one per control)
-      int n = m.actuator_ctrlnum[i], first = m.actuator_actadr[i] + m.actuator_actnum[i] - n;
-      for (int k = 0; k < n; k++) d.act_dot[first + k] = ctrl[m.actuator_ctrladr[i] + k];
     } else {
-      ActivationRate(m, d, i, ctrl[m.actuator_ctrladr[i]]);
+      ActivationRate(m, d, i, ctrl + m.actuator_ctrladr[i]);
     }
   }
   PluginActDot(m, d);

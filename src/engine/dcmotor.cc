@@ -19,6 +19,7 @@
 #include <cmath>
 
 #include "engine/engine.h"
+#include "engine/servo.h"
 
 namespace simlab {
 
@@ -98,21 +99,13 @@ void DcmotorActivation(const Model& m, Data& d, int i, double* ctrl) {
 
   // The setpoint moves at most slewmax per second; the local ctrl keeps the limited one.
   if (s.slew >= 0) {
-    double previous = d.act[first + s.slew], step = dyn[7] * h;
-    double limited = std::clamp(ctrl[u], previous - step, previous + step);
-    d.act_dot[first + s.slew] = (limited - previous) / h;
-    ctrl[u] = limited;
+    ctrl[u] = SlewLimit(ctrl[u], d.act[first + s.slew], dyn[7], h, &d.act_dot[first + s.slew]);
   }
   // The integral of the position error stops growing past imax.
   double integral = 0;
   if (s.integral >= 0) {
     integral = d.act[first + s.integral];
-    double error = ctrl[u] - l;
-    if (dyn[8] > 0) {
-      if (integral >= dyn[8]) error = std::min(error, 0.0);
-      else if (integral <= -dyn[8]) error = std::max(error, 0.0);
-    }
-    d.act_dot[first + s.integral] = error;
+    d.act_dot[first + s.integral] = IntegralRate(ctrl[u] - l, integral, dyn[8]);
   }
   double voltage = Voltage(m, i, ctrl + u, l, velocity, integral);
   // The winding heats by R i^2 and cools through RT.
