@@ -106,8 +106,8 @@ TEST(MjcfErrors, MissingFile) {
 }
 
 TEST(MjcfErrors, NotSupportedYet) {
-  ExpectError("<mujoco>\n<sensor>\n<plugin plugin=\"p\"/>\n</sensor>\n</mujoco>",
-              {"bad.xml:3:", "the sensor plugin is not supported yet"});
+  ExpectError("<mujoco>\n<worldbody>\n<geom size=\".1\">\n<plugin plugin=\"p\"/></geom>\n</worldbody>\n</mujoco>",
+              {"bad.xml:4:", "a geom's <plugin>", "not supported yet"});
   ExpectError("<mujoco>\n<equality>\n<flex flex=\"f\"/>\n</equality>\n</mujoco>",
               {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
   ExpectError("<mujoco>\n<asset>\n<hfield name=\"h\" file=\"h.png\"/>\n</asset>\n</mujoco>",

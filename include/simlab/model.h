@@ -223,6 +223,7 @@ struct Statistic {
   X(double, body_invweight0, nbody, 2)             \
   X(int, body_contype, nbody, 1)                   \
   X(int, body_conaffinity, nbody, 1)               \
+  X(int, body_plugin, nbody, 1) /* plugin instance, or -1 */ \
   /* joints */                                     \
   X(int, jnt_type, njnt, 1)                        \
   X(int, jnt_qposadr, njnt, 1)                     \
@@ -428,6 +429,7 @@ struct Statistic {
   X(double, sensor_delay, nsensor, 1)              \
   X(double, sensor_interval, nsensor, 2) /* period, phase */ \
   X(double, sensor_user, nsensor, nuser_sensor)    \
+  X(int, sensor_plugin, nsensor, 1) /* plugin instance, or -1 */ \
   /* plugin instances */                           \
   X(int, plugin, nplugin, 1)        /* registry slot */ \
   X(int, plugin_stateadr, nplugin, 1)              \

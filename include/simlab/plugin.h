@@ -7,6 +7,8 @@
 //   <actuator><plugin joint="shoulder" instance="arm" actdim="1"/></actuator>
 //
 // (or an implicit instance: <plugin plugin="mujoco.pid" joint="j"><config .../></plugin>).
+// Sensors are <sensor><plugin instance=... [objtype objname reftype refname]/>, and a
+// body's <plugin instance=.../> attaches an instance to it (Model::body_plugin).
 // A plugin keeps its numbers in d.plugin_state (plugin_stateadr/statenum per instance),
 // or in d.act for an actuator plugin's states (its actdim), and anything else in the
 // PluginInstanceData its init returns. Register a plugin before loading the models that
@@ -41,9 +43,16 @@ struct Plugin {
   std::string name;                     // unique, e.g. "mujoco.pid"
   int capabilities = 0;                 // PluginCapability bits
   std::vector<std::string> attributes;  // the config keys it reads, in their order
+  // Sensors: the stage whose results compute reads (kStagePos, kStageVel or kStageAcc;
+  // kStageNone is computed with kStagePos, but its sensors' cutoffs are not applied, as
+  // in MuJoCo).
+  int needstage = kStageNone;
 
   // Numbers of plugin_state the instance keeps (none when unset).
   std::function<int(const Model& m, int instance)> nstate;
+  // Sensors: the numbers sensor `sensor_id` (a sensor of this instance) outputs; required
+  // of a sensor plugin. Called when the model is compiled.
+  std::function<int(const Model& m, int instance, int sensor_id)> nsensordata;
   // Makes the instance's data when a Data is made; throws simlab::Error on a bad
   // configuration (the model then fails to load, with the message).
   std::function<std::unique_ptr<PluginInstanceData>(const Model& m, Data& d, int instance)> init;
@@ -52,7 +61,9 @@ struct Plugin {
   // Actuators: act_dot of its states, after the built-in dynamics and before the forces.
   std::function<void(const Model& m, Data& d, int instance)> actuator_act_dot;
   // The computation for one capability: actuator_force of its actuators (clamped to their
-  // forcerange afterwards), or additions to qfrc_passive.
+  // forcerange afterwards), sensordata of its sensors (at sensor_adr, after the built-in
+  // sensors of its needstage; their cutoffs apply afterwards), or additions to
+  // qfrc_passive.
   std::function<void(const Model& m, Data& d, int instance, int capability)> compute;
   // After a step has advanced the state and time.
   std::function<void(const Model& m, Data& d, int instance)> advance;

@@ -292,7 +292,7 @@ int DcmotorInputs(const mjcf::ActuatorSpec& a, int actdim) {
 ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a) {
   // A plugin's actuator: one control and one output, its states as actdim says (the
   // built-in dynamics' one by default), none of the built-in types' checks.
-  if (a.is_plugin) {
+  if (a.plugin.active) {
     ActuatorShape shape;
     shape.actnum = a.actdim > 0 ? a.actdim : (a.dyntype != kDynNone ? 1 : 0);
     return shape;

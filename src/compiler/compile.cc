@@ -124,7 +124,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);
   CompileActuators(spec, state, &m);
-  CompilePlugins(spec, &m);
+  CompilePlugins(spec, state, &m);
   CompileKeyframes(spec, state, &m);
   CompileSensors(spec, &m);
   CheckDataBudget(spec, m);

@@ -22,6 +22,7 @@
 #include "mjcf/spec.h"
 #include "simlab/data.h"
 #include "simlab/model.h"
+#include "simlab/plugin.h"
 
 namespace simlab::compiler {
 
@@ -165,9 +166,14 @@ struct ActuatorShape {
 };
 ActuatorShape ActuatorShapeOf(const mjcf::ActuatorSpec& a);
 void CompileActuators(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
-// Plugin instances, their configuration and state sizes, actuator_plugin (plugin.cc);
-// where instance `instance` was written (for its plugin's errors at init).
-void CompilePlugins(const mjcf::ModelSpec& spec, Model* m);
+// Plugin instances, their configuration and state sizes, actuator_plugin, body_plugin
+// (plugin.cc); where instance `instance` was written (for its plugin's errors at init).
+void CompilePlugins(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
+// The instance id an element (`kind`, written at `user`) uses, and its plugin, which
+// must have `capability` (after CompilePlugins has set Model::plugin).
+int PluginInstanceOf(const mjcf::ModelSpec& spec, const mjcf::Source& user,
+                     const mjcf::PluginUse& use, const std::string& kind);
+const Plugin& PluginWith(const Model& m, int instance, int capability, const mjcf::Source& user);
 const mjcf::Source& PluginInstanceSource(const mjcf::ModelSpec& spec, int instance);
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 // Sensors (sensor.cc): user numbers per sensor (before allocation), then every sensor,

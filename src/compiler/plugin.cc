@@ -1,7 +1,8 @@
 // Plugin instances: their ids (the named instances of <extension> in order, then the
 // implicit ones of the elements that configure their own), each one's registered
 // plugin, its configuration flattened in the plugin's attribute order (plugin_attr),
-// its plugin_state numbers, and each actuator's instance.
+// its plugin_state numbers, and the instance of each actuator and body that uses one
+// (sensors' in sensor.cc, where their sizes are set).
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,23 +31,36 @@ int DeclaredPlugin(const mjcf::ModelSpec& spec, const mjcf::Source& where, const
   return PluginSlot(name);
 }
 
-// The instance actuator `a` uses: its named instance, or its own.
-int ActuatorInstance(const mjcf::ModelSpec& spec, const mjcf::ActuatorSpec& a) {
-  if (a.instance.empty()) {
-    if (a.plugin.empty()) ThrowAt(a.src, "neither 'plugin' nor 'instance' is specified for actuator");
-    return static_cast<int>(spec.plugin_instances.size()) + a.implicit_instance;
+}  // namespace
+
+int PluginInstanceOf(const mjcf::ModelSpec& spec, const mjcf::Source& user, const mjcf::PluginUse& use,
+                     const std::string& kind) {
+  if (use.instance.empty()) {
+    if (use.plugin.empty()) ThrowAt(user, "neither 'plugin' nor 'instance' is specified for " + kind);
+    return static_cast<int>(spec.plugin_instances.size()) + use.implicit_instance;
   }
   for (size_t k = 0; k < spec.plugin_instances.size(); k++) {
     const mjcf::PluginInstanceSpec& inst = spec.plugin_instances[k];
-    if (inst.name != a.instance) continue;
-    if (!a.plugin.empty() && a.plugin != inst.plugin) {
-      ThrowAt(a.src, "instance '" + a.instance + "' is of plugin '" + inst.plugin + "', not '" +
-                         a.plugin + "'");
+    if (inst.name != use.instance) continue;
+    if (!use.plugin.empty() && use.plugin != inst.plugin) {
+      ThrowAt(user, "instance '" + use.instance + "' is of plugin '" + inst.plugin + "', not '" +
+                        use.plugin + "'");
     }
     return static_cast<int>(k);
   }
-  ThrowAt(a.src, "unrecognized name '" + a.instance + "' for plugin instance");
+  ThrowAt(user, "unrecognized name '" + use.instance + "' for plugin instance");
 }
+
+const Plugin& PluginWith(const Model& m, int instance, int capability, const mjcf::Source& user) {
+  const Plugin& plugin = PluginAt(m.plugin[instance]);
+  if (plugin.capabilities & capability) return plugin;
+  const char* what = capability == kPluginActuator ? "actuators"
+                     : capability == kPluginSensor ? "sensors"
+                                                   : "passive forces";
+  ThrowAt(user, "plugin '" + plugin.name + "' does not support " + what);
+}
+
+namespace {
 
 // The instance's config values in the plugin's attribute order, each ended by '\0'.
 std::string FlattenConfig(const mjcf::PluginInstanceSpec& inst, const Plugin& plugin) {
@@ -67,13 +81,13 @@ std::string FlattenConfig(const mjcf::PluginInstanceSpec& inst, const Plugin& pl
 
 }  // namespace
 
-void CompilePlugins(const mjcf::ModelSpec& spec, Model* m) {
+void CompilePlugins(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
   for (const auto& [name, src] : spec.active_plugins) {
     if (PluginSlot(name) < 0) ThrowAt(src, "plugin '" + name + "' is not registered");
   }
   // Instances: plugin slot, configuration, state.
   m->plugin_attr.clear();
-  int state = 0;
+  int stateadr = 0;
   for (int i = 0; i < m->nplugin; i++) {
     const mjcf::PluginInstanceSpec& inst = InstanceAt(spec, i);
     int slot = DeclaredPlugin(spec, inst.src, inst.plugin);
@@ -82,25 +96,30 @@ void CompilePlugins(const mjcf::ModelSpec& spec, Model* m) {
     m->plugin_attradr[i] = static_cast<int>(m->plugin_attr.size());
     m->plugin_attr += FlattenConfig(inst, plugin);
   }
-  // Actuators computed by a plugin.
+  // Actuators computed by a plugin, and bodies a (passive) plugin is attached to.
   for (int i = 0; i < m->nactuator; i++) {
     const mjcf::ActuatorSpec& a = spec.actuators[i];
-    m->actuator_plugin[i] = a.is_plugin ? ActuatorInstance(spec, a) : -1;
-    if (!a.is_plugin) continue;
-    const Plugin& plugin = PluginAt(m->plugin[m->actuator_plugin[i]]);
-    if (!(plugin.capabilities & kPluginActuator)) {
-      ThrowAt(a.src, "plugin '" + plugin.name + "' does not support actuators");
-    }
+    m->actuator_plugin[i] = -1;
+    if (!a.plugin.active) continue;
+    m->actuator_plugin[i] = PluginInstanceOf(spec, a.src, a.plugin, "actuator");
+    PluginWith(*m, m->actuator_plugin[i], kPluginActuator, a.src);
+  }
+  for (int i = 0; i < m->nbody; i++) {
+    const mjcf::BodySpec& b = *state.bodies[i].spec;
+    m->body_plugin[i] = -1;
+    if (!b.plugin.active) continue;
+    m->body_plugin[i] = PluginInstanceOf(spec, b.src, b.plugin, "body");
+    PluginWith(*m, m->body_plugin[i], kPluginPassive, b.src);
   }
   // (the state sizes may depend on the actuators)
   for (int i = 0; i < m->nplugin; i++) {
     const Plugin& plugin = PluginAt(m->plugin[i]);
-    m->plugin_stateadr[i] = state;
+    m->plugin_stateadr[i] = stateadr;
     m->plugin_statenum[i] = plugin.nstate ? plugin.nstate(*m, i) : 0;
     if (m->plugin_statenum[i] < 0) ThrowAt(InstanceAt(spec, i).src, "plugin '" + plugin.name + "' asked for negative state");
-    state += m->plugin_statenum[i];
+    stateadr += m->plugin_statenum[i];
   }
-  m->npluginstate = state;
+  m->npluginstate = stateadr;
 }
 
 const mjcf::Source& PluginInstanceSource(const mjcf::ModelSpec& spec, int instance) {

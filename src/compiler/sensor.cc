@@ -1,6 +1,7 @@
 // Sensors (MuJoCo's mjCSensor::Compile): resolve the sensorized and reference objects,
 // check that each type is attached to what it can measure, give every sensor MuJoCo's
-// data type, stage and output size, and lay out sensordata and the history buffer.
+// data type, stage and output size (a plugin sensor's from its plugin), and lay out
+// sensordata and the history buffer.
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -249,13 +250,26 @@ void CheckDataBudget(const SensorSpec& s, int64_t dim, int64_t total) {
   }
 }
 
+// A plugin sensor's instance, and the stage and size its plugin gives it.
+void CompilePluginSensor(const mjcf::ModelSpec& spec, const SensorSpec& s, int i, Model* m) {
+  int instance = PluginInstanceOf(spec, s.src, s.plugin, "sensor");
+  const Plugin& plugin = PluginWith(*m, instance, kPluginSensor, s.src);
+  m->sensor_plugin[i] = instance;
+  m->sensor_needstage[i] = plugin.needstage;
+  m->sensor_dim[i] = plugin.nsensordata(*m, instance, i);
+  if (m->sensor_dim[i] < 0) {
+    ThrowAt(s.src, "plugin '" + plugin.name + "' gave the sensor a negative size");
+  }
+}
+
 // One sensor's row of the model.
-void CompileSensor(const SensorSpec& s, int i, int64_t adr, Model* m) {
+void CompileSensor(const mjcf::ModelSpec& spec, const SensorSpec& s, int i, int64_t adr, Model* m) {
   CheckCommon(s, m->nuser_sensor);
   int objid = Resolve(*m, s, s.objtype, s.objname, "sensorized object");
   int refid = Resolve(*m, s, s.reftype, s.refname, "reference object");
   if (s.objtype == kObjUnknown && s.type != kSensEPotential && s.type != kSensEKinetic &&
-      s.type != kSensClock && s.type != kSensContact && s.type != kSensUser) {
+      s.type != kSensClock && s.type != kSensContact && s.type != kSensUser &&
+      s.type != kSensPlugin) {
     ThrowAt(s.src, "invalid type in sensor");
   }
   if (s.reftype != kObjUnknown && s.type != kSensContact && s.type != kSensTactile &&
@@ -274,7 +288,9 @@ void CompileSensor(const SensorSpec& s, int i, int64_t adr, Model* m) {
   bool user = s.type == kSensUser;
   m->sensor_datatype[i] = user ? s.datatype : SensorDataType(s.type);
   m->sensor_needstage[i] = user ? s.needstage : NeedStage(s.type);
-  int64_t dim = SensorDim(*m, s, objid);
+  m->sensor_plugin[i] = -1;
+  if (s.type == kSensPlugin) CompilePluginSensor(spec, s, i, m);
+  int64_t dim = s.type == kSensPlugin ? m->sensor_dim[i] : SensorDim(*m, s, objid);
   CheckDataBudget(s, dim, adr + dim);
   m->sensor_dim[i] = static_cast<int>(dim);
   int datatype = m->sensor_datatype[i];
@@ -347,7 +363,7 @@ void CompileSensors(const mjcf::ModelSpec& spec, Model* m) {
     if (!seen.Insert(s.src.name, static_cast<int>(i))) {
       ThrowAt(s.src, "repeated sensor name '" + s.src.name + "'");
     }
-    CompileSensor(s, static_cast<int>(i), adr, m);
+    CompileSensor(spec, s, static_cast<int>(i), adr, m);
     adr += m->sensor_dim[i];
   }
   for (int i = 0, at = 0; i < m->nsensor; i++) {

@@ -33,6 +33,12 @@ Registry& TheRegistry() {
 int AddPlugin(const Plugin& plugin) {
   if (plugin.name.empty()) throw Error("a plugin needs a name");
   if (!plugin.compute) throw Error("plugin '" + plugin.name + "' has no compute");
+  if ((plugin.capabilities & kPluginSensor) && !plugin.nsensordata) {
+    throw Error("sensor plugin '" + plugin.name + "' has no nsensordata");
+  }
+  if (plugin.needstage < kStageNone || plugin.needstage > kStageAcc) {
+    throw Error("plugin '" + plugin.name + "' has a needstage that is not a stage");
+  }
   Registry& r = TheRegistry();
   std::lock_guard<std::mutex> lock(r.mutex);
   for (const auto& p : r.plugins) {

@@ -1,13 +1,16 @@
 // Sensors (MuJoCo's mj_sensorPos, mj_sensorVel, mj_sensorAcc): after each stage of the
 // pipeline, every sensor whose needstage is that stage writes its sensor_dim numbers at
-// sensor_adr in d.sensordata, then its cutoff clamps them. The simple types (reading a
-// quantity the pipeline already has) are computed here; families with more work call
-// their own files through the dispatch below. Noise is stored in the model but never
-// applied, as in MuJoCo.
+// sensor_adr in d.sensordata, then its cutoff clamps them; user sensors are written by
+// Data::sensor_callback, plugin sensors by their plugins, after the built-in ones. The
+// simple types (reading a quantity the pipeline already has) are computed here; families
+// with more work call their own files through the dispatch below. Noise is stored in the
+// model but never applied, as in MuJoCo.
 #include <algorithm>
 
+#include "engine/engine.h"
 #include "engine/sensor.h"
 #include "math/math.h"
+#include "simlab/plugin.h"
 
 namespace simlab {
 
@@ -187,13 +190,39 @@ void ComputeAcc(const Model& m, Data& d, int i, double* out) {
   }
 }
 
-// The sensors of one stage: user sensors are zeroed and filled by the callback, the
-// others computed (MuJoCo's mj_sensorPos/Vel/Acc loop).
+// What user and plugin sensors of a stage may read beyond the stage itself: the
+// subtree momenta at the velocity stage, the bodies' accelerations and interaction
+// forces at the acceleration stage (MuJoCo computes them for those sensors first).
+void PrepareStage(const Model& m, Data& d, int stage) {
+  if (stage == kStageVel && !d.flg_subtreevel) SubtreeVel(m, d);
+  if (stage == kStageAcc && !d.flg_rnepost) RnePostConstraint(m, d);
+}
+
+// Plugin sensors: each sensor plugin instance of the stage writes all its sensors, then
+// their cutoffs apply (MuJoCo's compute_plugin_sensors: a plugin of needstage none runs
+// with the position stage, and its sensors, whose stage is none, keep their numbers).
+void PluginSensorStage(const Model& m, Data& d, int stage) {
+  for (int i = 0; i < m.nplugin; i++) {
+    const Plugin& plugin = PluginAt(m.plugin[i]);
+    int runs_at = plugin.needstage == kStageNone ? kStagePos : plugin.needstage;
+    if (!(plugin.capabilities & kPluginSensor) || runs_at != stage) continue;
+    PrepareStage(m, d, stage);
+    plugin.compute(m, d, i, kPluginSensor);
+    for (int j = 0; j < m.nsensor; j++) {
+      if (m.sensor_plugin[j] == i && m.sensor_needstage[j] == stage) {
+        ApplyCutoff(m, j, &d.sensordata[m.sensor_adr[j]]);
+      }
+    }
+  }
+}
+
+// The sensors of one stage: built-in ones computed, user sensors zeroed and filled by
+// the callback, then the plugins' (MuJoCo's mj_sensorPos/Vel/Acc).
 void SensorStage(const Model& m, Data& d, int stage) {
   if (m.opt.disableflags & kDisableSensor) return;
   bool any_user = false;
   for (int i = 0; i < m.nsensor; i++) {
-    if (m.sensor_needstage[i] != stage) continue;
+    if (m.sensor_needstage[i] != stage || m.sensor_type[i] == kSensPlugin) continue;
     double* out = &d.sensordata[m.sensor_adr[i]];
     if (m.sensor_type[i] == kSensUser) {
       std::fill(out, out + m.sensor_dim[i], 0.0);
@@ -202,15 +231,18 @@ void SensorStage(const Model& m, Data& d, int stage) {
       ComputeOrReadSensor(m, d, i, out);
     }
   }
-  if (!any_user) return;
 
   // User sensors: the callback writes them, then their cutoffs apply.
-  if (d.sensor_callback) d.sensor_callback(m, d, stage);
-  for (int i = 0; i < m.nsensor; i++) {
-    if (m.sensor_type[i] == kSensUser && m.sensor_needstage[i] == stage) {
-      ApplyCutoff(m, i, &d.sensordata[m.sensor_adr[i]]);
+  if (any_user) {
+    PrepareStage(m, d, stage);
+    if (d.sensor_callback) d.sensor_callback(m, d, stage);
+    for (int i = 0; i < m.nsensor; i++) {
+      if (m.sensor_type[i] == kSensUser && m.sensor_needstage[i] == stage) {
+        ApplyCutoff(m, i, &d.sensordata[m.sensor_adr[i]]);
+      }
     }
   }
+  if (m.nplugin > 0) PluginSensorStage(m, d, stage);
 }
 
 }  // namespace

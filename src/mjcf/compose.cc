@@ -414,6 +414,9 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
   if (!SameElementSettings(spec_->compiler, cs.compiler)) {
     NotSupported(e, "attaching a model whose <compiler> settings differ from this model's");
   }
+  if (!cs.active_plugins.empty() || !cs.plugin_instances.empty() || !cs.implicit_instances.empty()) {
+    NotSupported(e, "attaching a model that uses plugins");
+  }
 
   // The child's keyframes go onto its elements first (as MuJoCo stores them).
   HoldKeys(e, *child, att.prefix);

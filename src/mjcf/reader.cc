@@ -68,6 +68,15 @@ void Reader::NotSupported(const XmlElement& e, const std::string& what) const {
   e.Fail((what.empty() ? "<" + e.tag() + ">" : what) + " is not supported yet");
 }
 
+void Reader::NoChildrenButPlugin(const XmlElement& e) const {
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() != "plugin") Unknown(c);
+    NotSupported(c, "a " + e.tag() + "'s <plugin> (MuJoCo's signed-distance-field collision)");
+  }
+}
+
 void Reader::Unknown(const XmlElement& e) const {
   XmlElement parent = Element(e.node().parent());
   e.Fail("unknown element <" + e.tag() + "> in <" + parent.tag() + ">");
@@ -220,6 +229,7 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     if (world) c.Fail("the world body cannot have joints");
     FreeJoint(c, body, frame);
   } else if (tag == "geom") {
+    NoChildrenButPlugin(c);
     GeomSpec geom = cls->geom;
     ReadGeom(c, &geom, false);
     geom.frame = frame;
@@ -244,7 +254,11 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     Attach(c, body, frame);
   } else if (tag == "replicate") {
     Replicate(c, body, frame, def);
-  } else if (tag == "plugin" || tag == "composite" || tag == "flexcomp") {
+  } else if (tag == "plugin") {
+    c.CheckAttributes({"plugin", "instance"});
+    if (body->plugin.active) c.Fail("a body has at most one plugin");
+    ReadPluginUse(c, "body", &body->plugin);
+  } else if (tag == "composite" || tag == "flexcomp") {
     NotSupported(c);
   } else {
     Unknown(c);

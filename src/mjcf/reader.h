@@ -46,6 +46,8 @@ class Reader {
   // The element with its file and line (from `origins_` if it was included).
   XmlElement Element(pugi::xml_node node) const;
   [[noreturn]] void NotSupported(const XmlElement& e, const std::string& what = "") const;
+  // A geom or mesh has no child elements but a plugin, which simlab does not support yet.
+  void NoChildrenButPlugin(const XmlElement& e) const;
   [[noreturn]] void Unknown(const XmlElement& e) const;
 
   // sections (reader_sections.cc)
@@ -105,8 +107,13 @@ class Reader {
   // children (key/value pairs).
   void Extension(const XmlElement& e);
   std::vector<std::pair<std::string, std::string>> ReadConfigs(const XmlElement& e) const;
+  // The instance a plugin element uses (`user` names its kind in messages): a named one,
+  // or its own, configured by its <config> children.
+  void ReadPluginUse(const XmlElement& e, const std::string& user, PluginUse* use);
   // <actuator><plugin>: an actuator computed by a plugin.
   void ReadPluginActuator(const XmlElement& e, ActuatorSpec* act);
+  // <sensor><plugin>: a sensor computed by a plugin.
+  void ReadPluginSensor(const XmlElement& e, SensorSpec* s);
   void ReadTransmission(const XmlElement& e, ActuatorSpec* act) const;
   void ReadShortcut(const XmlElement& e, ActuatorSpec* act) const;
 

@@ -541,8 +541,6 @@ void Reader::ReadShortcut(const XmlElement& e, ActuatorSpec* a) const {
       {"filterexact", kDynFilterExact}, {"muscle", kDynMuscle},     {"dcmotor", kDynDcmotor},
       {"pid", kDynPid},             {"user", kDynUser}};
   if (tag == "plugin") {
-    e.Text("plugin", &a->plugin);
-    e.Text("instance", &a->instance);
     e.Int("actdim", &a->actdim);
     e.Enum("dyntype", &a->dyntype, kDyn);
     e.Numbers("dynprm", a->dynprm, false);

@@ -1,6 +1,8 @@
 // MJCF reader: engine plugins. <extension> names the plugins a model uses and their
 // named instances with <config key value> pairs; <actuator><plugin> is an actuator whose
-// force a plugin computes, referring to a named instance or configuring its own.
+// force a plugin computes, <sensor><plugin> a sensor whose numbers it computes, and a
+// body's <plugin> attaches an instance to the body; each refers to a named instance or
+// configures its own.
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,23 +58,30 @@ void Reader::Extension(const XmlElement& e) {
   }
 }
 
-void Reader::ReadPluginActuator(const XmlElement& e, ActuatorSpec* act) {
-  act->is_plugin = true;
-  ReadActuator(e, act, false);
-  if (act->plugin.empty() && act->instance.empty()) {
-    e.Fail("neither 'plugin' nor 'instance' is specified for actuator");
+void Reader::ReadPluginUse(const XmlElement& e, const std::string& user, PluginUse* use) {
+  use->active = true;
+  e.Text("plugin", &use->plugin);
+  e.Text("instance", &use->instance);
+  if (use->plugin.empty() && use->instance.empty()) {
+    e.Fail("neither 'plugin' nor 'instance' is specified for " + user);
   }
-  if (!act->instance.empty()) {
+  auto config = ReadConfigs(e);
+  if (!use->instance.empty()) {
     // (a named instance has its configuration in <extension>)
-    if (e.node().child("config")) e.Fail("config belongs to instance '" + act->instance + "' in <extension>");
+    if (!config.empty()) e.Fail("config belongs to instance '" + use->instance + "' in <extension>");
     return;
   }
   PluginInstanceSpec implicit;
   implicit.src = e.src();
-  implicit.plugin = act->plugin;
-  implicit.config = ReadConfigs(e);
+  implicit.plugin = use->plugin;
+  implicit.config = std::move(config);
   spec_->implicit_instances.push_back(std::move(implicit));
-  act->implicit_instance = static_cast<int>(spec_->implicit_instances.size()) - 1;
+  use->implicit_instance = static_cast<int>(spec_->implicit_instances.size()) - 1;
+}
+
+void Reader::ReadPluginActuator(const XmlElement& e, ActuatorSpec* act) {
+  ReadActuator(e, act, false);
+  ReadPluginUse(e, "actuator", &act->plugin);
 }
 
 }  // namespace simlab::mjcf

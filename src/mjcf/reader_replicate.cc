@@ -390,6 +390,21 @@ void ReplicateReferences(const std::string& suffix, const ReferenceCounts& origi
                   &unnamed->sensors);
 }
 
+// An actuator or sensor computed by a plugin instance of its own, copied with a replica,
+// would share that instance with its copies (MuJoCo copies the instance).
+void CheckPluginCopies(const XmlElement& e, const ReferenceCounts& originals, const ModelSpec& spec) {
+  for (size_t i = originals.actuators; i < spec.actuators.size(); i++) {
+    if (spec.actuators[i].plugin.implicit_instance >= 0) {
+      e.Fail("replicating an actuator that configures its own plugin instance is not supported yet");
+    }
+  }
+  for (size_t i = originals.sensors; i < spec.sensors.size(); i++) {
+    if (spec.sensors[i].plugin.implicit_instance >= 0) {
+      e.Fail("replicating a sensor that configures its own plugin instance is not supported yet");
+    }
+  }
+}
+
 // Sensors that name no object are copied again with every replica, copies included
 // (MuJoCo's rule: `count` replicas make 2^count of them). Past kMaxDoubledSensors the
 // model is refused, before the next replica doubles them again.
@@ -448,8 +463,13 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
   if (IsWorld(body)) world_standins_.push_back(scratch);
   uint64_t outer = replicate_factor_;
   replicate_factor_ = MulBytes(outer, static_cast<uint64_t>(count));
+  size_t implicit_instances = spec_->implicit_instances.size();
   Body(e, scratch, templ, childclass ? childclass : def);
   replicate_factor_ = outer;
+  // (MuJoCo gives each replica its own copy of a plugin instance; simlab does not yet)
+  if (spec_->implicit_instances.size() != implicit_instances || scratch->plugin.active) {
+    NotSupported(e, "a plugin inside <replicate>");
+  }
   CheckReplicateBudget(e, count, outer, ReplicaBytes(*scratch));
 
   // One replica per index: its frame, its tree elements, then the references to them.
@@ -466,6 +486,7 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
     FrameRebase rebase(templ.get(), replica);
     CopyReplica(*scratch, rebase, suffix, body, &names);
     ReplicateReferences(suffix, originals, retry_copies, &names, spec_, &unnamed);
+    CheckPluginCopies(e, originals, *spec_);
     CheckSensorCopies(e, count, unnamed.sensors.size());
   }
 

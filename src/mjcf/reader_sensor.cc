@@ -2,6 +2,7 @@
 // it is attached to (by an attribute such as site= or joint=, or by objtype/objname);
 // the compiler resolves the names and sizes the output.
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "mjcf/reader.h"
@@ -283,12 +284,43 @@ void ReadCommon(const XmlElement& e, SensorSpec* s) {
 
 }  // namespace
 
+void Reader::ReadPluginSensor(const XmlElement& e, SensorSpec* s) {
+  e.CheckAttributes({"name", "plugin", "instance", "cutoff", "objtype", "objname", "reftype",
+                     "refname", "user"});
+  ReadPluginUse(e, "sensor", &s->plugin);
+  // objtype/objname and reftype/refname: optional, each name with its type
+  for (auto [type_attr, name_attr, type, name] :
+       {std::tuple{"objtype", "objname", &s->objtype, &s->objname},
+        std::tuple{"reftype", "refname", &s->reftype, &s->refname}}) {
+    std::string keyword;
+    bool typed = e.Text(type_attr, &keyword);
+    bool named = e.Text(name_attr, name);
+    if (typed != named) {
+      e.Fail(std::string(typed ? type_attr : name_attr) + " is specified but " +
+             (typed ? name_attr : type_attr) + " is not");
+    }
+    if (typed) {
+      *type = ObjTypeFromName(keyword);
+      if (*type == kObjUnknown) e.Fail("unknown object type '" + keyword + "'");
+    }
+  }
+}
+
 void Reader::Sensor(const XmlElement& section) {
   section.CheckAttributes({});
   for (pugi::xml_node n : section.node().children()) {
     if (n.type() != pugi::node_element) continue;
     XmlElement e = Element(n);
-    if (e.tag() == "plugin") NotSupported(e, "the sensor plugin");
+    if (e.tag() == "plugin") {
+      SensorSpec s;
+      s.src = e.src();
+      s.type = kSensPlugin;
+      ReadPluginSensor(e, &s);
+      e.Number("cutoff", &s.cutoff);
+      if (auto user = e.Vector("user")) s.user = *user;
+      spec_->sensors.push_back(std::move(s));
+      continue;
+    }
     const SensorKind* kind = nullptr;
     for (const SensorKind& k : kKinds) {
       if (e.tag() == SensorTypeName(k.type)) kind = &k;

@@ -150,6 +150,15 @@ struct CameraSpec {
   FramePtr frame;
 };
 
+// The plugin instance an element uses (<actuator><plugin>, <sensor><plugin>, a body's
+// <plugin>): the plugin and/or a named instance of it, or its own (implicit) instance,
+// ModelSpec::implicit_instances[implicit_instance], which its <config> children configure.
+struct PluginUse {
+  bool active = false;
+  std::string plugin, instance;
+  int implicit_instance = -1;
+};
+
 struct BodySpec;
 
 // A body's child bodies. They are owned, and copying the list copies the subtrees
@@ -187,6 +196,7 @@ struct BodySpec {
   std::vector<SiteSpec> sites;
   std::vector<CameraSpec> cameras;
   BodyList bodies;
+  PluginUse plugin;  // a <plugin> child: the instance attached to this body
 };
 
 inline BodyList::BodyList(const BodyList& other) : std::vector<std::unique_ptr<BodySpec>>() {
@@ -267,11 +277,8 @@ struct ActuatorSpec {
   // damping at the transmission target: linear, then |v| v and v^3 terms (MuJoCo 3.7+)
   std::array<double, 1 + kNPoly> damping = {0, 0, 0};
   double armature = 0;
-  // An actuator plugin (<actuator><plugin>): the plugin and/or a named instance of it, or
-  // its own (implicit) instance, ModelSpec::implicit_instances[implicit_instance].
-  bool is_plugin = false;
-  std::string plugin, instance;
-  int implicit_instance = -1;
+  // An actuator plugin (<actuator><plugin>), computed by the plugin instance it uses.
+  PluginUse plugin;
 };
 
 // A plugin instance: <extension><plugin plugin=P><instance name=N> with its <config>
@@ -302,6 +309,7 @@ struct SensorSpec {
   double delay = 0;
   std::array<double, 2> interval = {0, 0};
   std::vector<double> user;
+  PluginUse plugin;  // a plugin sensor's instance (type kSensPlugin)
 };
 
 // An equality constraint (MuJoCo's mjsEquality). `data` starts at MuJoCo's shared
