@@ -1,5 +1,6 @@
 // Compiler conformance: every compiled field of a model against MuJoCo's, from goldens
 // made by tools/dump_model.mjs (MuJoCo 3.5.1) and committed in tests/compiler_goldens.
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -236,6 +237,31 @@ TEST(CompilerConformance, MeshFit) {
 // and inline normals, each with a normal and two tangents per vertex (mesh_normal).
 TEST(CompilerConformance, TactileMeshes) {
   CheckModel("tactile", std::string(SIMLAB_SOURCE_DIR) + "/tests/sensors/tactile.xml");
+}
+
+// Model statistics (extent, meansize, meanmass, meaninertia, center) as native MuJoCo
+// 3.12 computes them at qpos0 (printed from mjModel.stat): the humanoid (its <statistic>
+// gives the centre), the car, the lesson's gantry, and a model of one infinite plane
+// whose extent comes from MuJoCo's default meansize (its <statistic> then sets 0.05).
+TEST(CompilerConformance, StatisticsAsMuJoCo) {
+  struct Case {
+    std::string path;
+    std::array<double, 7> stat;
+  };
+  const Case cases[] = {
+      {Corpus("humanoid/humanoid.xml"),
+       {1.6674751155486451, 0.15699535486057806, 2.5527513263513337, 6.5819984714869193, 0, 0, 0.7}},
+      {Corpus("car/car.xml"), {0.6, 0.069798263870101782, 0.18101150082346218, 0.20429129610969177, 0, 0, 0}},
+      {std::string(SIMLAB_SOURCE_DIR) + "/models/gantry_gripper.xml",
+       {1.5004998438475798, 0.047121230647306327, 0.124, 0.17564218181818186, 0, 0, 0.40012496096189504}},
+      {Corpus("flex/scene.xml"), {0.4, 0.05, 1, 1, 0, 0, 0}},
+  };
+  for (const Case& c : cases) {
+    Model m = LoadXml(c.path);
+    const Statistic& s = m.stat;
+    std::array<double, 7> ours = {s.extent, s.meansize, s.meanmass, s.meaninertia, s.center[0], s.center[1], s.center[2]};
+    for (int k = 0; k < 7; k++) EXPECT_NEAR(ours[k], c.stat[k], 1e-12 * (1 + std::abs(c.stat[k]))) << c.path << " [" << k << "]";
+  }
 }
 
 }  // namespace

@@ -181,13 +181,15 @@ struct Option {
   int disableactuator = 0;
 };
 
-// Model statistics (mjStatistic): meaninertia scales the constraint solver's tolerance.
+// The model's statistics (MuJoCo's mjStatistic, defaults of mj_defaultStatistic), computed
+// at qpos0 unless <statistic> gives them: meaninertia scales the constraint solver's
+// tolerance, the others the viewer's scale and free camera.
 struct Statistic {
-  double meaninertia = 1;  // mean diagonal of M at qpos0, unless the model sets it
-  double meanmass = 1;
-  double meansize = 1;
-  double extent = 1;
-  std::array<double, 3> center = {0, 0, 0};
+  double meaninertia = 1;  // mean diagonal of M at qpos0
+  double meanmass = 1;     // mean body mass
+  double meansize = 0.2;   // mean body size
+  double extent = 2;       // largest side of the box around the model
+  std::array<double, 3> center = {0, 0, 0};  // centre of that box
 };
 
 // ---------------------------------------------------------------- the field table

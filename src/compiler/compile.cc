@@ -145,6 +145,10 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // Statistics the model gives replace the computed ones (after the length ranges,
   // which MuJoCo simulates with the computed meaninertia).
   if (!std::isnan(spec.meaninertia)) m.stat.meaninertia = spec.meaninertia;
+  if (!std::isnan(spec.meanmass)) m.stat.meanmass = spec.meanmass;
+  if (!std::isnan(spec.meansize)) m.stat.meansize = spec.meansize;
+  if (!std::isnan(spec.extent)) m.stat.extent = spec.extent;
+  if (!std::isnan(spec.center[0])) m.stat.center = spec.center;
   m.IndexNames();
   return m;
 }

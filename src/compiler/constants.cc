@@ -76,6 +76,74 @@ void SetM0(Model* m, Data& d) {
   }
 }
 
+// Grows the box [lo, hi] to hold a ball of `radius` at `pos`.
+void GrowBox(double lo[3], double hi[3], const double* pos, double radius) {
+  for (int k = 0; k < 3; k++) {
+    lo[k] = std::min(lo[k], pos[k] - radius);
+    hi[k] = std::max(hi[k], pos[k] + radius);
+  }
+}
+
+// How far a geom reaches for the bounding box: its bounding sphere, or a tenth of a
+// plane's or height field's largest size (0.01 for an infinite plane).
+double GeomReach(const Model& m, int g) {
+  if (m.geom_rbound[g] > 0) return m.geom_rbound[g];
+  const double* size = &m.geom_size[3 * g];
+  if (m.geom_type[g] == kGeomPlane) return size[0] || size[1] ? 0.1 * std::max(size[0], size[1]) : 0.01;
+  if (m.geom_type[g] == kGeomHfield) {
+    const double* h = &m.hfield_size[4 * m.geom_dataid[g]];
+    return 0.1 * std::max({h[0], h[1], h[2], h[3]});
+  }
+  return 0;
+}
+
+// The model's statistics at qpos0 (MuJoCo's setStat, without flexes): the centre and
+// largest side of the box around bodies, joint anchors, sites and geoms; the mean body
+// size (its farthest joint anchor or geom from its centre of mass); the mean body mass;
+// the extent at least twice the mean size. <statistic> may replace them afterwards.
+void ComputeStatistics(Model* m, const Data& d) {
+  double lo[3] = {1e10, 1e10, 1e10}, hi[3] = {-1e10, -1e10, -1e10};
+  for (int b = 1; b < m->nbody; b++) {
+    GrowBox(lo, hi, &d.xpos[3 * b], 0);
+    GrowBox(lo, hi, &d.xipos[3 * b], 0);
+  }
+  for (int j = 0; j < m->njnt; j++) GrowBox(lo, hi, &d.xanchor[3 * j], 0);
+  for (int s = 0; s < m->nsite; s++) GrowBox(lo, hi, &d.site_xpos[3 * s], 0);
+  for (int g = 0; g < m->ngeom; g++) GrowBox(lo, hi, &d.geom_xpos[3 * g], GeomReach(*m, g));
+  for (int k = 0; k < 3; k++) m->stat.center[k] = 0.5 * (lo[k] + hi[k]);
+  if (hi[0] > lo[0]) m->stat.extent = std::max(1e-5, std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
+
+  // Body sizes: the farthest joint anchor (of the body and of its children) and geom.
+  std::vector<double> size(m->nbody, 0.0);
+  auto distance = [](const double* a, const double* b) {
+    double v[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return std::sqrt(math::Dot(v, v, 3));
+  };
+  for (int j = 0; j < m->njnt; j++) {
+    for (int b : {m->jnt_bodyid[j], m->body_parentid[m->jnt_bodyid[j]]}) {
+      size[b] = std::max(size[b], distance(&d.xipos[3 * b], &d.xanchor[3 * j]));
+    }
+  }
+  size[0] = 0;
+  for (int b = 1; b < m->nbody; b++) {
+    for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; g++) {
+      if (m->geom_rbound[g] > 0) {
+        size[b] = std::max(size[b], m->geom_rbound[g] + distance(&d.xipos[3 * b], &d.geom_xpos[3 * g]));
+      }
+    }
+  }
+  if (m->nbody > 1) {
+    m->stat.meansize = 0;
+    m->stat.meanmass = 0;
+    for (int b = 1; b < m->nbody; b++) {
+      m->stat.meansize += std::max(size[b], 1e-5) / (m->nbody - 1);
+      m->stat.meanmass += m->body_mass[b];
+    }
+    m->stat.meanmass /= m->nbody - 1;
+  }
+  m->stat.extent = std::max(m->stat.extent, 2 * m->stat.meansize);
+}
+
 }  // namespace
 
 void ComputeConstants(Model* m) {
@@ -112,7 +180,9 @@ void ComputeConstants(Model* m) {
     DampRatio(m, i, d, RowOf(d.actuator_moment, first, m->nv));
   }
 
-  // Inverse weights and meaninertia, from the same Data; then the spring lengths.
+  // Statistics, inverse weights and meaninertia, from the same Data; then the spring
+  // lengths.
+  ComputeStatistics(m, d);
   ComputeInvWeights(m, d);
   TendonSpringLengths(m, d);
 }

@@ -234,12 +234,14 @@ void Reader::Visual(const XmlElement& e) {
 void Reader::Statistic(const XmlElement& e) {
   e.CheckAttributes({"meaninertia", "meanmass", "meansize", "extent", "center"});
   double v = 0;
-  std::array<double, 3> center;
   if (e.Number("meaninertia", &v)) spec_->meaninertia = v;
-  e.Number("meanmass", &v);
-  e.Number("meansize", &v);
-  if (e.Number("extent", &v) && v <= 0) e.Fail("extent must be strictly positive");
-  e.Numbers("center", center);
+  if (e.Number("meanmass", &v)) spec_->meanmass = v;
+  if (e.Number("meansize", &v)) spec_->meansize = v;
+  if (e.Number("extent", &v)) {
+    if (v <= 0) e.Fail("extent must be strictly positive");
+    spec_->extent = v;
+  }
+  e.Numbers("center", spec_->center);
 }
 
 // ---------------------------------------------------------------- custom, asset, contact

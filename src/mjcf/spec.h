@@ -467,6 +467,9 @@ struct ModelSpec {
   Source size_src;        // the <size> element, if any (for messages about its sizes)
   // <statistic>: values given by the model (undefined: computed by the compiler).
   double meaninertia = kUndefined;
+  // The rest of <statistic>: replace the computed values where given.
+  double meanmass = kUndefined, meansize = kUndefined, extent = kUndefined;
+  std::array<double, 3> center = {kUndefined, kUndefined, kUndefined};
   double znear = 0.01;  // <visual><map znear>: default focal length of cameras
 };
 
