@@ -37,6 +37,7 @@ int ParseAndRun(int argc, const char* const* argv, std::ostream& out, std::ostre
   AddBenchCommand(app, io);
   AddExplainCommand(app, io);
   AddLabCommand(app, io);
+  AddViewCommand(app, io);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -37,6 +37,7 @@ struct Mount {
 constexpr Mount kMounts[] = {
     {"/lesson/", "web/lesson"},
     {"/lab/", "web/lab"},
+    {"/view/", "web/view"},
     {"/dist/", "web/dist"},
     {"/node_modules/three/", "web/node_modules/three"},
     {"/node_modules/uplot/", "web/node_modules/uplot"},
@@ -239,9 +240,10 @@ std::string HostProblem(const std::string& head, int port) {
 void ServeTarget(const LabSite& site, int fd, const std::string& target, bool head_only) {
   // lesson.json: which lesson is served (the page's title comes from its name).
   const auto clean = CleanUrlPath(target);
-  if (clean && *clean == "/lesson.json") {
+  if (clean && (*clean == "/lesson.json" || *clean == "/view.json")) {
     // A name that is not UTF-8 still goes out: its bad bytes become U+FFFD.
-    const nlohmann::json about = {{"file", site.lesson_file.filename().string()}};
+    const fs::path& served = *clean == "/view.json" ? site.model_file : site.lesson_file;
+    const nlohmann::json about = {{"file", served.filename().string()}};
     const std::string body = about.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     SendAll(fd, TextResponse(200, "OK", "application/json", body, head_only));
     return;
@@ -423,29 +425,47 @@ std::optional<fs::path> SearchUpwards(fs::path start) {
   return std::nullopt;
 }
 
-// The lesson file as an absolute path; refused unless it is a regular file.
-fs::path LessonFile(const std::string& lesson) {
+// A file named on the command line (`what`: "lesson", "model") as an absolute path;
+// refused unless it is a regular file.
+fs::path GivenFile(const std::string& command, const std::string& what, const std::string& name) {
   std::error_code ec;
-  const fs::path file = fs::absolute(lesson, ec);
-  if (ec) throw Error("lab: " + lesson + ": " + ec.message());
-  if (fs::is_directory(file, ec)) throw Error("lab: " + lesson + ": a folder, not a lesson file");
-  if (!fs::is_regular_file(file, ec)) throw Error("lab: no lesson file " + lesson);
+  const fs::path file = fs::absolute(name, ec);
+  if (ec) throw Error(command + ": " + name + ": " + ec.message());
+  if (fs::is_directory(file, ec)) throw Error(command + ": " + name + ": a folder, not a " + what + " file");
+  if (!fs::is_regular_file(file, ec)) throw Error(command + ": no " + what + " file " + name);
   return file;
 }
 
-// Serves until interrupted, printing the URL to `out`; returns the exit code.
-int RunLab(const std::string& lesson, int port, const std::string& root, std::ostream& out) {
-  const fs::path lesson_file = LessonFile(lesson);
+// The repository the page is served from (--root, or found), with its engine built.
+fs::path ServedRepo(const std::string& command, const std::string& root) {
   std::error_code ec;
   const fs::path repo = root.empty() ? FindLabRepoRoot() : fs::absolute(root, ec);
   if (ec || !HasLessonPage(repo)) {
-    throw Error("lab: " + repo.string() + " has no web/lesson/index.html");
+    throw Error(command + ": " + repo.string() + " has no web/lesson/index.html");
   }
-  LabServer server({repo, lesson_file}, port);
-  out << "simlab lab: serving " << lesson_file.filename().string() << " at http://127.0.0.1:"
-      << server.port() << "/ (Ctrl-C stops)" << std::endl;
+  const std::string missing = MissingEngineProblem(repo);
+  if (!missing.empty()) throw Error(command + ": " + missing);
+  return repo;
+}
+
+// Serves until interrupted, printing the URL to `out`; returns the exit code.
+int Serve(const std::string& command, const LabSite& site, int port, std::ostream& out) {
+  LabServer server(site, port);
+  const fs::path& served = site.model_file.empty() ? site.lesson_file : site.model_file;
+  out << "simlab " << command << ": serving " << served.filename().string()
+      << " at http://127.0.0.1:" << server.port() << "/ (Ctrl-C stops)" << std::endl;
   server.Serve();
   return 0;
+}
+
+int RunLab(const std::string& lesson, int port, const std::string& root, std::ostream& out) {
+  const fs::path lesson_file = GivenFile("lab", "lesson", lesson);
+  return Serve("lab", {ServedRepo("lab", root), lesson_file, {}}, port, out);
+}
+
+int RunView(const std::string& model, int port, const std::string& root, std::ostream& out) {
+  const fs::path model_file = GivenFile("view", "model", model);
+  return Serve("view", {ServedRepo("view", root), {}, model_file}, port, out);
 }
 
 }  // namespace
@@ -453,11 +473,19 @@ int RunLab(const std::string& lesson, int port, const std::string& root, std::os
 std::optional<fs::path> ResolveLabPath(const LabSite& site, const std::string& url_path) {
   const auto clean = CleanUrlPath(url_path);
   if (!clean) return std::nullopt;
-  // The page itself and the lesson it shows.
+  // The page itself and the lesson it shows, or the viewer and the model's folder.
+  const bool viewer = !site.model_file.empty();
   if (*clean == "/" || *clean == "/index.html") {
-    return InsideRoot(site.repo_root / "web/lesson", site.repo_root / "web/lesson/index.html");
+    const fs::path page = viewer ? "web/view" : "web/lesson";
+    return InsideRoot(site.repo_root / page, site.repo_root / page / "index.html");
   }
-  if (*clean == "/lesson.txt") return InsideRoot(site.lesson_file.parent_path(), site.lesson_file);
+  if (viewer && clean->rfind("/model/", 0) == 0) {
+    const fs::path folder = site.model_file.parent_path();
+    return InsideRoot(folder, folder / clean->substr(7));
+  }
+  if (!viewer && *clean == "/lesson.txt") {
+    return InsideRoot(site.lesson_file.parent_path(), site.lesson_file);
+  }
   for (const Mount& mount : kMounts) {
     const std::string prefix = mount.prefix;
     if (clean->compare(0, prefix.size(), prefix) == 0) {
@@ -587,6 +615,17 @@ fs::path FindLabRepoRoot() {
               fs::current_path().string() + " or the simlab executable; pass --root");
 }
 
+std::string MissingEngineProblem(const fs::path& repo_root) {
+  std::error_code ec;
+  if (fs::is_regular_file(repo_root / "web/dist/simlab.mjs", ec) &&
+      fs::is_regular_file(repo_root / "web/dist/simlab.wasm", ec)) {
+    return "";
+  }
+  return "the WebAssembly engine is not built (" + (repo_root / "web/dist/simlab.mjs").string() +
+         " is missing); build it once with: bash tools/install_deps.sh && bash tools/build_wasm.sh"
+         " (about 12 minutes on 2 cores), then run this command again";
+}
+
 void AddLabCommand(CLI::App& app, CommandIo& io) {
   auto lesson = std::make_shared<std::string>();
   auto port = std::make_shared<int>(8765);
@@ -596,6 +635,17 @@ void AddLabCommand(CLI::App& app, CommandIo& io) {
   cmd->add_option("--port", *port, "TCP port on 127.0.0.1 (0 picks a free one)");
   cmd->add_option("--root", *root, "repository folder holding web/ and models/");
   cmd->callback([lesson, port, root, &io] { io.status = RunLab(*lesson, *port, *root, *io.out); });
+}
+
+void AddViewCommand(CLI::App& app, CommandIo& io) {
+  auto model = std::make_shared<std::string>();
+  auto port = std::make_shared<int>(8766);
+  auto root = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("view", "serve the viewer of any model (and its folder) on 127.0.0.1");
+  cmd->add_option("model", *model, "MJCF model file")->required();
+  cmd->add_option("--port", *port, "TCP port on 127.0.0.1 (0 picks a free one)");
+  cmd->add_option("--root", *root, "repository folder holding web/");
+  cmd->callback([model, port, root, &io] { io.status = RunView(*model, *port, *root, *io.out); });
 }
 
 }  // namespace simlab::apps

@@ -1,6 +1,8 @@
 // `simlab lab LESSON.txt [--port P]`: serves the lesson page on 127.0.0.1 (a small
 // static HTTP/1.1 GET/HEAD server): web/lesson (the page), web/lab (the live lab), web/dist
 // (the engine in WebAssembly), the three and uplot packages, the lesson text and models/.
+// `simlab view MODEL.xml [--port P]`: the same server with the viewer page (web/view)
+// and the model's own folder under /model/.
 // Only requests whose Host names this server are answered (DNS-rebinding defence), a
 // request head must arrive within a total deadline, and open connections are capped.
 #ifndef SIMLAB_APPS_LAB_H_
@@ -21,10 +23,12 @@ class App;
 
 namespace simlab::apps {
 
-// What the server may hand out: the repository (for web/ and models/) and the lesson.
+// What the server may hand out: the repository (for web/ and models/), and the lesson
+// (simlab lab) or the model whose folder it serves (simlab view).
 struct LabSite {
   std::filesystem::path repo_root;
   std::filesystem::path lesson_file;
+  std::filesystem::path model_file;
 };
 
 // The file a URL path names, or nothing when it is outside every allowed root
@@ -85,8 +89,13 @@ class LabServer {
 // directory or the executable's location; throws simlab::Error when there is none.
 std::filesystem::path FindLabRepoRoot();
 
-// Registers the subcommand; it prints the URL to io.out and serves until interrupted.
+// Why the page cannot run in the repository: the WebAssembly engine is not built (with
+// how to build it), or empty when web/dist/simlab.mjs is there.
+std::string MissingEngineProblem(const std::filesystem::path& repo_root);
+
+// Registers the subcommands; each prints the URL to io.out and serves until interrupted.
 void AddLabCommand(CLI::App& app, CommandIo& io);
+void AddViewCommand(CLI::App& app, CommandIo& io);
 
 }  // namespace simlab::apps
 

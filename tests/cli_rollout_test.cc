@@ -303,6 +303,15 @@ TEST_F(CliRolloutTest, OtherFailuresAreOneLine) {
               "keyframe 3 does not exist (the model has 0)");
   ExpectError(Run({"lab", folder_lesson()}), "lab: " + folder_lesson() +
                                                 ": a folder, not a lesson file");
+  ExpectError(Run({"view", (scratch_ / "none.xml").string()}),
+              "view: no model file " + (scratch_ / "none.xml").string());
+  // A repository without the WebAssembly build: the command says how to build it.
+  fs::create_directories(scratch_ / "site/web/lesson");
+  std::ofstream(scratch_ / "site/web/lesson/index.html") << "<html></html>";
+  const Outcome unbuilt = Run({"view", Model(), "--root", (scratch_ / "site").string()});
+  EXPECT_EQ(unbuilt.status, kExitError);
+  EXPECT_NE(unbuilt.err.find("view: the WebAssembly engine is not built"), std::string::npos) << unbuilt.err;
+  EXPECT_NE(unbuilt.err.find("bash tools/build_wasm.sh"), std::string::npos) << unbuilt.err;
   EXPECT_EQ(OneLine("a\nb\r\n\tc\n"), "a b   c");
 }
 

@@ -3,7 +3,8 @@
 // and answers 404 for paths that climb out of its roots. It answers only requests whose
 // Host names it (421 otherwise), cuts off slow request heads (408), answers 503 beyond its
 // connection cap, streams large files intact and answers 500 for unreadable ones. It
-// survives a lesson file name that is not UTF-8 and running out of file descriptors.
+// survives a lesson file name that is not UTF-8 and running out of file descriptors. As
+// `simlab view` it serves the viewer and the model's folder.
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -370,6 +371,36 @@ TEST_F(LabServerTest, LessonNameThatIsNotUtf8IsServed) {
   EXPECT_EQ(Head(site.port(), "/lesson.json").length, static_cast<long long>(about.body.size()));
   EXPECT_EQ(Get(site.port(), "/lesson.txt").body, "odd name\n");
   EXPECT_EQ(Get(site.port(), "/").status, 200);
+}
+
+// `simlab view`'s site: the viewer page at /, the model's name at /view.json, the
+// model's own folder (its meshes too) under /model/ and nothing above it; the lesson's
+// paths are not served.
+TEST_F(LabServerTest, ViewerServesTheModelFolder) {
+  const fs::path folder = scratch_ / "robot";
+  fs::create_directories(folder / "meshes");
+  std::ofstream(folder / "arm.xml") << "<mujoco/>";
+  std::ofstream(folder / "meshes/a.stl") << "solid a";
+  std::ofstream(scratch_ / "secret.txt") << "secret";
+  RunningServer site(LabSite{kRepo, {}, folder / "arm.xml"});
+  const Reply page = Get(site.port(), "/");
+  EXPECT_EQ(page.status, 200);
+  EXPECT_NE(page.body.find("/view/view.mjs"), std::string::npos);
+  EXPECT_EQ(Get(site.port(), "/view/view.mjs").status, 200);
+  EXPECT_EQ(Get(site.port(), "/view.json").body, "{\"file\":\"arm.xml\"}");
+  EXPECT_EQ(Get(site.port(), "/model/arm.xml").body, "<mujoco/>");
+  EXPECT_EQ(Get(site.port(), "/model/meshes/a.stl").body, "solid a");
+  for (const char* path : {"/model/../secret.txt", "/model/%2e%2e/secret.txt", "/lesson.txt", "/model/"}) {
+    EXPECT_EQ(Get(site.port(), path).status, 404) << path;
+  }
+}
+
+// Without the WebAssembly build the page cannot run: the commands say how to build it.
+TEST_F(LabServerTest, MissingEngineSaysHowToBuildIt) {
+  const std::string problem = MissingEngineProblem(MakeSiteRoot());
+  EXPECT_NE(problem.find("not built"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("bash tools/build_wasm.sh"), std::string::npos) << problem;
+  if (fs::exists(kRepo / "web/dist/simlab.wasm")) EXPECT_EQ(MissingEngineProblem(kRepo), "");
 }
 
 // The number one past the highest open file descriptor of this process.

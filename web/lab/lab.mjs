@@ -1,24 +1,16 @@
 // The live lab of a lesson's lab block: mountLab(element, spec, {baseUrl}) loads the
 // engine (web/dist, WebAssembly) and models/<model>.xml with every file it refers to
 // (attached models, includes, meshes, textures...), resets to the block's keyframe and
-// shows the 3D view, sliders, readouts, plots and note, simulating in real time. See
-// web/README.md, "The lab".
+// shows the 3D view, sliders, readouts, plots and note, simulating in real time.
+// mountModelViewer(element, folder, filename) does the same for any model, with panels
+// generated from it (simlab view). See web/README.md, "The lab".
 import { arrayReader, arraysOf, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
 import { gatherModelFiles } from './model_files.mjs';
+import { modelInfo, specFromModel } from './panels.mjs';
 import { LivePlot } from './plot.mjs';
+import { Pacer, kSpeeds } from './pacer.mjs';
 import { LabScene } from './scene.mjs';
 import { parseLabSpec } from './spec.mjs';
-
-// Pacing: each frame steps in chunks until simulation time has caught up with the wall
-// clock or kBudgetShare of the mean frame interval (10 ms at 60 Hz; at most kMaxBudgetMs
-// when drawing itself is slow) is spent; time still owed then is dropped, so a slow
-// machine shows a real-time factor below 1 rather than freezing. Wall-clock gaps longer
-// than kMaxGap (a hidden tab) are skipped. A chunk is about kChunkMs of stepping, from the
-// measured cost of a step.
-const kBudgetShare = 0.6;
-const kMaxBudgetMs = 50;
-const kChunkMs = 1;
-const kMaxGap = 0.25;
 
 let enginePromise = null;
 
@@ -36,16 +28,23 @@ async function fetchOk(url) {
   return response;
 }
 
-// models/<name>.xml and every file it refers to (see model_files.mjs): XML as text, other
-// files as bytes, keyed by their path relative to the model's folder.
-async function fetchModel(baseUrl, name) {
-  const folder = new URL('models/', baseUrl);
-  const filename = `${name}.xml`;
-  const xml = await (await fetchOk(new URL(filename, folder))).text();
-  const readText = async (path) => (await fetchOk(new URL(path, folder))).text();
-  const readBytes = async (path) => new Uint8Array(await (await fetchOk(new URL(path, folder))).arrayBuffer());
-  const files = await gatherModelFiles(filename, xml, readText, readBytes);
-  return { filename, xml, files };
+// A model on the server: file `filename` of the folder at URL `folder`, each file of the
+// folder read by its relative path.
+export function urlSource(folder, filename) {
+  const read = async (path) => fetchOk(new URL(path, folder));
+  return {
+    filename,
+    readText: async (path) => (await read(path)).text(),
+    readBytes: async (path) => new Uint8Array(await (await read(path)).arrayBuffer()),
+  };
+}
+
+// A model source's file and every file it refers to (see model_files.mjs): XML as text,
+// other files as bytes, keyed by their path relative to the model's folder.
+async function fetchModel(source) {
+  const xml = await source.readText(source.filename);
+  const files = await gatherModelFiles(source.filename, xml, source.readText, source.readBytes);
+  return { filename: source.filename, xml, files };
 }
 
 // Data arrays as views into wasm memory, looked up by id (no name string crosses into
@@ -86,6 +85,11 @@ class DataViews {
 // The Data arrays the 3D view reads every frame.
 const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator'];
 
+// A speed as shown: "1x", "1/8x".
+function speedText(speed) {
+  return speed >= 1 ? `${speed}x` : `1/${Math.round(1 / speed)}x`;
+}
+
 // A DOM element with a class and optional text.
 function make(tag, className, text) {
   const node = document.createElement(tag);
@@ -109,6 +113,10 @@ const kStyle = `
 .simlab-lab-readout .value { font-weight: 600; margin-left: 0.4em; }
 .simlab-lab-error { color: #b00020; }
 .simlab-lab-note { color: #444; font-size: 13px; margin: 6px 0 0; }
+.simlab-lab-group { margin: 8px 0 2px; font-size: 13px; color: #333; }
+.simlab-lab-pickable { cursor: pointer; border-radius: 3px; padding: 0 3px; }
+.simlab-lab-pickable:hover { background: #eef2f8; }
+.simlab-lab-picked { background: #dde8f7; }
 `;
 
 function addStyle() {
@@ -138,12 +146,9 @@ export async function mountLab(element, spec, options = {}) {
   if (labSpec.title) root.appendChild(make('h3', '', labSpec.title));
   const status = root.appendChild(make('div', 'simlab-lab-status', `loading ${labSpec.model}...`));
   try {
-    const [simlab, files] = await Promise.all([loadEngine(distUrl), fetchModel(baseUrl, labSpec.model)]);
-    const sim = new simlab.Simulation(files.filename, files.xml, files.files);
+    const { simlab, sim } = await openModel(distUrl, urlSource(new URL('models/', baseUrl), `${labSpec.model}.xml`));
     status.remove();
-    const contactLayout = { stride: simlab.contactStride, pos: simlab.contactPos, frame: simlab.contactFrame,
-                            force: simlab.contactForce };
-    const lab = new Lab(root, labSpec, sim, contactLayout);
+    const lab = new Lab(root, labSpec, sim, contactLayoutOf(simlab));
     element.simlabLab = lab;
     return lab;
   } catch (error) {
@@ -153,12 +158,51 @@ export async function mountLab(element, spec, options = {}) {
   }
 }
 
+// The engine and a Simulation of a model source's model, with its files.
+async function openModel(distUrl, source) {
+  const [simlab, files] = await Promise.all([loadEngine(distUrl), fetchModel(source)]);
+  return { simlab, sim: new simlab.Simulation(files.filename, files.xml, files.files) };
+}
+
+// Where contactData()'s rows keep what the view draws.
+function contactLayoutOf(simlab) {
+  return { stride: simlab.contactStride, pos: simlab.contactPos, frame: simlab.contactFrame,
+           force: simlab.contactForce };
+}
+
+// The viewer of any model: mounts a lab whose panels are generated from the model (see
+// panels.mjs), with simulate's keys, into `element`; resolves to its controller (also
+// element.simlabLab). `source`: the model (urlSource, or files the user picked).
+export async function mountModelViewer(element, source, options = {}) {
+  const filename = source.filename;
+  const distUrl = new URL(options.distUrl ?? '../dist/', import.meta.url);
+  addStyle();
+  element.textContent = '';
+  const root = make('div', 'simlab-lab simlab-lab--viewer');
+  element.appendChild(root);
+  const status = root.appendChild(make('div', 'simlab-lab-status', `loading ${filename}...`));
+  try {
+    const { simlab, sim } = await openModel(distUrl, source);
+    status.remove();
+    const lab = new Lab(root, specFromModel(modelInfo(sim), filename), sim, contactLayoutOf(simlab),
+                        { keyboard: true, exports: true });
+    element.simlabLab = lab;
+    return lab;
+  } catch (error) {
+    status.className = 'simlab-lab-error';
+    status.textContent = `${filename}: ${error.message ?? error}`;
+    throw error;
+  }
+}
+
 // One mounted lab: the simulation, its widgets and the animation loop.
 class Lab {
-  constructor(root, spec, sim, contactLayout) {
+  constructor(root, spec, sim, contactLayout, options = {}) {
     this.root = root;
     this.spec = spec;
     this.sim = sim;
+    this.key = spec.key;
+    this.options = options;
     this.timestep = sim.option().timestep;
     this.toggles = { contacts: false, forces: false, joints: false };
     this.playing = spec.autoplay !== false;
@@ -170,11 +214,10 @@ class Lab {
     // dropped: wall-clock seconds the simulation gave up catching (budget spent, or gaps
     // over kMaxGap), in total since the lab was mounted.
     // totalSteps, totalFrames: counted since mounting (steps per frame = their ratio).
-    this.stats = { fps: 0, realTimeFactor: 0, engineFactor: 0, frames: 0, busy: 0,
+    this.stats = { fps: 0, realTimeFactor: 0, engineFactor: 0, frames: 0,
                    windowStart: performance.now(), simStart: 0, dropped: 0, totalSteps: 0, totalFrames: 0 };
-    // Pacing (see kBudgetShare): the mean frame interval and cost of a step, in ms.
-    this.frameInterval = 1000 / 60;
-    this.msPerStep = 0.05;
+    // Pacing against the wall clock, at the chosen speed (see pacer.mjs).
+    this.pacer = new Pacer({ timestep: this.timestep, step: (n) => this.sim.step(n) });
     // Reused every frame: the scene's state, the plots' sample rows.
     this.state = { model: null, contacts: null, contactLayout, geom_xpos: null, geom_xmat: null,
                    xanchor: null, xaxis: null, qfrc_actuator: null };
@@ -195,9 +238,9 @@ class Lab {
     this.onScreen = true;
     new IntersectionObserver(([entry]) => { this.onScreen = entry.isIntersecting; }).observe(this.view);
 
+    if (options.keyboard) this.listenToKeys();
     this.reset();
     this.frame = this.frame.bind(this);
-    this.lastFrame = null;
     requestAnimationFrame(this.frame);
   }
 
@@ -236,6 +279,19 @@ class Lab {
     this.playButton.addEventListener('click', () => (this.playing ? this.pause() : this.play()));
     const reset = bar.appendChild(make('button', 'simlab-lab-reset', 'reset'));
     reset.addEventListener('click', () => this.guarded(() => this.reset()));
+    const step = bar.appendChild(make('button', 'simlab-lab-step', 'step'));
+    step.addEventListener('click', () => this.guarded(() => this.stepOnce()));
+    this.speedSelect = bar.appendChild(this.buildSelect('simlab-lab-speed', 'speed',
+      kSpeeds.map((speed) => [String(speed), `speed ${speedText(speed)}`]), (value) => this.setSpeed(Number(value))));
+    if (this.spec.keys?.length) {
+      // A keyframe to reset to (the spec's key first), or the model's default state.
+      const choices = [['', 'default state'], ...this.spec.keys.map((name, k) => [String(k), `key ${name || k}`])];
+      this.keySelect = bar.appendChild(this.buildSelect('simlab-lab-key', 'reset to', choices, (value) => {
+        this.key = value === '' ? null : Number(value);
+        this.guarded(() => this.reset());
+      }));
+      this.keySelect.value = this.key === null || this.key === undefined ? '' : String(this.key);
+    }
     for (const name of this.spec.toggles ?? []) {
       if (!(name in this.toggles)) continue;
       const label = bar.appendChild(make('label', 'simlab-lab-toggle'));
@@ -248,10 +304,52 @@ class Lab {
       });
       label.append(` ${name}`);
     }
+    if (this.options.exports) {
+      const shot = bar.appendChild(make('button', 'simlab-lab-screenshot', 'screenshot'));
+      shot.addEventListener('click', () => this.guarded(() => this.download('png')));
+      const csv = bar.appendChild(make('button', 'simlab-lab-csv', 'CSV'));
+      csv.title = 'the plotted series and the readouts, as CSV';
+      csv.addEventListener('click', () => this.guarded(() => this.download('csv')));
+    }
     this.errorText = bar.appendChild(make('span', 'simlab-lab-error'));
     this.warningText = bar.appendChild(make('span', 'simlab-lab-warning'));
     this.statsText = bar.appendChild(make('span', 'simlab-lab-stats'));
     this.updatePlayButton();
+  }
+
+  // A drop-down of [value, text] choices calling onChange(value).
+  buildSelect(className, label, choices, onChange) {
+    const select = make('select', className);
+    select.setAttribute('aria-label', label);
+    for (const [value, text] of choices) {
+      const option = select.appendChild(make('option', '', text));
+      option.value = value;
+    }
+    select.addEventListener('change', () => onChange(select.value));
+    return select;
+  }
+
+  // simulate's keys, on the whole page (for a page with one lab): Space plays or pauses,
+  // Right arrow takes one step, Backspace resets, '-' and '=' slow down and speed up.
+  // Keys typed into a form field, or pressed on a focused button, are theirs.
+  listenToKeys() {
+    this.onKey = (event) => {
+      const tag = event.target?.tagName;
+      if (['INPUT', 'SELECT', 'TEXTAREA', 'BUTTON'].includes(tag) || event.ctrlKey || event.metaKey || event.altKey) return;
+      const actions = {
+        ' ': () => (this.playing ? this.pause() : this.play()),
+        ArrowRight: () => this.stepOnce(),
+        Backspace: () => this.reset(),
+        '-': () => this.changeSpeed(-1),
+        '=': () => this.changeSpeed(1),
+        '+': () => this.changeSpeed(1),
+      };
+      const action = actions[event.key];
+      if (!action) return;
+      event.preventDefault();
+      this.guarded(action);
+    };
+    document.addEventListener('keydown', this.onKey);
   }
 
   // A slider writing its target (data.NAME[i]) on input; a bad target disables it and
@@ -287,9 +385,16 @@ class Lab {
     control.shown.textContent = `${value} ${control.spec.unit ?? ''}`;
   }
 
+  // Readouts, under a heading per group when they have one; with spec.pickPlots a click
+  // on a readout adds it to the plot of picked readouts (another click takes it out).
   buildReadouts(specs) {
-    const box = this.root.appendChild(make('div', 'simlab-lab-readouts'));
+    let box = null, group;
     return specs.map((spec) => {
+      if (!box || spec.group !== group) {
+        group = spec.group;
+        if (group) this.root.appendChild(make('h4', 'simlab-lab-group', group));
+        box = this.root.appendChild(make('div', 'simlab-lab-readouts'));
+      }
       const row = box.appendChild(make('div', 'simlab-lab-readout'));
       row.appendChild(make('span', 'label', spec.label ?? spec.expr));
       const value = row.appendChild(make('span', 'value'));
@@ -299,12 +404,65 @@ class Lab {
       } catch (error) {
         readout.error = error.message;
       }
+      if (this.spec.pickPlots) {
+        row.classList.add('simlab-lab-pickable');
+        row.title = 'click to plot';
+        row.addEventListener('click', () => this.guarded(() => this.togglePicked(readout)));
+      }
       return readout;
     });
   }
 
+  // Adds a readout to the plot of picked readouts, or takes it out; the plot is made
+  // anew with its traces (and goes away with the last one).
+  togglePicked(readout) {
+    this.picked ??= [];
+    const at = this.picked.indexOf(readout);
+    if (at >= 0) this.picked.splice(at, 1);
+    else this.picked.push(readout);
+    readout.row.classList.toggle('simlab-lab-picked', at < 0);
+    const old = this.plots.findIndex((p) => p.picked);
+    if (old >= 0) {
+      this.plots[old].box.remove();
+      this.plots.splice(old, 1);
+    }
+    if (!this.picked.length) return;
+    const traces = this.picked.map((r) => ({ label: r.spec.label ?? r.spec.expr }));
+    const box = make('div', 'simlab-lab-plot');
+    this.view.after(box);
+    this.plots.push({ picked: true, box, traces: this.picked.map((r) => r.tree), values: traces.map(() => NaN),
+                      plot: new LivePlot(box, { traces, window: 10 }, this.width()) });
+  }
+
+  // The plotted series (time and one column per trace, for every plot), then the readouts
+  // now (label, value), as CSV text.
+  exportCsv() {
+    const quote = (text) => `"${String(text).replaceAll('"', '""')}"`;
+    const lines = [];
+    for (const { plot } of this.plots) lines.push(...plot.csvLines(), '');
+    lines.push('"readout","value"');
+    for (const r of this.readouts) lines.push(`${quote(r.spec.label ?? r.spec.expr)},${r.current}`);
+    return lines.join('\n') + '\n';
+  }
+
+  // Saves the view as a PNG, or exportCsv() as CSV, through the browser's download.
+  download(kind) {
+    const stem = (this.spec.title || 'simlab').replace(/\.xml$/i, '').replace(/[^\w.-]+/g, '_');
+    const link = make('a');
+    link.download = `${stem}_t${this.sim.time.toFixed(3)}.${kind}`;
+    if (kind === 'png') {
+      this.scene.render();  // (the canvas holds its picture only until the frame ends)
+      link.href = this.scene.renderer.domElement.toDataURL('image/png');
+    } else {
+      link.href = URL.createObjectURL(new Blob([this.exportCsv()], { type: 'text/csv' }));
+      setTimeout(() => URL.revokeObjectURL(link.href), 10000);
+    }
+    link.click();
+  }
+
   buildPlot(spec) {
     const box = this.root.appendChild(make('div', 'simlab-lab-plot'));
+    box.dataset.spec = '1';
     const traces = (spec.traces ?? []).map((trace) => {
       try {
         return parseExpr(trace.expr);
@@ -312,7 +470,7 @@ class Lab {
         return null;
       }
     });
-    return { traces, values: traces.map(() => NaN),
+    return { traces, values: traces.map(() => NaN), box,
              plot: new LivePlot(box, { ...spec, traces: spec.traces ?? [] }, this.width()) };
   }
 
@@ -385,32 +543,6 @@ class Lab {
     return state;
   }
 
-  // Steps until simulation time has caught up with the wall clock or the frame's budget
-  // is spent; drops what is still owed then. Chunks of about kChunkMs keep the checks of
-  // the clock cheap.
-  advance(gap) {
-    this.debt += gap;
-    const start = performance.now();
-    const budget = Math.min(kMaxBudgetMs, kBudgetShare * this.frameInterval);
-    let owed = Math.floor(this.debt / this.timestep + 1e-9);
-    let spent = 0;
-    while (owed > 0 && spent < budget) {
-      const chunk = Math.min(owed, Math.max(1, Math.floor(kChunkMs / this.msPerStep)));
-      this.sim.step(chunk);
-      this.stats.totalSteps += chunk;
-      const now = performance.now();
-      this.msPerStep = 0.8 * this.msPerStep + 0.2 * Math.max(1e-4, (now - start - spent) / chunk);
-      spent = now - start;
-      this.debt -= chunk * this.timestep;
-      owed -= chunk;
-    }
-    if (owed > 0) {
-      this.stats.dropped += this.debt;
-      this.debt = 0;
-    }
-    this.stats.busy += spent;
-  }
-
   // The animation loop: while playing, steps to keep simulation time with the wall clock
   // (see advance), then draws and updates the frame rate and real-time factor.
   frame(now) {
@@ -431,16 +563,13 @@ class Lab {
   }
 
   frameBody(now) {
-    const wall = this.lastFrame === null ? 0 : (now - this.lastFrame) / 1000;
-    const gap = Math.min(kMaxGap, wall);
-    if (this.playing) this.stats.dropped += wall - gap;
-    if (gap > 0) this.frameInterval = 0.9 * this.frameInterval + 0.1 * 1000 * gap;
-    this.lastFrame = now;
     const timeBefore = this.sim.time;
-    if (this.playing) this.advance(gap);
+    this.pacer.frame(now, this.playing);
+    this.stats.dropped = this.pacer.dropped;
+    this.stats.totalSteps = this.pacer.totalSteps;
     // Paused, a slider still acts at once: forward recomputes forces from the new ctrl
     // (as MuJoCo's simulate does while paused).
-    else if (this.changed) this.sim.forward();
+    if (!this.playing && this.changed) this.sim.forward();
     // Readouts and plots only when time moved or something asked for it; the 3D view
     // whenever it is on screen (the camera may have moved).
     if (this.changed || this.sim.time !== timeBefore) this.draw();
@@ -469,14 +598,15 @@ class Lab {
     if (elapsed < 0.5) return;
     s.fps = s.frames / elapsed;
     const simulated = Math.max(0, this.sim.time - s.simStart);
+    const busy = this.pacer.takeBusy();
     s.realTimeFactor = this.playing ? simulated / elapsed : 0;
-    s.engineFactor = s.busy > 0 ? simulated / (s.busy / 1000) : 0;
+    s.engineFactor = busy > 0 ? simulated / (busy / 1000) : 0;
     s.frames = 0;
-    s.busy = 0;
     s.windowStart = now;
     s.simStart = this.sim.time;
+    const speed = this.pacer.speed === 1 ? '' : `, speed ${speedText(this.pacer.speed)}`;
     this.statsText.textContent = `${s.fps.toFixed(0)} fps, real-time factor ${s.realTimeFactor.toFixed(2)}` +
-      (s.engineFactor ? ` (engine ${s.engineFactor.toFixed(0)}x)` : '');
+      (s.engineFactor ? ` (engine ${s.engineFactor.toFixed(0)}x)` : '') + speed;
   }
 
   // Runs `action`; an error stops the lab with its message instead of escaping.
@@ -492,9 +622,26 @@ class Lab {
     this.playButton.textContent = this.playing ? 'pause' : 'play';
   }
 
+  // Paused, one step forward.
+  stepOnce() {
+    this.pause();
+    this.step(1);
+  }
+
+  // Simulated seconds per wall second (1, 1/2 ... 1/64).
+  setSpeed(speed) {
+    this.pacer.speed = kSpeeds.includes(speed) ? speed : 1;
+    this.pacer.clearDebt();
+    this.speedSelect.value = String(this.pacer.speed);
+  }
+
+  changeSpeed(direction) {
+    this.setSpeed(this.pacer.changeSpeed(direction));
+  }
+
   play() {
     this.playing = true;
-    this.debt = 0;
+    this.pacer.clearDebt();
     this.updatePlayButton();
   }
 
@@ -507,7 +654,7 @@ class Lab {
   // written into ctrl, and empty plots.
   reset() {
     this.errorText.textContent = '';
-    if (this.spec.key !== undefined && this.spec.key !== null) this.sim.resetKeyframe(this.spec.key);
+    if (this.key !== undefined && this.key !== null) this.sim.resetKeyframe(this.key);
     else this.sim.reset();
     for (const control of this.controls) {
       control.slider.value = control.spec.value ?? control.spec.min;
@@ -515,7 +662,7 @@ class Lab {
     }
     this.sim.forward();
     for (const { plot } of this.plots) plot.clear();
-    this.debt = 0;
+    this.pacer.clearDebt();
     this.stats.simStart = this.sim.time;
     this.draw();
   }
@@ -536,7 +683,8 @@ class Lab {
   // The animation clock: the last frame's wall time (ms), the simulation time then, and the
   // frames drawn and steps taken by the animation loop so far.
   clock() {
-    return { wall: this.lastFrame, time: this.sim.time, frames: this.stats.totalFrames, steps: this.stats.totalSteps };
+    return { wall: this.pacer.lastFrame, time: this.sim.time, frames: this.stats.totalFrames,
+             steps: this.pacer.totalSteps };
   }
 
   readoutValues() {
@@ -545,6 +693,7 @@ class Lab {
 
   dispose() {
     this.disposed = true;
+    if (this.onKey) document.removeEventListener('keydown', this.onKey);
     this.scene.dispose();
     this.sim.delete();
   }

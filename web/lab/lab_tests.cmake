@@ -24,4 +24,17 @@ if(SIMLAB_NODE)
                    --shots ${CMAKE_BINARY_DIR}/lab_screenshots ${SIMLAB_BROWSER_REQUIRE}
            WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   set_tests_properties(lab_e2e PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 RUN_SERIAL TRUE)
+  # The viewer's parts that need no browser (generated panels, pacer, model files given
+  # by the user), in node; then `simlab view` on MuJoCo's own models in headless Chromium
+  # (web/test/view_e2e.mjs: pictures, generated sliders, simulate's keys, picked plots,
+  # CSV and PNG exports; screenshots in the build folder's view_screenshots).
+  add_test(NAME view_units
+           COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/view_units.mjs
+           WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+  add_test(NAME view_e2e
+           COMMAND ${SIMLAB_NODE} ${CMAKE_SOURCE_DIR}/web/test/view_e2e.mjs
+                   --simlab $<TARGET_FILE:simlab> --dist ${CMAKE_SOURCE_DIR}/web/dist
+                   --shots ${CMAKE_BINARY_DIR}/view_screenshots ${SIMLAB_BROWSER_REQUIRE}
+           WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+  set_tests_properties(view_e2e PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 RUN_SERIAL TRUE)
 endif()

@@ -10,6 +10,7 @@ export class LivePlot {
   constructor(container, spec, width) {
     this.window = Number(spec.window) > 0 ? Number(spec.window) : 5;
     this.columns = [[], ...spec.traces.map(() => [])];
+    this.labels = ['time', ...spec.traces.map((trace, i) => trace.label ?? `trace ${i}`)];
     this.xScale = { min: 0, max: this.window };
     this.redraw = () => {
       this.chart.setData(this.columns, false);
@@ -52,6 +53,17 @@ export class LivePlot {
     this.xScale.min = Math.max(0, end - this.window);
     this.xScale.max = Math.max(this.window, end);
     this.chart.batch(this.redraw);
+  }
+
+  // The samples kept (the last `window` seconds) as CSV lines: a header of the traces'
+  // labels, then one row per sample (empty where a trace had no value).
+  csvLines() {
+    const quote = (text) => `"${String(text).replaceAll('"', '""')}"`;
+    const lines = [this.labels.map(quote).join(',')];
+    for (let i = 0; i < this.columns[0].length; i++) {
+      lines.push(this.columns.map((column) => (column[i] == null ? '' : String(column[i]))).join(','));
+    }
+    return lines;
   }
 
   clear() {

@@ -29,9 +29,10 @@ export function launchChromium(playwright, options) {
   return playwright.chromium.launch({ executablePath: options.chromium, args: kChromiumFlags });
 }
 
-// Starts `simlab lab LESSON --port 0`; resolves with {url, stop} once it prints its address.
-export function startLabServer(simlabExe, lesson) {
-  const child = spawn(simlabExe, ['lab', lesson, '--port', '0'], { cwd: repoRoot });
+// Starts `simlab lab LESSON --port 0` (or another subcommand: `args` such as
+// ['view', MODEL]); resolves with {url, stop} once it prints its address.
+export function startLabServer(simlabExe, lesson, args = ['lab', lesson]) {
+  const child = spawn(simlabExe, [...args, '--port', '0'], { cwd: repoRoot });
   return new Promise((resolve, reject) => {
     let output = '';
     const timer = setTimeout(() => reject(new Error(`no URL from simlab lab: ${output}`)), 15000);
@@ -48,6 +49,33 @@ export function startLabServer(simlabExe, lesson) {
   });
 }
 
+// In the page: what the lab's 3D view shows now, rendered once: how many distinct
+// colours (4 bits a channel), the share of pixels unlike the top-left one, and, given a
+// world point, the pixel (x, y) it projects to and its colour `at`.
+export function pictureStats(point = null) {
+  const lab = window.lab;
+  lab.scene.render();
+  const canvas = lab.scene.renderer.domElement;
+  const copy = document.createElement('canvas');
+  copy.width = canvas.width;
+  copy.height = canvas.height;
+  const context = copy.getContext('2d');
+  context.drawImage(canvas, 0, 0);
+  const { data } = context.getImageData(0, 0, copy.width, copy.height);
+  const colours = new Set();
+  let unlike = 0;
+  const [br, bg, bb] = [data[0], data[1], data[2]];
+  for (let i = 0; i < data.length; i += 4) {
+    colours.add((data[i] >> 4) << 8 | (data[i + 1] >> 4) << 4 | data[i + 2] >> 4);
+    if (Math.abs(data[i] - br) + Math.abs(data[i + 1] - bg) + Math.abs(data[i + 2] - bb) > 24) unlike++;
+  }
+  const stats = { colours: colours.size, unlike: unlike / (data.length / 4) };
+  if (!point) return stats;
+  const p = lab.scene.camera.position.clone().set(...point).project(lab.scene.camera);
+  const x = Math.round((p.x + 1) / 2 * copy.width), y = Math.round((1 - p.y) / 2 * copy.height);
+  return { ...stats, at: Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3)), x, y };
+}
+
 // The page's uncaught errors and console errors, as they come.
 export function collectProblems(page) {
   const problems = [];
@@ -58,10 +86,11 @@ export function collectProblems(page) {
   return problems;
 }
 
-// Chromium on `simlab lab`'s server: {browser, url, close()} (close ends both).
-export async function openLabSession(options) {
+// Chromium on `simlab lab`'s server (or `simlab view`'s, with args): {browser, url,
+// close()} (close ends both).
+export async function openLabSession(options, args = undefined) {
   const playwright = await loadPlaywright(options);
-  const server = await startLabServer(options.simlab, options.lesson);
+  const server = await startLabServer(options.simlab, options.lesson, args);
   let browser = null;
   try {
     browser = await launchChromium(playwright, options);

@@ -25,7 +25,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { evaluateExpr, parseExpr } from '../lab/expr.mjs';
 import { parseLesson } from '../lesson/parse.mjs';
-import { collectProblems, kDefaultLesson, openLabSession } from './browser_harness.mjs';
+import { collectProblems, kDefaultLesson, openLabSession, pictureStats } from './browser_harness.mjs';
 import {
   nativeRollout, openBuilds, parseOptions, repoRoot,
 } from './wasm_harness.mjs';
@@ -369,32 +369,6 @@ async function checkAgainstSpec(page, spec) {
         v.target.join() === cam.target.join() && shown.cameraZ > cam.target[2],
         `camera: azimuth ${v.azimuth}, ${cam.elevation} degrees above the horizon (camera z ` +
         `${shown.cameraZ.toFixed(3)} m), distance ${v.distance}, target ${v.target}`);
-}
-
-// In the page: the 3D view's pixels, counted (distinct colours at 4 bits per channel,
-// share of pixels unlike the sky in the top-left corner), and the colour under the
-// projection of a world point.
-function pictureStats(point) {
-  const lab = window.lab;
-  lab.scene.render();
-  const canvas = lab.scene.renderer.domElement;
-  const copy = document.createElement('canvas');
-  copy.width = canvas.width;
-  copy.height = canvas.height;
-  const context = copy.getContext('2d');
-  context.drawImage(canvas, 0, 0);
-  const { data } = context.getImageData(0, 0, copy.width, copy.height);
-  const colours = new Set();
-  let unlike = 0;
-  const [br, bg, bb] = [data[0], data[1], data[2]];
-  for (let i = 0; i < data.length; i += 4) {
-    colours.add((data[i] >> 4) << 8 | (data[i + 1] >> 4) << 4 | data[i + 2] >> 4);
-    if (Math.abs(data[i] - br) + Math.abs(data[i + 1] - bg) + Math.abs(data[i + 2] - bb) > 24) unlike++;
-  }
-  const p = lab.scene.camera.position.clone().set(...point).project(lab.scene.camera);
-  const x = Math.round((p.x + 1) / 2 * copy.width), y = Math.round((1 - p.y) / 2 * copy.height);
-  const at = Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3));
-  return { colours: colours.size, unlike: unlike / (data.length / 4), at, x, y };
 }
 
 // The picture is not blank, and the cube (yellow) is where the camera should see it.

@@ -1,0 +1,151 @@
+// `simlab view` end to end in headless Chromium, on models the project did not write
+// (MuJoCo's own, in ../shared/corpus/mujoco/model): each is served from its own folder
+// (meshes and textures found there), loads, shows a picture that is not blank and a
+// slider per control entry. On the humanoid: a slider moved with the mouse writes ctrl
+// and changes the actuator's force; simulate's keys pause (time stops), single-step (one
+// timestep), reset (time 0) and change the speed; a click on a readout plots it and the
+// CSV export holds the plotted series; the screenshot export is a PNG. Screenshots of
+// each model go to --shots.
+//
+//   node web/test/view_e2e.mjs --simlab build/simlab [--shots DIR] [--require yes]
+//
+// Exits 77 (ctest: skipped) when the WASM build, Chromium or playwright-core is missing
+// (with --require yes: fails).
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { collectProblems, openLabSession, pictureStats } from './browser_harness.mjs';
+import { openBuilds, parseOptions, repoRoot } from './wasm_harness.mjs';
+
+const options = parseOptions(process.argv.slice(2), {
+  simlab: path.join(repoRoot, 'build/simlab'),
+  dist: path.join(repoRoot, 'web/dist'),
+  shots: path.join(os.tmpdir(), 'simlab-view-e2e'),
+  corpus: path.resolve(repoRoot, '../shared/corpus/mujoco/model'),
+  chromium: '/usr/bin/chromium',
+});
+
+function check(condition, message) {
+  if (!condition) throw new Error(message);
+  console.log(`ok: ${message}`);
+}
+
+// `simlab view MODEL` in Chromium: the page with its lab mounted, and the page's errors.
+async function openViewer(model) {
+  const session = await openLabSession(options, ['view', model]);
+  const page = await session.browser.newPage({ viewport: { width: 1100, height: 1000 } });
+  const problems = collectProblems(page);
+  await page.goto(session.url);
+  await page.waitForFunction(() => window.lab || document.querySelector('.simlab-lab-error'), null,
+                             { timeout: 60000 });
+  const error = await page.evaluate(() => (window.lab ? '' : document.querySelector('.simlab-lab-error').textContent));
+  if (error) throw new Error(`${path.basename(model)} did not load: ${error}`);
+  return { session, page, problems };
+}
+
+// Loads, draws, and has a slider per control entry; a screenshot of the page.
+async function checkLoads(page, name) {
+  await page.waitForTimeout(700);
+  const stats = await page.evaluate(pictureStats);
+  await page.screenshot({ path: path.join(options.shots, `view_${name}.png`) });
+  check(stats.colours >= 8 && stats.unlike >= 0.002,
+        `${name}: the picture has ${stats.colours} colours, ${(100 * stats.unlike).toFixed(1)}% unlike its corner`);
+  const nu = await page.evaluate(() => window.lab.sim.sizes().nu);
+  const sliders = await page.locator('.simlab-lab-control input[type=range]').count();
+  check(sliders === nu, `${name}: ${sliders} sliders for nu = ${nu}`);
+  await page.screenshot({ path: path.join(options.shots, `view_${name}.png`) });
+}
+
+// The first slider dragged with the mouse to near its top: ctrl follows, and so does the
+// actuator's force (the humanoid's motors: force = gear * ctrl).
+async function checkSlider(page) {
+  const slider = page.locator('.simlab-lab-control input[type=range]').first();
+  const box = await slider.boundingBox();
+  await page.mouse.click(box.x + box.width - 12, box.y + box.height / 2);
+  await page.waitForTimeout(200);
+  const [value, ctrl, force] = await page.evaluate(() => {
+    const lab = window.lab;
+    return [Number(lab.controls[0].slider.value), lab.sim.data('ctrl')[0], lab.sim.data('actuator_force')[0]];
+  });
+  check(value > 0.5 && ctrl === value && force !== 0,
+        `the mouse set slider 0 to ${value.toFixed(3)}: ctrl[0] = ${ctrl.toFixed(3)}, actuator_force[0] = ${force.toFixed(3)}`);
+}
+
+// simulate's keys, pressed on the page (not in a form field).
+async function checkKeys(page) {
+  const time = () => page.evaluate(() => window.lab.sim.time);
+  await page.locator('h1').click();
+  await page.keyboard.press('Space');
+  const paused = await time();
+  await page.waitForTimeout(300);
+  const later = await time();
+  check(later === paused && paused > 0, `Space paused the simulation at t = ${paused.toFixed(3)} (still ${later.toFixed(3)} 300 ms later)`);
+  const dt = await page.evaluate(() => window.lab.timestep);
+  await page.keyboard.press('ArrowRight');
+  const stepped = await time();
+  check(Math.abs(stepped - paused - dt) < 1e-12, `Right arrow took one step of ${dt} s (t = ${stepped.toFixed(4)})`);
+  await page.keyboard.press('Backspace');
+  check(await time() === 0, 'Backspace reset the time to 0');
+  await page.keyboard.press('-');
+  await page.keyboard.press('-');
+  const slow = await page.locator('select.simlab-lab-speed').inputValue();
+  check(Number(slow) === 0.25, `'-' twice slowed to speed ${slow}`);
+  await page.keyboard.press('=');
+  await page.keyboard.press('=');
+  await page.keyboard.press('Space');
+  await page.waitForTimeout(1000);
+  const rtf = await page.evaluate(() => window.lab.stats.realTimeFactor);
+  check(rtf > 0.5, `'=' twice back to speed 1, Space plays again (real-time factor ${rtf.toFixed(2)})`);
+}
+
+// A click on a readout plots it; the CSV export holds its series; the screenshot export
+// is a PNG.
+async function checkPlotAndExports(page) {
+  const readout = page.locator('.simlab-lab-readout').first();
+  const label = await readout.locator('.label').textContent();
+  await readout.click();
+  await page.waitForTimeout(1500);
+  const traces = await page.evaluate(() => window.lab.plots.filter((p) => p.picked).map((p) => p.traces.length));
+  check(traces.length === 1 && traces[0] === 1, `a click on readout "${label}" made a plot of it`);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('button.simlab-lab-csv').click()]);
+  const csv = fs.readFileSync(await download.path(), 'utf8').split('\n');
+  const rows = csv.slice(1, csv.indexOf('')).map((line) => line.split(',').map(Number));
+  check(csv[0] === `"time","${label}"` && rows.length >= 5 && rows.every((r) => r.length === 2 && r.every(Number.isFinite)),
+        `the CSV export (${download.suggestedFilename()}) holds the plotted series: header ${csv[0]}, ${rows.length} rows`);
+  const [shot] = await Promise.all([page.waitForEvent('download'), page.locator('button.simlab-lab-screenshot').click()]);
+  const png = fs.readFileSync(await shot.path());
+  check(png.subarray(1, 4).toString() === 'PNG' && png.length > 5000,
+        `the screenshot export is a PNG of ${png.length} bytes (${shot.suggestedFilename()})`);
+}
+
+async function testModel(file, interactive) {
+  const name = path.basename(file, '.xml');
+  const { session, page, problems } = await openViewer(path.join(options.corpus, file));
+  try {
+    await checkLoads(page, name);
+    if (interactive) {
+      await checkSlider(page);
+      await checkKeys(page);
+      await checkPlotAndExports(page);
+    }
+    check(problems.length === 0, `${name}: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
+  } finally {
+    await session.close();
+  }
+}
+
+async function main() {
+  await openBuilds(options);
+  fs.mkdirSync(options.shots, { recursive: true });
+  await testModel('humanoid/humanoid.xml', true);
+  for (const file of ['mug/mug.xml', 'cards/cards.xml', 'cube/cube_3x3x3.xml', 'car/car.xml']) {
+    await testModel(file, false);
+  }
+  console.log(`screenshots in ${options.shots}`);
+  console.log('PASS');
+}
+
+main().catch((e) => {
+  console.error(`FAIL: ${e.stack ?? e}`);
+  process.exit(1);
+});

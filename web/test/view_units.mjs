@@ -1,0 +1,129 @@
+// Unit tests, in node, of the viewer's parts that need no browser: the panels generated
+// from a model (web/lab/panels.mjs), the pacer with a clock of the test's own
+// (web/lab/pacer.mjs), and the choice of the main model among files a user gives
+// (web/view/files.mjs).
+//
+//   node web/test/view_units.mjs
+import assert from 'node:assert/strict';
+import { Pacer, kSpeeds } from '../lab/pacer.mjs';
+import { specFromModel } from '../lab/panels.mjs';
+import { pickMainModel, withPaths } from '../view/files.mjs';
+
+// A model of 3 actuators (a limited motor, an unlimited one, a 4-control orientation
+// servo with 3 outputs), a free joint, a hinge and a slide, two sensors, one keyframe.
+const info = {
+  sizes: { nactuator: 3, njnt: 3, nsensor: 2, nkey: 1 },
+  statistic: { extent: 2, center: [0, 0, 1] },
+  names: { actuator: ['lift', '', 'wrist'], jnt: ['root', 'elbow', ''], sensor: ['touch', 'acc'], key: ['home'] },
+  actuator_ctrladr: [0, 1, 2], actuator_ctrlnum: [1, 1, 4],
+  actuator_outadr: [0, 1, 2], actuator_outnum: [1, 1, 3],
+  actuator_ctrlrange: [0.5, 2, 0, 0, -1, 1, -1, 1, -1, 1, -1, 1],
+  actuator_ctrllimited: [1, 0, 1, 1, 1, 1],
+  jnt_type: [0, 3, 2], jnt_qposadr: [0, 7, 8],
+  sensor_adr: [0, 1], sensor_dim: [1, 3],
+};
+
+// A File of the browser's, as far as files.mjs uses it.
+function fakeFile(name, text, relative = '') {
+  return { name, webkitRelativePath: relative, text: async () => text,
+           arrayBuffer: async () => new TextEncoder().encode(text).buffer };
+}
+
+const tests = {
+  'a slider per control entry, in ctrlrange or -1..1': () => {
+    const spec = specFromModel(info, 'm.xml');
+    assert.deepEqual(spec.controls.map((c) => [c.label, c.set, c.min, c.max, c.value]), [
+      ['lift', 'data.ctrl[0]', 0.5, 2, 0.5],
+      ['actuator 1', 'data.ctrl[1]', -1, 1, 0],
+      ['wrist[0]', 'data.ctrl[2]', -1, 1, 0],
+      ['wrist[1]', 'data.ctrl[3]', -1, 1, 0],
+      ['wrist[2]', 'data.ctrl[4]', -1, 1, 0],
+      ['wrist[3]', 'data.ctrl[5]', -1, 1, 0],
+    ]);
+    assert.equal(spec.title, 'm.xml');
+    assert.deepEqual(spec.camera, { target: [0, 0, 1], distance: 3, azimuth: 90, elevation: 45 });
+    assert.deepEqual(spec.keys, ['home']);
+  },
+  'readouts of scalar joints, every force output and every sensor number': () => {
+    const spec = specFromModel(info);
+    assert.deepEqual(spec.readouts.map((r) => [r.group, r.label, r.expr]), [
+      ['joint positions', 'elbow', 'data.qpos[7]'],
+      ['joint positions', 'joint 2', 'data.qpos[8]'],
+      ['actuator forces', 'lift', 'data.actuator_force[0]'],
+      ['actuator forces', 'actuator 1', 'data.actuator_force[1]'],
+      ['actuator forces', 'wrist[0]', 'data.actuator_force[2]'],
+      ['actuator forces', 'wrist[1]', 'data.actuator_force[3]'],
+      ['actuator forces', 'wrist[2]', 'data.actuator_force[4]'],
+      ['sensors', 'touch', 'data.sensordata[0]'],
+      ['sensors', 'acc[0]', 'data.sensordata[1]'],
+      ['sensors', 'acc[1]', 'data.sensordata[2]'],
+      ['sensors', 'acc[2]', 'data.sensordata[3]'],
+    ]);
+  },
+  'a large model shows at most 60 readouts a group': () => {
+    const n = 100;
+    const big = { ...info, sizes: { ...info.sizes, njnt: n }, names: { ...info.names, jnt: Array(n).fill('') },
+                  jnt_type: Array(n).fill(3), jnt_qposadr: [...Array(n).keys()] };
+    assert.equal(specFromModel(big).readouts.filter((r) => r.group === 'joint positions').length, 60);
+  },
+  'the pacer keeps real time with a clock of its own': () => {
+    let clock = 0, steps = 0;
+    const pacer = new Pacer({ timestep: 0.002, step: (n) => { steps += n; clock += 0.01 * n; }, now: () => clock });
+    for (let frame = 0; frame <= 600; frame++) pacer.frame(frame * 1000 / 60, true);
+    assert.ok(Math.abs(steps * 0.002 - 10) < 0.01, `${steps} steps in 10 s`);
+    assert.ok(pacer.dropped < 1e-9);
+  },
+  'slow motion steps at the chosen fraction of real time': () => {
+    for (const speed of kSpeeds) {
+      let steps = 0;
+      const pacer = new Pacer({ timestep: 0.001, step: (n) => { steps += n; }, now: () => 0 });
+      pacer.speed = speed;
+      for (let frame = 0; frame <= 640; frame++) pacer.frame(frame * 1000 / 64, true);
+      assert.ok(Math.abs(steps * 0.001 - 10 * speed) <= 0.001 + 1e-12, `speed ${speed}: ${steps} steps`);
+    }
+  },
+  'a slow engine drops what it cannot catch; a paused one takes no steps': () => {
+    let clock = 0, steps = 0;
+    const pacer = new Pacer({ timestep: 0.001, step: (n) => { steps += n; clock += 1 * n; }, now: () => clock });
+    for (let frame = 0; frame <= 60; frame++) pacer.frame(frame * 1000 / 60, true);
+    // (a 10 ms budget of a 16.7 ms frame: about 60% of real time, the rest dropped)
+    assert.ok(steps * 0.001 > 0.55 && steps * 0.001 < 0.7, `${steps} steps`);
+    assert.ok(Math.abs(steps * 0.001 + pacer.dropped - 1) < 0.002, `dropped ${pacer.dropped}`);
+    const before = steps;
+    for (let frame = 61; frame <= 120; frame++) pacer.frame(frame * 1000 / 60, false);
+    assert.equal(steps, before);
+  },
+  "'-' and '=' step through the speeds and stop at the ends": () => {
+    const pacer = new Pacer({ timestep: 0.001, step: () => {}, now: () => 0 });
+    assert.equal(pacer.changeSpeed(1), 1);
+    assert.equal(pacer.changeSpeed(-1), 1 / 2);
+    for (let k = 0; k < 10; k++) pacer.changeSpeed(-1);
+    assert.equal(pacer.speed, 1 / 64);
+    assert.equal(pacer.changeSpeed(1), 1 / 32);
+  },
+  'the main model is the .xml no other names': async () => {
+    const files = [fakeFile('arm.xml', '<mujoco/>', 'robot/parts/arm.xml'),
+                   fakeFile('scene.xml', '<mujoco><include file="parts/arm.xml"/></mujoco>', 'robot/scene.xml'),
+                   fakeFile('a.stl', 'solid', 'robot/meshes/a.stl')];
+    assert.deepEqual(withPaths(files).map((e) => e.path), ['parts/arm.xml', 'scene.xml', 'meshes/a.stl']);
+    const source = await pickMainModel(files);
+    assert.equal(source.filename, 'scene.xml');
+    assert.equal(await source.readText('parts/arm.xml'), '<mujoco/>');
+    assert.equal((await source.readBytes('./meshes/a.stl')).length, 5);
+    await assert.rejects(source.readText('missing.xml'), /not among the files given/);
+    assert.equal(await pickMainModel([fakeFile('a.stl', 'solid')]), null);
+  },
+};
+
+let failed = 0;
+for (const [name, test] of Object.entries(tests)) {
+  try {
+    await test();
+    console.log(`ok: ${name}`);
+  } catch (error) {
+    failed++;
+    console.log(`FAIL: ${name}\n${error.stack}`);
+  }
+}
+console.log(failed ? `${failed} failed` : 'PASS');
+process.exit(failed ? 1 : 0);
