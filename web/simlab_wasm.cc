@@ -28,6 +28,7 @@
 
 #include "core/field_view.h"
 #include "engine/engine.h"
+#include "simlab/perturb.h"
 #include "simlab/simlab.h"
 
 namespace simlab::web {
@@ -230,7 +231,11 @@ class Simulation {
   }
   void Step(int n) {
     Guarded([&] {
-      for (int i = 0; i < n; i++) simlab::Step(m_, d_);
+      for (int i = 0; i < n; i++) {
+        // (a mouse perturbation's springs act in every step)
+        ApplyPerturbForce(m_, d_, perturb_);
+        simlab::Step(m_, d_);
+      }
       return 0;
     });
   }
@@ -332,6 +337,45 @@ class Simulation {
     });
   }
   // The active contacts: [{geom1, geom2, dist, pos, frame, dim, efc_address, force}],
+  // ---- the mouse perturbation (simlab/perturb.h), applied before every step
+  // Selects `body` at point (x, y, z) of its frame (a body of 0 or less: none), with
+  // references at its pose now; returns the mass the point moves with.
+  double PerturbSelect(int body, double x, double y, double z) {
+    return Guarded([&] {
+      PerturbStop();
+      perturb_ = {};
+      if (body <= 0 || body >= m_.nbody) return 0.0;
+      perturb_.select = body;
+      perturb_.localpos = {x, y, z};
+      InitPerturb(m_, d_, &perturb_);
+      return perturb_.localmass;
+    });
+  }
+  // Starts pulling (flags: 1 translate, 2 rotate) from the body's pose now.
+  void PerturbStart(int flags) {
+    if (perturb_.select <= 0) return;
+    InitPerturb(m_, d_, &perturb_);
+    perturb_.active = flags & (kPerturbTranslate | kPerturbRotate);
+  }
+  void PerturbMoveTo(double x, double y, double z) { perturb_.refselpos = {x, y, z}; }
+  void PerturbTurnTo(double w, double x, double y, double z) { perturb_.refquat = {w, x, y, z}; }
+  // Stops pulling: the body's applied force goes back to zero.
+  void PerturbStop() {
+    if (perturb_.select > 0 && perturb_.active) {
+      std::fill_n(&d_.xfrc_applied[6 * perturb_.select], 6, 0.0);
+    }
+    perturb_.active = 0;
+  }
+  // {select, active, localmass, selpos (the point now, world), refselpos, refquat}.
+  val PerturbState() const;
+  // What viewers read of <visual>: {fovy, azimuth, elevation, stiffness, stiffnessrot}.
+  val Visual() const {
+    const simlab::Visual& v = m_.vis;
+    return NumbersObject({{"fovy", v.global.fovy}, {"azimuth", v.global.azimuth},
+                          {"elevation", v.global.elevation}, {"stiffness", v.map.stiffness},
+                          {"stiffnessrot", v.map.stiffnessrot}});
+  }
+
   // force being the 6 numbers of MuJoCo's mj_contactForce (contact frame).
   val Contacts() const;
   // The same as one view of ncon x kContactStride numbers (a buffer kept by the
@@ -365,6 +409,7 @@ class Simulation {
 
   simlab::Model m_;
   simlab::Data d_;
+  simlab::Perturb perturb_;
   // Name -> array tables, built once. Model arrays never move and Data's own arrays are
   // allocated once by MakeData; the efc_* arrays (after first_row_field_) are resized by
   // every step, so their pointers and row counts are read again before each lookup.
@@ -458,6 +503,23 @@ val Simulation::Statistic() const {
   return stat;
 }
 
+val Simulation::PerturbState() const {
+  val state = NumbersObject({{"select", perturb_.select}, {"active", perturb_.active},
+                             {"localmass", perturb_.localmass}});
+  double selpos[3] = {0, 0, 0};
+  if (perturb_.select > 0) {
+    const double* xmat = &d_.xmat[9 * perturb_.select];
+    for (int i = 0; i < 3; i++) {
+      selpos[i] = d_.xpos[3 * perturb_.select + i];
+      for (int k = 0; k < 3; k++) selpos[i] += xmat[3 * i + k] * perturb_.localpos[k];
+    }
+  }
+  state.set("selpos", VectorToJs(selpos, 3));
+  state.set("refselpos", VectorToJs(perturb_.refselpos.data(), 3));
+  state.set("refquat", VectorToJs(perturb_.refquat.data(), 4));
+  return state;
+}
+
 val Simulation::Counts() const {
   val counts = NumbersObject({{"ncon", d_.ncon}, {"nefc", d_.nefc}, {"ne", d_.ne},
                               {"nf", d_.nf}, {"nl", d_.nl}, {"nisland", d_.nisland},
@@ -523,6 +585,13 @@ EMSCRIPTEN_BINDINGS(simlab) {
       .function("forward", &Simulation::Forward)
       .function("step", &Simulation::Step)
       .function("step", &Simulation::StepOnce)
+      .function("perturbSelect", &Simulation::PerturbSelect)
+      .function("perturbStart", &Simulation::PerturbStart)
+      .function("perturbMoveTo", &Simulation::PerturbMoveTo)
+      .function("perturbTurnTo", &Simulation::PerturbTurnTo)
+      .function("perturbStop", &Simulation::PerturbStop)
+      .function("perturbState", &Simulation::PerturbState)
+      .function("visual", &Simulation::Visual)
       .property("time", &Simulation::Time, &Simulation::SetTime)
       .function("data", &Simulation::Data)
       .function("dataView", &Simulation::DataView)

@@ -192,6 +192,20 @@ struct Statistic {
   std::array<double, 3> center = {0, 0, 0};  // centre of that box
 };
 
+// What a viewer needs of <visual> (MuJoCo's mjVisual, its defaults): the free camera's
+// start and field of view, and the mouse perturbation's springs.
+struct Visual {
+  struct Global {
+    double fovy = 45;        // degrees
+    double azimuth = 90;     // degrees
+    double elevation = -45;  // degrees (negative: looking down)
+  } global;
+  struct Map {
+    double stiffness = 100;     // translational perturbation spring (per unit mass)
+    double stiffnessrot = 500;  // rotational perturbation spring (per unit inertia)
+  } map;
+};
+
 // ---------------------------------------------------------------- the field table
 //
 // X(type, name, rows, cols): an array of rows*cols elements, rows being a size member.
@@ -526,6 +540,7 @@ struct Model {
 
   Option opt;
   Statistic stat;
+  Visual vis;
   std::string model_name;
 
   // arrays, from the table

@@ -109,6 +109,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   // Sizes, then every array.
   Model m;
   CompileOption(spec, &m);
+  m.vis = spec.vis;
   TreeSizes(state, &m);
   m.ncam = CameraCount(state);
   MeshSizes(state, &m);

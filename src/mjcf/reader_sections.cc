@@ -226,8 +226,18 @@ void Reader::Visual(const XmlElement& e) {
     }
     if (!match) Unknown(c);
     c.CheckAttributes(match->attrs);
-    // The near clipping plane is the default focal length of cameras.
-    if (c.tag() == "map") c.Number("znear", &spec_->znear);
+    // The near clipping plane is the default focal length of cameras; the free camera
+    // and the perturbation springs are kept for viewers.
+    if (c.tag() == "map") {
+      c.Number("znear", &spec_->znear);
+      c.Number("stiffness", &spec_->vis.map.stiffness);
+      c.Number("stiffnessrot", &spec_->vis.map.stiffnessrot);
+    }
+    if (c.tag() == "global") {
+      c.Number("fovy", &spec_->vis.global.fovy);
+      c.Number("azimuth", &spec_->vis.global.azimuth);
+      c.Number("elevation", &spec_->vis.global.elevation);
+    }
   }
 }
 

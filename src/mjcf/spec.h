@@ -471,6 +471,7 @@ struct ModelSpec {
   double meanmass = kUndefined, meansize = kUndefined, extent = kUndefined;
   std::array<double, 3> center = {kUndefined, kUndefined, kUndefined};
   double znear = 0.01;  // <visual><map znear>: default focal length of cameras
+  Visual vis;           // the rest of <visual> that simlab keeps
 };
 
 }  // namespace simlab::mjcf

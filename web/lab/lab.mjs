@@ -7,6 +7,7 @@
 import { arrayReader, arraysOf, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
 import { gatherModelFiles } from './model_files.mjs';
 import { modelInfo, specFromModel } from './panels.mjs';
+import { Perturber } from './perturb.mjs';
 import { LivePlot } from './plot.mjs';
 import { Pacer, kSpeeds } from './pacer.mjs';
 import { LabScene } from './scene.mjs';
@@ -83,7 +84,7 @@ class DataViews {
 }
 
 // The Data arrays the 3D view reads every frame.
-const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator'];
+const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator', 'xpos', 'xmat'];
 
 // A speed as shown: "1x", "1/8x".
 function speedText(speed) {
@@ -185,7 +186,7 @@ export async function mountModelViewer(element, source, options = {}) {
     const { simlab, sim } = await openModel(distUrl, source);
     status.remove();
     const lab = new Lab(root, specFromModel(modelInfo(sim), filename), sim, contactLayoutOf(simlab),
-                        { keyboard: true, exports: true });
+                        { keyboard: true, exports: true, perturb: true });
     element.simlabLab = lab;
     return lab;
   } catch (error) {
@@ -232,6 +233,7 @@ class Lab {
     this.sceneModel = this.modelObject();
     this.resolveArrays();
     this.scene.build(this.sceneModel, sim.statistic().extent || 1);
+    if (options.perturb) this.attachPerturber();
     new ResizeObserver(() => this.resize()).observe(root);
     // Off screen (scrolled away), the lab keeps simulating but does not pose or render its
     // view; back on screen, drawScene catches up.
@@ -315,6 +317,23 @@ class Lab {
     this.warningText = bar.appendChild(make('span', 'simlab-lab-warning'));
     this.statsText = bar.appendChild(make('span', 'simlab-lab-stats'));
     this.updatePlayButton();
+  }
+
+  // Double-click selects a body, Ctrl+drag pulls or turns it (see perturb.mjs); the
+  // selected body glows.
+  attachPerturber() {
+    const bodyOfGeom = this.array('model', 'geom_bodyid');
+    this.perturber = new Perturber(this.sim, bodyOfGeom, this.dataViews, () => this.scene.cameraNumbers());
+    this.scene.perturber = {
+      select: (hit) => this.guarded(() => {
+        const body = this.perturber.select(hit ? hit.g : -1, hit ? hit.point : [0, 0, 0]);
+        this.scene.highlightBody(body, bodyOfGeom);
+        this.scene.render();
+      }),
+      start: (mode) => this.perturber.start(mode),
+      move: (dx, dy) => this.guarded(() => this.perturber.move(dx, dy)),
+      end: () => this.guarded(() => this.perturber.end()),
+    };
   }
 
   // A drop-down of [value, text] choices calling onChange(value).
@@ -525,6 +544,7 @@ class Lab {
   drawScene() {
     if (this.sceneStale) this.scene.update(this.sceneState(), this.toggles);
     this.sceneStale = false;
+    if (this.perturber) this.scene.setPerturbLine(this.perturber.line());
     this.scene.render();
   }
 

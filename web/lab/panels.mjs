@@ -15,6 +15,7 @@ export function modelInfo(sim) {
   const info = {
     sizes,
     statistic: sim.statistic(),
+    visual: sim.visual(),
     names: { actuator: names('actuator', sizes.nactuator), jnt: names('jnt', sizes.njnt),
              sensor: names('sensor', sizes.nsensor), key: names('key', sizes.nkey) },
   };
@@ -86,11 +87,12 @@ function sensorReadouts(info) {
 }
 
 // MuJoCo's default free camera (mjv_defaultFreeCamera): looking at the model's centre
-// from 1.5 extents away, azimuth 90, 45 degrees from above (a lab spec's elevation is
-// the angle above the horizon).
-function freeCamera(statistic) {
+// from 1.5 extents away, at <visual><global azimuth elevation> (90 and -45 by default; a
+// lab spec's elevation is the angle above the horizon, the opposite sign).
+function freeCamera(statistic, visual) {
   const extent = statistic?.extent > 0 ? statistic.extent : 1;
-  return { target: Array.from(statistic?.center ?? [0, 0, 0]), distance: 1.5 * extent, azimuth: 90, elevation: 45 };
+  return { target: Array.from(statistic?.center ?? [0, 0, 0]), distance: 1.5 * extent,
+           azimuth: visual?.azimuth ?? 90, elevation: -(visual?.elevation ?? -45) };
 }
 
 // The lab spec of a model's viewer (see web/README.md, "The lab", for the fields).
@@ -98,7 +100,7 @@ export function specFromModel(info, title = '') {
   return {
     title,
     height: 420,
-    camera: freeCamera(info.statistic),
+    camera: freeCamera(info.statistic, info.visual),
     autoplay: true,
     toggles: ['contacts', 'forces', 'joints'],
     controls: controlSliders(info),

@@ -176,8 +176,55 @@ export class LabScene {
       actuator: new ArrowPool(this.scene, 0x2ca02c),
       axis: new ArrowPool(this.scene, 0x1f77b4),
     };
+    // The perturbation's line (from the pulled point to where it is pulled) and the
+    // handler of double-clicks and Ctrl+drags (see perturb.mjs), set by the lab.
+    this.perturbLine = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
+                                      new THREE.LineBasicMaterial({ color: 0xd62728 }));
+    this.perturbLine.visible = false;
+    this.perturbLine.frustumCulled = false;
+    this.scene.add(this.perturbLine);
+    this.perturber = null;
+    this.raycaster = new THREE.Raycaster();
     this.attachMouse(this.renderer.domElement);
     this.resize();
+  }
+
+  // The geom under the pointer and the world point hit ({g, point}), or null.
+  pick(clientX, clientY) {
+    const box = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(2 * (clientX - box.left) / box.width - 1, 1 - 2 * (clientY - box.top) / box.height);
+    this.camera.updateMatrixWorld();
+    this.raycaster.setFromCamera(ndc, this.camera);
+    const meshes = this.geoms.map(({ mesh }) => mesh);
+    for (const { mesh } of this.geoms) mesh.matrixWorld.copy(mesh.matrix);
+    const hit = this.raycaster.intersectObjects(meshes, false)[0];
+    if (!hit) return null;
+    const entry = this.geoms.find(({ mesh }) => mesh === hit.object);
+    return { g: entry.g, point: hit.point.toArray() };
+  }
+
+  // The camera as the perturbation's drags need it (see perturb.mjs, draggedPoint).
+  cameraNumbers() {
+    this.camera.updateMatrixWorld();
+    const column = (k) => new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, k).toArray();
+    const forward = column(2).map((v) => -v);
+    return { position: this.camera.position.toArray(), forward, right: column(0), up: column(1),
+             fovy: this.camera.fov, height: this.height };
+  }
+
+  // Geoms of `body` glow (the selected body), others not; body -1: none.
+  highlightBody(body, bodyOfGeom) {
+    for (const { g, mesh } of this.geoms) mesh.material.emissive?.setHex(bodyOfGeom[g] === body ? 0x404000 : 0);
+  }
+
+  // The perturbation's line, or none (null).
+  setPerturbLine(line) {
+    this.perturbLine.visible = !!line;
+    if (!line) return;
+    const position = this.perturbLine.geometry.attributes.position;
+    position.setXYZ(0, line.from[0], line.from[1], line.from[2]);
+    position.setXYZ(1, line.to[0], line.to[1], line.to[2]);
+    position.needsUpdate = true;
   }
 
   resize() {
@@ -289,7 +336,8 @@ export class LabScene {
   }
 
   // Left drag orbits (azimuth, elevation), right or shift drag pans the target, the
-  // wheel zooms (distance).
+  // wheel zooms (distance); with a perturber, a double-click selects and Ctrl+drag pulls
+  // or turns.
   // The wheel zooms only once the view was clicked (it has focus) or with Ctrl held, so
   // that scrolling the lesson past the lab scrolls the page. Touch drags orbit too.
   attachMouse(canvas) {
@@ -299,10 +347,17 @@ export class LabScene {
     canvas.addEventListener('contextmenu', (e) => e.preventDefault());
     canvas.addEventListener('pointerdown', (e) => {
       canvas.focus({ preventScroll: true });
-      last = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey };
+      // Ctrl+drag pulls (left) or turns (right) the selected body, if there is one.
+      const mode = e.button === 2 ? 'rotate' : 'translate';
+      const perturb = e.ctrlKey && !!this.perturber?.start(mode);
+      last = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey, perturb };
       canvas.setPointerCapture(e.pointerId);
     });
-    const release = () => { last = null; };
+    canvas.addEventListener('dblclick', (e) => this.perturber?.select(this.pick(e.clientX, e.clientY)));
+    const release = () => {
+      if (last?.perturb) this.perturber.end();
+      last = null;
+    };
     canvas.addEventListener('pointerup', release);
     canvas.addEventListener('pointercancel', release);
     canvas.addEventListener('pointermove', (e) => {
@@ -310,7 +365,9 @@ export class LabScene {
       const dx = e.clientX - last.x, dy = e.clientY - last.y;
       last.x = e.clientX;
       last.y = e.clientY;
-      if (last.pan) this.pan(dx, dy); else this.orbit(dx, dy);
+      if (last.perturb) this.perturber.move(dx, dy);
+      else if (last.pan) this.pan(dx, dy);
+      else this.orbit(dx, dy);
     });
     canvas.addEventListener('wheel', (e) => {
       if (document.activeElement !== canvas && !e.ctrlKey) return;

@@ -4,8 +4,9 @@
 // slider per control entry. On the humanoid: a slider moved with the mouse writes ctrl
 // and changes the actuator's force; simulate's keys pause (time stops), single-step (one
 // timestep), reset (time 0) and change the speed; a click on a readout plots it and the
-// CSV export holds the plotted series; the screenshot export is a PNG. Screenshots of
-// each model go to --shots.
+// CSV export holds the plotted series; the screenshot export is a PNG. On the mug (a
+// free body): a double-click selects it and a Ctrl+drag pulls it up. Screenshots of each
+// model go to --shots.
 //
 //   node web/test/view_e2e.mjs --simlab build/simlab [--shots DIR] [--require yes]
 //
@@ -118,6 +119,38 @@ async function checkPlotAndExports(page) {
         `the screenshot export is a PNG of ${png.length} bytes (${shot.suggestedFilename()})`);
 }
 
+// A double-click on the free body selects it; a Ctrl+drag upwards pulls it up (its
+// height while the drag is held), and letting go drops it again.
+async function checkPerturbation(page, body) {
+  const at = await page.evaluate((b) => {
+    const lab = window.lab;
+    const xpos = lab.sim.data('xipos').slice(3 * b, 3 * b + 3);
+    const p = lab.scene.camera.position.clone().set(...xpos).project(lab.scene.camera);
+    const box = lab.scene.renderer.domElement.getBoundingClientRect();
+    return { x: box.left + (p.x + 1) / 2 * box.width, y: box.top + (1 - p.y) / 2 * box.height, z: xpos[2] };
+  }, body);
+  await page.mouse.dblclick(at.x, at.y);
+  const selected = await page.evaluate(() => window.lab.sim.perturbState().select);
+  check(selected === body, `a double-click at (${at.x.toFixed(0)}, ${at.y.toFixed(0)}) selected body ${selected}`);
+  const height = () => page.evaluate((b) => window.lab.sim.data('xipos')[3 * b + 2], body);
+  await page.keyboard.down('Control');
+  await page.mouse.move(at.x, at.y);
+  await page.mouse.down();
+  // (200 pixels up the screen: about half a metre at the mug's distance; the spring, 100 per
+  // unit mass as MuJoCo's default, sags about 0.1 m under gravity)
+  for (let k = 1; k <= 25; k++) await page.mouse.move(at.x, at.y - 8 * k);
+  await page.waitForTimeout(1000);
+  const [pulled, line] = [await height(), await page.evaluate(() => window.lab.scene.perturbLine.visible)];
+  await page.screenshot({ path: path.join(options.shots, 'view_perturb.png') });
+  await page.mouse.up();
+  await page.keyboard.up('Control');
+  await page.waitForTimeout(1000);
+  const dropped = await height();
+  check(pulled > at.z + 0.1 && line && dropped < pulled - 0.05,
+        `a Ctrl+drag pulled it from z = ${at.z.toFixed(3)} to ${pulled.toFixed(3)} (line drawn: ${line}); ` +
+        `let go, it fell to ${dropped.toFixed(3)}`);
+}
+
 async function testModel(file, interactive) {
   const name = path.basename(file, '.xml');
   const { session, page, problems } = await openViewer(path.join(options.corpus, file));
@@ -128,6 +161,7 @@ async function testModel(file, interactive) {
       await checkKeys(page);
       await checkPlotAndExports(page);
     }
+    if (name === 'mug') await checkPerturbation(page, 1);
     check(problems.length === 0, `${name}: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
   } finally {
     await session.close();

@@ -7,6 +7,7 @@
 import assert from 'node:assert/strict';
 import { Pacer, kSpeeds } from '../lab/pacer.mjs';
 import { specFromModel } from '../lab/panels.mjs';
+import { draggedPoint, draggedQuat, toBodyFrame } from '../lab/perturb.mjs';
 import { pickMainModel, withPaths } from '../view/files.mjs';
 
 // A model of 3 actuators (a limited motor, an unlimited one, a 4-control orientation
@@ -14,6 +15,7 @@ import { pickMainModel, withPaths } from '../view/files.mjs';
 const info = {
   sizes: { nactuator: 3, njnt: 3, nsensor: 2, nkey: 1 },
   statistic: { extent: 2, center: [0, 0, 1] },
+  visual: { azimuth: 120, elevation: -20 },
   names: { actuator: ['lift', '', 'wrist'], jnt: ['root', 'elbow', ''], sensor: ['touch', 'acc'], key: ['home'] },
   actuator_ctrladr: [0, 1, 2], actuator_ctrlnum: [1, 1, 4],
   actuator_outadr: [0, 1, 2], actuator_outnum: [1, 1, 3],
@@ -41,7 +43,7 @@ const tests = {
       ['wrist[3]', 'data.ctrl[5]', -1, 1, 0],
     ]);
     assert.equal(spec.title, 'm.xml');
-    assert.deepEqual(spec.camera, { target: [0, 0, 1], distance: 3, azimuth: 90, elevation: 45 });
+    assert.deepEqual(spec.camera, { target: [0, 0, 1], distance: 3, azimuth: 120, elevation: 20 });
     assert.deepEqual(spec.keys, ['home']);
   },
   'readouts of scalar joints, every force output and every sensor number': () => {
@@ -100,6 +102,21 @@ const tests = {
     for (let k = 0; k < 10; k++) pacer.changeSpeed(-1);
     assert.equal(pacer.speed, 1 / 64);
     assert.equal(pacer.changeSpeed(1), 1 / 32);
+  },
+  'a pulled point follows the mouse across the image plane at its depth': () => {
+    // Camera at the origin looking along +y, right +x, up +z, 90 degree field of view,
+    // 200 pixels high: at depth 2 one pixel is 2 * 2 * tan(45) / 200 = 0.02.
+    const camera = { position: [0, 0, 0], forward: [0, 1, 0], right: [1, 0, 0], up: [0, 0, 1], fovy: 90, height: 200 };
+    const moved = draggedPoint([0.5, 2, 0.1], 10, -5, camera);
+    [0.7, 2, 0.2].forEach((v, k) => assert.ok(Math.abs(moved[k] - v) < 1e-12, `${moved}`));
+  },
+  'a turned body turns about the view axes, a point goes into its body frame': () => {
+    const camera = { right: [1, 0, 0], up: [0, 0, 1] };
+    const q = draggedQuat([1, 0, 0, 0], 157.07963267948966, 0, camera);  // 1.5708 rad about z
+    [Math.SQRT1_2, 0, 0, Math.SQRT1_2].forEach((v, k) => assert.ok(Math.abs(q[k] - v) < 1e-9, `${q}`));
+    // A body at (1, 2, 3) turned 90 degrees about z: world (1, 3, 3) is its local (1, 0, 0).
+    const local = toBodyFrame([1, 3, 3], [1, 2, 3], [0, -1, 0, 1, 0, 0, 0, 0, 1]);
+    [1, 0, 0].forEach((v, k) => assert.ok(Math.abs(local[k] - v) < 1e-12, `${local}`));
   },
   'the main model is the .xml no other names': async () => {
     const files = [fakeFile('arm.xml', '<mujoco/>', 'robot/parts/arm.xml'),
