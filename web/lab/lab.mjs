@@ -115,6 +115,9 @@ const kStyle = `
 .simlab-lab-error { color: #b00020; }
 .simlab-lab-note { color: #444; font-size: 13px; margin: 6px 0 0; }
 .simlab-lab-group { margin: 8px 0 2px; font-size: 13px; color: #333; }
+.simlab-lab-info { position: absolute; left: 8px; top: 8px; margin: 0; padding: 4px 6px;
+  font: 11px ui-monospace, monospace; color: #fff; background: rgba(20, 30, 45, 0.6);
+  border-radius: 4px; pointer-events: none; }
 .simlab-lab-pickable { cursor: pointer; border-radius: 3px; padding: 0 3px; }
 .simlab-lab-pickable:hover { background: #eef2f8; }
 .simlab-lab-picked { background: #dde8f7; }
@@ -186,7 +189,7 @@ export async function mountModelViewer(element, source, options = {}) {
     const { simlab, sim } = await openModel(distUrl, source);
     status.remove();
     const lab = new Lab(root, specFromModel(modelInfo(sim), filename), sim, contactLayoutOf(simlab),
-                        { keyboard: true, exports: true, perturb: true });
+                        { keyboard: true, exports: true, perturb: true, info: true });
     element.simlabLab = lab;
     return lab;
   } catch (error) {
@@ -234,11 +237,14 @@ class Lab {
     this.resolveArrays();
     this.scene.build(this.sceneModel, sim.statistic().extent || 1);
     if (options.perturb) this.attachPerturber();
-    new ResizeObserver(() => this.resize()).observe(root);
+    this.observers = [new ResizeObserver(() => this.resize())];
+    this.observers[0].observe(root);
     // Off screen (scrolled away), the lab keeps simulating but does not pose or render its
     // view; back on screen, drawScene catches up.
     this.onScreen = true;
-    new IntersectionObserver(([entry]) => { this.onScreen = entry.isIntersecting; }).observe(this.view);
+    this.observers.push(new IntersectionObserver(([entry]) => { this.onScreen = entry.isIntersecting; }));
+    this.observers[1].observe(this.view);
+    if (options.info) this.buildInfo();
 
     if (options.keyboard) this.listenToKeys();
     this.reset();
@@ -317,6 +323,30 @@ class Lab {
     this.warningText = bar.appendChild(make('span', 'simlab-lab-warning'));
     this.statsText = bar.appendChild(make('span', 'simlab-lab-stats'));
     this.updatePlayButton();
+  }
+
+  // simulate's info panel over the view: time, real-time factor, step time, contacts,
+  // constraint rows, solver iterations, warnings, and the energy when the model enables it.
+  buildInfo() {
+    this.infoText = this.view.appendChild(make('pre', 'simlab-lab-info'));
+    this.energyEnabled = (this.sim.option().enableflags & 2) !== 0;  // mjENBL_ENERGY
+  }
+
+  showInfo() {
+    if (!this.infoText) return;
+    const c = this.sim.counts();
+    const lines = [
+      `time        ${this.sim.time.toFixed(3)} s`,
+      `real time   ${this.stats.realTimeFactor.toFixed(2)}x${this.pacer.speed === 1 ? '' : ` (speed ${speedText(this.pacer.speed)})`}`,
+      `step        ${(1000 * this.pacer.msPerStep).toFixed(0)} us`,
+      `contacts    ${c.ncon}`,
+      `constraints ${c.nefc}`,
+      `solver      ${c.solver_niter} iterations`,
+      `warnings    ${this.sim.warningTotal()}`,
+    ];
+    if (this.energyEnabled) lines.push(`energy      ${(c.energy[0] + c.energy[1]).toFixed(3)} J`);
+    const text = lines.join('\n');
+    if (this.infoText.textContent !== text) this.infoText.textContent = text;
   }
 
   // Double-click selects a body, Ctrl+drag pulls or turns it (see perturb.mjs); the
@@ -596,6 +626,7 @@ class Lab {
     else if (this.onScreen) this.drawScene();
     this.showWarnings();
     this.countFrame(now);
+    this.showInfo();
   }
 
   // The engine's warnings since the last reset (a state that diverged and was reset, an
@@ -713,6 +744,8 @@ class Lab {
 
   dispose() {
     this.disposed = true;
+    for (const observer of this.observers) observer.disconnect();
+    for (const { plot } of this.plots) plot.dispose();
     if (this.onKey) document.removeEventListener('keydown', this.onKey);
     this.scene.dispose();
     this.sim.delete();

@@ -70,6 +70,10 @@ export class LivePlot {
     for (const column of this.columns) column.length = 0;
   }
 
+  dispose() {
+    this.chart.destroy();
+  }
+
   setWidth(width) {
     this.chart.setSize({ width, height: kHeight });
   }

@@ -391,7 +391,13 @@ export class LabScene {
     }
   }
 
+  // Frees the GPU side of every object drawn (geometries and materials), then the renderer.
   dispose() {
+    this.scene.traverse((object) => {
+      object.geometry?.dispose();
+      const materials = Array.isArray(object.material) ? object.material : [object.material];
+      for (const material of materials) material?.dispose();
+    });
     this.renderer.dispose();
     this.renderer.domElement.remove();
   }

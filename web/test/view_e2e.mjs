@@ -3,7 +3,8 @@
 // (meshes and textures found there), loads, shows a picture that is not blank and a
 // slider per control entry. On the humanoid: a slider moved with the mouse writes ctrl
 // and changes the actuator's force; simulate's keys pause (time stops), single-step (one
-// timestep), reset (time 0) and change the speed; a click on a readout plots it and the
+// timestep), reset (time 0) and change the speed; the info panel shows time, contacts and
+// solver iterations; a click on a readout plots it and the
 // CSV export holds the plotted series; the screenshot export is a PNG. On the mug (a
 // free body): a double-click selects it and a Ctrl+drag pulls it up. Screenshots of each
 // model go to --shots.
@@ -55,6 +56,10 @@ async function checkLoads(page, name) {
   const sliders = await page.locator('.simlab-lab-control input[type=range]').count();
   check(sliders === nu, `${name}: ${sliders} sliders for nu = ${nu}`);
   await page.screenshot({ path: path.join(options.shots, `view_${name}.png`) });
+  const info = await page.locator('.simlab-lab-info').textContent();
+  const ncon = await page.evaluate(() => window.lab.sim.counts().ncon);
+  check(/time +\d/.test(info) && /contacts +\d+/.test(info) && /solver +\d+ iterations/.test(info),
+        `${name}: the info panel shows ${info.split('\n').length} lines (${info.split('\n').slice(0, 4).join('; ')}; ncon now ${ncon})`);
 }
 
 // The first slider dragged with the mouse to near its top: ctrl follows, and so does the
