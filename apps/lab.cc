@@ -42,6 +42,7 @@ constexpr Mount kMounts[] = {
     {"/node_modules/three/", "web/node_modules/three"},
     {"/node_modules/uplot/", "web/node_modules/uplot"},
     {"/models/", "models"},
+    {"/examples/", "examples"},
 };
 
 // Largest request head we read; anything longer is refused.

@@ -192,6 +192,10 @@ TEST_F(LabServerTest, ServesTheLessonTextAndModels) {
   const Reply model = Get(port(), "/models/gantry_gripper.xml");
   EXPECT_EQ(model.status, 200);
   EXPECT_EQ(model.type, "application/xml");
+  // The lesson's programs, which its page shows and links to.
+  const Reply program = Get(port(), "/examples/l2_3_actuators.py");
+  EXPECT_EQ(program.status, 200);
+  EXPECT_NE(program.body.find("def force_laws"), std::string::npos);
   // The old file-list endpoint is gone (the lab's loader finds included files itself).
   EXPECT_EQ(Get(port(), "/models/gantry_gripper.xml.files.json").status, 404);
 }

@@ -25,6 +25,11 @@ async function main() {
     renderLesson(lesson, root, {
       baseUrl: new URL('/', location.href).href,
       loadLab: () => import('/lab/lab.mjs'),
+      fetchText: async (url) => {
+        const reply = await fetch(url);
+        if (!reply.ok) throw new Error(`${url}: HTTP ${reply.status}`);
+        return reply.text();
+      },
     });
     document.body.dataset.ready = 'true';
     status.remove();

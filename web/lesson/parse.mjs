@@ -6,6 +6,7 @@
 //   {type: 'table', header: [..], rows: [[..]]}   rows may be wrapped over several lines
 //   {type: 'callout', kind, title, body: [blocks]} > [!kind] Title / [!kind] Title text...
 //   {type: 'code', lang, attrs, text, closed}  ```python file=..., ```text, ```io
+//   {type: 'exercise', number, text}         a paragraph that sets an exercise
 //   {type: 'lab', engine, spec, raw, error}    ```lab simlab {...} (JSON, typographic quotes ok)
 //   {type: 'quiz', quiz: {id, title, questions}} the knowledge check's JSON object
 //
@@ -331,5 +332,20 @@ export function parseLesson(text) {
     blocks.push(block);
     i = Math.max(next, i + 1);
   }
+  markExercises(blocks);
   return { blocks };
+}
+
+// The copy lost the exercises' heading: an exercise is a paragraph of at least
+// kExerciseLength characters that opens with an instruction (Replace, Add, Write ...);
+// they become {type: 'exercise', number, text}, numbered in order.
+const kExerciseStart = /^(Replace|Add|Write|Modify|Extend|Build|Change|Implement|Derive|Measure)\s/;
+const kExerciseLength = 120;
+function markExercises(blocks) {
+  let number = 0;
+  for (const block of blocks) {
+    if (block.type !== 'paragraph' || block.text.length < kExerciseLength || !kExerciseStart.test(block.text)) continue;
+    block.type = 'exercise';
+    block.number = ++number;
+  }
 }

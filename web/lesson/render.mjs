@@ -1,10 +1,12 @@
 // The lesson's document model (parse.mjs) as DOM. No innerHTML anywhere: lesson text
 // is always text, so "<actuator>" or "<code><general .../></code>" show as written.
 //
-// renderLesson(doc, container, {baseUrl, loadLab}) appends one element per block. Each
-// lab block becomes a <section class="lab-mount"> handed to mountLab(element, spec,
-// {baseUrl}) from web/lab/lab.mjs (loaded by `loadLab`, dynamically); if that module is
-// missing or fails, the section shows the parsed spec instead.
+// renderLesson(doc, container, {baseUrl, loadLab, fetchText}) appends one element per
+// block. Each lab block becomes a <section class="lab-mount"> handed to mountLab(element,
+// spec, {baseUrl}) from web/lab/lab.mjs (loaded by `loadLab`, dynamically); if that module
+// is missing or fails, the section shows the parsed spec instead. A program block shows
+// the program from the repository (fetchText(url) -> its text), printed output becomes
+// tables where its columns line up, and exercises are set apart.
 import { mathToDom } from './math.mjs';
 import { parseHtmlSubset, parseInline } from './parse.mjs';
 import { grade } from './quiz.mjs';
@@ -78,13 +80,87 @@ function renderIo(doc, block) {
   return dl;
 }
 
-function renderCode(doc, block) {
+// Words of a line of printed output, a bracketed group ([0. -10. -1.]) counting as one.
+function outputWords(line) {
+  return line.match(/\[[^\]]*\]|\S+/g) ?? [];
+}
+
+// Printed output: a line of 3 or more words none of which is a number, followed by at
+// least 2 lines of as many words, is a table (that line its header); the other lines
+// stay as printed.
+function renderOutput(doc, text) {
+  const box = make(doc, 'div', 'output');
+  const lines = text.split('\n');
+  let plain = [];
+  const flush = () => {
+    if (plain.length) box.append(make(doc, 'pre', '', [make(doc, 'code', 'language-text', [plain.join('\n')])]));
+    plain = [];
+  };
+  const isHeader = (words) => words.length >= 3 && words.every((w) => !Number.isFinite(Number(w)));
+  for (let i = 0; i < lines.length;) {
+    const width = isHeader(outputWords(lines[i])) ? outputWords(lines[i]).length : 0;
+    let end = i + 1;
+    while (end < lines.length && width >= 3 && outputWords(lines[end]).length === width) end++;
+    if (end - i < 3) {
+      plain.push(lines[i++]);
+      continue;
+    }
+    flush();
+    const [header, ...rows] = lines.slice(i, end).map(outputWords);
+    box.append(make(doc, 'table', 'output-table', [
+      make(doc, 'thead', '', [make(doc, 'tr', '', header.map((h) => make(doc, 'th', '', [h])))]),
+      make(doc, 'tbody', '', rows.map((r) => make(doc, 'tr', '', r.map((c) => make(doc, 'td', '', [c]))))),
+    ]));
+    i = end;
+  }
+  flush();
+  return box;
+}
+
+// A program block names its file in the repository (```python file=examples/x.py): the
+// caption links to it and says how to run it; the program itself is fetched from the
+// repository (`fetchText`), since the lesson's copy lost its line breaks, and a C++
+// program of the same name, if the repository has one, is linked too.
+function renderProgram(doc, block, figure, options) {
+  const file = block.attrs.file;
+  const link = make(doc, 'a', 'program-link', [file]);
+  link.href = `/${file}`;
+  const caption = make(doc, 'figcaption', '', [link, ' · run: ', make(doc, 'code', '', [`python3 ${file}`])]);
+  const code = make(doc, 'code', `language-${block.lang}`, [block.text]);
+  figure.append(caption, make(doc, 'pre', '', [code]));
+  if (!options.fetchText) return;
+  options.fetchText(`/${file}`).then((text) => {
+    code.textContent = text;
+    figure.dataset.source = 'repository';
+  }).catch(() => {});
+  const cpp = file.replace(/\.py$/, '.cpp');
+  if (cpp === file) return;
+  options.fetchText(`/${cpp}`).then(() => {
+    const other = make(doc, 'a', 'program-link', [cpp]);
+    other.href = `/${cpp}`;
+    const target = cpp.replace(/^examples\//, 'build/').replace(/\.cpp$/, '');
+    caption.append(' · C++: ', other, ' (', make(doc, 'code', '', [target]), ')');
+  }).catch(() => {});
+}
+
+function renderCode(doc, block, options = {}) {
   if (block.lang === 'io') return renderIo(doc, block);
   const figure = make(doc, 'figure', `code code-${block.lang}`);
-  const caption = block.attrs.file ? `${block.attrs.file}` : block.lang === 'text' ? 'output' : block.lang;
-  figure.append(make(doc, 'figcaption', '', [caption]),
-                make(doc, 'pre', '', [make(doc, 'code', `language-${block.lang}`, [block.text])]));
+  if (block.attrs.file) {
+    renderProgram(doc, block, figure, options);
+  } else if (block.lang === 'text') {
+    figure.append(make(doc, 'figcaption', '', ['output']), renderOutput(doc, block.text));
+  } else {
+    figure.append(make(doc, 'figcaption', '', [block.lang]),
+                  make(doc, 'pre', '', [make(doc, 'code', `language-${block.lang}`, [block.text])]));
+  }
   return figure;
+}
+
+// An exercise, set apart and numbered.
+function renderExercise(doc, block) {
+  return make(doc, 'section', 'exercise', [make(doc, 'h4', 'exercise-title', [`Exercise ${block.number}`]),
+    make(doc, 'p', '', inline(doc, block.text))]);
 }
 
 // The lab's title and why it is not live (yet); with `showSpec`, the parsed spec too,
@@ -189,7 +265,8 @@ function renderBlock(doc, block, options) {
     case 'math': return mathToDom(block.tex, doc, true);
     case 'table': return renderTable(doc, block);
     case 'callout': return renderCallout(doc, block);
-    case 'code': return renderCode(doc, block);
+    case 'code': return renderCode(doc, block, options);
+    case 'exercise': return renderExercise(doc, block);
     case 'lab': return renderLab(doc, block, options);
     case 'quiz': return renderQuiz(doc, block);
     default: return make(doc, 'p', 'unknown-block', [`(a ${block.type} block is not supported yet)`]);

@@ -45,6 +45,11 @@ function inventory() {
     unknownMath: texts('.math[data-unknown]'),
     mathLeftAsDollars: texts('main p, main td').filter((t) => /\$[^$]+\$/.test(t)),
     codeCaptions: texts('figure.code figcaption'),
+    programLines: document.querySelector('figure.code-python pre code').textContent.split('\n').length,
+    programSource: document.querySelector('figure.code-python').dataset.source ?? '',
+    outputTables: [...document.querySelectorAll('.output-table')].map((t) => [
+      t.querySelectorAll('th').length, t.querySelectorAll('tbody tr').length]),
+    exercises: texts('section.exercise h4'),
     ioTerms: texts('dl.io dt'),
     labs: [...document.querySelectorAll('section.lab-mount')].map((s) => ({
       model: s.dataset.model, mounted: s.dataset.mounted ?? '',
@@ -70,6 +75,9 @@ async function answer(page, index, response) {
 }
 
 async function checkPage(page) {
+  await page.waitForSelector('figure.code-python[data-source="repository"]', { timeout: 15000 });
+  await page.waitForFunction(() => document.querySelector('figure.code-python figcaption').textContent.includes('C++'),
+                             null, { timeout: 15000 });
   const seen = await page.evaluate(inventory);
   console.log(JSON.stringify(seen));
   assert.equal(seen.title, 'Lesson 2.3: actuators');
@@ -82,7 +90,12 @@ async function checkPage(page) {
             `math ${seen.math}, display ${seen.displayMath}, fractions ${seen.fractions}, subs ${seen.subscripts}`);
   assert.deepEqual(seen.unknownMath, []);
   assert.deepEqual(seen.mathLeftAsDollars, []);
-  assert.deepEqual(seen.codeCaptions, ['examples/l2_3_actuators.py', 'output']);
+  assert.deepEqual(seen.codeCaptions, ['examples/l2_3_actuators.py · run: python3 examples/l2_3_actuators.py · ' +
+    'C++: examples/l2_3_actuators.cpp (build/l2_3_actuators)', 'output']);
+  assert.ok(seen.programSource === 'repository' && seen.programLines > 50,
+            `the program from the repository, ${seen.programLines} lines`);
+  assert.deepEqual(seen.outputTables, [[6, 4]]);
+  assert.deepEqual(seen.exercises, ['Exercise 1', 'Exercise 2']);
   assert.deepEqual(seen.ioTerms, ['INPUT', 'PROCESS', 'OUTPUT']);
   assert.deepEqual(seen.labs, [{ model: 'gantry_gripper', mounted: 'true', canvases: 1, sliders: 3, readouts: 6 }]);
   assert.equal(seen.questions, 4);

@@ -29,7 +29,14 @@ check('block sequence of the lesson', () => {
     'paragraph table paragraph paragraph lab heading callout paragraph table paragraph',
     'code:io code:python paragraph code:text paragraph paragraph paragraph paragraph callout',
     'paragraph table paragraph paragraph paragraph callout paragraph paragraph paragraph',
-    'paragraph paragraph paragraph paragraph quiz paragraph'].join(' '));
+    'paragraph exercise exercise paragraph quiz paragraph'].join(' '));
+});
+
+check('the two exercises, numbered', () => {
+  const exercises = ofType('exercise');
+  assert.deepEqual(exercises.map((b) => b.number), [1, 2]);
+  assert.match(exercises[0].text, /^Replace the gripper/);
+  assert.match(exercises[1].text, /^Add a force and a torque sensor/);
 });
 
 check('every non-empty line belongs to a block', () => {
