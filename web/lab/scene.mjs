@@ -97,6 +97,14 @@ function setPose(object, xpos, xmat, g) {
 
 // A pool of arrows of one colour, reused frame to frame; unused ones are hidden. Drawing
 // allocates nothing once the pool is as large as the frame needs.
+// Overlays (arrows, contact points, the perturbation's line) are drawn over the geoms,
+// so that a force inside a body or a contact between two stays in sight.
+function drawOnTop(object) {
+  object.material.depthTest = false;
+  object.material.depthWrite = false;
+  object.renderOrder = 1;
+}
+
 class ArrowPool {
   constructor(scene, color) {
     this.scene = scene;
@@ -116,6 +124,8 @@ class ArrowPool {
     if (length < 1e-4) return;
     if (this.used === this.arrows.length) {
       const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, this.color);
+      drawOnTop(arrow.line);
+      drawOnTop(arrow.cone);
       this.scene.add(arrow);
       this.arrows.push(arrow);
     }
@@ -181,6 +191,7 @@ export class LabScene {
     this.perturbLine = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
                                       new THREE.LineBasicMaterial({ color: 0xd62728 }));
     this.perturbLine.visible = false;
+    drawOnTop(this.perturbLine);
     this.perturbLine.frustumCulled = false;
     this.scene.add(this.perturbLine);
     this.perturber = null;
@@ -266,6 +277,7 @@ export class LabScene {
     while (this.contactPoints.length < shown) {
       const dot = new THREE.Mesh(new THREE.SphereGeometry(0.004, 8, 6),
                                  new THREE.MeshBasicMaterial({ color: 0xff7f0e }));
+      drawOnTop(dot);
       this.scene.add(dot);
       this.contactPoints.push(dot);
     }
