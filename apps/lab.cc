@@ -627,26 +627,33 @@ std::string MissingEngineProblem(const fs::path& repo_root) {
          " (about 12 minutes on 2 cores), then run this command again";
 }
 
-void AddLabCommand(CLI::App& app, CommandIo& io) {
-  auto lesson = std::make_shared<std::string>();
-  auto port = std::make_shared<int>(8765);
+namespace {
+
+// A subcommand serving a page for one file: `simlab NAME FILE [--port P] [--root R]`,
+// run by `run(file, port, root, out)`.
+using ServeRun = int (*)(const std::string& file, int port, const std::string& root, std::ostream& out);
+void AddServeCommand(CLI::App& app, CommandIo& io, const char* name, const char* about,
+                     const char* file_name, const char* file_help, int default_port, ServeRun run) {
+  auto file = std::make_shared<std::string>();
+  auto port = std::make_shared<int>(default_port);
   auto root = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("lab", "serve a lesson page with its live labs on 127.0.0.1");
-  cmd->add_option("lesson", *lesson, "lesson text file")->required();
+  CLI::App* cmd = app.add_subcommand(name, about);
+  cmd->add_option(file_name, *file, file_help)->required();
   cmd->add_option("--port", *port, "TCP port on 127.0.0.1 (0 picks a free one)");
   cmd->add_option("--root", *root, "repository folder holding web/ and models/");
-  cmd->callback([lesson, port, root, &io] { io.status = RunLab(*lesson, *port, *root, *io.out); });
+  cmd->callback([file, port, root, run, &io] { io.status = run(*file, *port, *root, *io.out); });
+}
+
+}  // namespace
+
+void AddLabCommand(CLI::App& app, CommandIo& io) {
+  AddServeCommand(app, io, "lab", "serve a lesson page with its live labs on 127.0.0.1", "lesson",
+                  "lesson text file", 8765, RunLab);
 }
 
 void AddViewCommand(CLI::App& app, CommandIo& io) {
-  auto model = std::make_shared<std::string>();
-  auto port = std::make_shared<int>(8766);
-  auto root = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("view", "serve the viewer of any model (and its folder) on 127.0.0.1");
-  cmd->add_option("model", *model, "MJCF model file")->required();
-  cmd->add_option("--port", *port, "TCP port on 127.0.0.1 (0 picks a free one)");
-  cmd->add_option("--root", *root, "repository folder holding web/");
-  cmd->callback([model, port, root, &io] { io.status = RunView(*model, *port, *root, *io.out); });
+  AddServeCommand(app, io, "view", "serve the viewer of any model (and its folder) on 127.0.0.1",
+                  "model", "MJCF model file", 8766, RunView);
 }
 
 }  // namespace simlab::apps

@@ -507,13 +507,7 @@ val Simulation::PerturbState() const {
   val state = NumbersObject({{"select", perturb_.select}, {"active", perturb_.active},
                              {"localmass", perturb_.localmass}});
   double selpos[3] = {0, 0, 0};
-  if (perturb_.select > 0) {
-    const double* xmat = &d_.xmat[9 * perturb_.select];
-    for (int i = 0; i < 3; i++) {
-      selpos[i] = d_.xpos[3 * perturb_.select + i];
-      for (int k = 0; k < 3; k++) selpos[i] += xmat[3 * i + k] * perturb_.localpos[k];
-    }
-  }
+  if (perturb_.select > 0) PerturbSelectionPoint(d_, perturb_, selpos);
   state.set("selpos", VectorToJs(selpos, 3));
   state.set("refselpos", VectorToJs(perturb_.refselpos.data(), 3));
   state.set("refquat", VectorToJs(perturb_.refquat.data(), 4));

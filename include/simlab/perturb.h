@@ -37,6 +37,9 @@ struct Perturb {
 // inertia of d (after Forward or a Step). Nothing for no body or the world.
 void InitPerturb(const Model& m, Data& d, Perturb* p);
 
+// The selected point (localpos on the selected body) in world coordinates now.
+void PerturbSelectionPoint(const Data& d, const Perturb& p, double out[3]);
+
 // Sets the selected body's xfrc_applied to the springs' force and torque (MuJoCo's
 // mjv_applyPerturbForce; nothing when inactive or no body is selected).
 void ApplyPerturbForce(const Model& m, Data& d, const Perturb& p);

@@ -116,8 +116,9 @@ void ComputeStatistics(Model* m, const Data& d) {
   // Body sizes: the farthest joint anchor (of the body and of its children) and geom.
   std::vector<double> size(m->nbody, 0.0);
   auto distance = [](const double* a, const double* b) {
-    double v[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    return std::sqrt(math::Dot(v, v, 3));
+    double v[3];
+    math::Sub3(v, a, b);
+    return math::Norm3(v);
   };
   for (int j = 0; j < m->njnt; j++) {
     for (int b : {m->jnt_bodyid[j], m->body_parentid[m->jnt_bodyid[j]]}) {

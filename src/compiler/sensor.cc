@@ -250,16 +250,16 @@ void CheckDataBudget(const SensorSpec& s, int64_t dim, int64_t total) {
   }
 }
 
-// A plugin sensor's instance, and the stage and size its plugin gives it.
-void CompilePluginSensor(const mjcf::ModelSpec& spec, const SensorSpec& s, int i, Model* m) {
+// A plugin sensor's instance and the stage its plugin gives it; returns the size the
+// plugin gives it.
+int64_t CompilePluginSensor(const mjcf::ModelSpec& spec, const SensorSpec& s, int i, Model* m) {
   int instance = PluginInstanceOf(spec, s.src, s.plugin, "sensor");
   const Plugin& plugin = PluginWith(*m, instance, kPluginSensor, s.src);
   m->sensor_plugin[i] = instance;
   m->sensor_needstage[i] = plugin.needstage;
-  m->sensor_dim[i] = plugin.nsensordata(*m, instance, i);
-  if (m->sensor_dim[i] < 0) {
-    ThrowAt(s.src, "plugin '" + plugin.name + "' gave the sensor a negative size");
-  }
+  int dim = plugin.nsensordata(*m, instance, i);
+  if (dim < 0) ThrowAt(s.src, "plugin '" + plugin.name + "' gave the sensor a negative size");
+  return dim;
 }
 
 // One sensor's row of the model.
@@ -289,8 +289,7 @@ void CompileSensor(const mjcf::ModelSpec& spec, const SensorSpec& s, int i, int6
   m->sensor_datatype[i] = user ? s.datatype : SensorDataType(s.type);
   m->sensor_needstage[i] = user ? s.needstage : NeedStage(s.type);
   m->sensor_plugin[i] = -1;
-  if (s.type == kSensPlugin) CompilePluginSensor(spec, s, i, m);
-  int64_t dim = s.type == kSensPlugin ? m->sensor_dim[i] : SensorDim(*m, s, objid);
+  int64_t dim = s.type == kSensPlugin ? CompilePluginSensor(spec, s, i, m) : SensorDim(*m, s, objid);
   CheckDataBudget(s, dim, adr + dim);
   m->sensor_dim[i] = static_cast<int>(dim);
   int datatype = m->sensor_datatype[i];

@@ -16,17 +16,6 @@ namespace simlab {
 
 namespace {
 
-// The selection point in world coordinates.
-void SelectionPoint(const Data& d, const Perturb& p, double out[3]) {
-  math::MulMatVec3(out, &d.xmat[9 * p.select], p.localpos.data());
-  math::Add3(out, out, &d.xpos[3 * p.select]);
-}
-
-// The body's inertia frame orientation.
-void InertiaQuat(const Model& m, const Data& d, int body, double out[4]) {
-  math::MulQuat(out, &d.xquat[4 * body], &m.body_iquat[4 * body]);
-}
-
 // 3 / trace(J M^-1 J^T): the mass the selection point moves with (1 when it cannot move).
 double LocalMass(const Model& m, Data& d, const double point[3], int body) {
   std::vector<double> jac(3 * m.nv), x(m.nv);
@@ -43,12 +32,17 @@ double LocalMass(const Model& m, Data& d, const double point[3], int body) {
 
 }  // namespace
 
+void PerturbSelectionPoint(const Data& d, const Perturb& p, double out[3]) {
+  math::MulMatVec3(out, &d.xmat[9 * p.select], p.localpos.data());
+  math::Add3(out, out, &d.xpos[3 * p.select]);
+}
+
 void InitPerturb(const Model& m, Data& d, Perturb* p) {
   if (p->select <= 0 || p->select >= m.nbody) return;
   double selpos[3];
-  SelectionPoint(d, *p, selpos);
+  PerturbSelectionPoint(d, *p, selpos);
   p->localmass = LocalMass(m, d, selpos, p->select);
-  InertiaQuat(m, d, p->select, p->refquat.data());
+  ObjectQuat(m, d, kObjBody, p->select, p->refquat.data());  // (its inertia frame)
   math::Copy3(p->refselpos.data(), selpos);
 }
 
@@ -66,7 +60,7 @@ void ApplyPerturbForce(const Model& m, Data& d, const Perturb& p) {
   // about the centre of mass, with the spin about the pull damped.
   if (p.active & kPerturbTranslate) {
     double selpos[3], diff[3], arm[3], pointvel[3];
-    SelectionPoint(d, p, selpos);
+    PerturbSelectionPoint(d, p, selpos);
     math::Sub3(diff, selpos, p.refselpos.data());
     double k = m.vis.map.stiffness;
     for (int i = 0; i < 3; i++) force[i] = -k * p.localmass * diff[i];
@@ -84,7 +78,7 @@ void ApplyPerturbForce(const Model& m, Data& d, const Perturb& p) {
   if (p.active & kPerturbRotate) {
     double k = m.vis.map.stiffnessrot;
     double current[4], difference[4];
-    InertiaQuat(m, d, p.select, current);
+    ObjectQuat(m, d, kObjBody, p.select, current);
     math::NegQuat(current, current);
     math::MulQuat(difference, p.refquat.data(), current);
     math::QuatToVel(torque, difference, 1 / (k * inertia));

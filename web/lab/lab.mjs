@@ -8,8 +8,8 @@ import { arrayReader, arraysOf, evaluateExpr, parseExpr, parseTarget } from './e
 import { gatherModelFiles } from './model_files.mjs';
 import { modelInfo, specFromModel } from './panels.mjs';
 import { Perturber } from './perturb.mjs';
-import { LivePlot } from './plot.mjs';
-import { Pacer, kSpeeds } from './pacer.mjs';
+import { LivePlot, csvText } from './plot.mjs';
+import { Pacer, kSpeeds, nextSpeed } from './pacer.mjs';
 import { LabScene } from './scene.mjs';
 import { parseLabSpec } from './spec.mjs';
 
@@ -215,12 +215,11 @@ class Lab {
     this.read = arrayReader((source, name) => this.array(source, name));
     // Frame rate and real-time factor over the last half second; engineFactor is simulated
     // time per second spent stepping (how much faster than real time it could run).
-    // dropped: wall-clock seconds the simulation gave up catching (budget spent, or gaps
-    // over kMaxGap), in total since the lab was mounted.
-    // totalSteps, totalFrames: counted since mounting (steps per frame = their ratio).
+    // totalFrames: counted since mounting.
     this.stats = { fps: 0, realTimeFactor: 0, engineFactor: 0, frames: 0,
-                   windowStart: performance.now(), simStart: 0, dropped: 0, totalSteps: 0, totalFrames: 0 };
-    // Pacing against the wall clock, at the chosen speed (see pacer.mjs).
+                   windowStart: performance.now(), simStart: 0, totalFrames: 0 };
+    // Pacing against the wall clock, at the chosen speed (see pacer.mjs; its `dropped` is
+    // the wall time given up since mounting, `totalSteps` the steps taken).
     this.pacer = new Pacer({ timestep: this.timestep, step: (n) => this.sim.step(n) });
     // Reused every frame: the scene's state, the plots' sample rows.
     this.state = { model: null, contacts: null, contactLayout, geom_xpos: null, geom_xmat: null,
@@ -486,11 +485,10 @@ class Lab {
   // The plotted series (time and one column per trace, for every plot), then the readouts
   // now (label, value), as CSV text.
   exportCsv() {
-    const quote = (text) => `"${String(text).replaceAll('"', '""')}"`;
     const lines = [];
     for (const { plot } of this.plots) lines.push(...plot.csvLines(), '');
     lines.push('"readout","value"');
-    for (const r of this.readouts) lines.push(`${quote(r.spec.label ?? r.spec.expr)},${r.current}`);
+    for (const r of this.readouts) lines.push(`${csvText(r.spec.label ?? r.spec.expr)},${r.current}`);
     return lines.join('\n') + '\n';
   }
 
@@ -615,8 +613,6 @@ class Lab {
   frameBody(now) {
     const timeBefore = this.sim.time;
     this.pacer.frame(now, this.playing);
-    this.stats.dropped = this.pacer.dropped;
-    this.stats.totalSteps = this.pacer.totalSteps;
     // Paused, a slider still acts at once: forward recomputes forces from the new ctrl
     // (as MuJoCo's simulate does while paused).
     if (!this.playing && this.changed) this.sim.forward();
@@ -687,7 +683,7 @@ class Lab {
   }
 
   changeSpeed(direction) {
-    this.setSpeed(this.pacer.changeSpeed(direction));
+    this.setSpeed(nextSpeed(this.pacer.speed, direction));
   }
 
   play() {

@@ -14,6 +14,13 @@ const kMaxGap = 0.25;
 // The slow-motion speeds, as simulate offers them (its '-' and '=' keys step through them).
 export const kSpeeds = [1, 1 / 2, 1 / 4, 1 / 8, 1 / 16, 1 / 32, 1 / 64];
 
+// The speed of kSpeeds after `speed`: slower (direction -1) or faster (+1), staying at
+// the ends.
+export function nextSpeed(speed, direction) {
+  const i = kSpeeds.indexOf(speed);
+  return kSpeeds[Math.min(kSpeeds.length - 1, Math.max(0, (i < 0 ? 0 : i) - direction))];
+}
+
 export class Pacer {
   // timestep: seconds per step; step(n): takes n steps; now(): the wall clock in ms.
   constructor({ timestep, step, now = () => performance.now() }) {
@@ -73,15 +80,6 @@ export class Pacer {
   // Nothing owed (after a pause, a reset or a change of speed).
   clearDebt() {
     this.debt = 0;
-  }
-
-  // The next slower (direction -1) or faster (+1) speed of kSpeeds.
-  changeSpeed(direction) {
-    const i = kSpeeds.indexOf(this.speed);
-    const next = Math.min(kSpeeds.length - 1, Math.max(0, (i < 0 ? 0 : i) - direction));
-    this.speed = kSpeeds[next];
-    this.clearDebt();
-    return this.speed;
   }
 
   // The ms spent stepping since the last call.

@@ -5,6 +5,11 @@ import uPlot from '../node_modules/uplot/dist/uPlot.esm.js';
 const kHeight = 200;
 const kColors = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b'];
 
+// A text as one CSV field: quoted, its quotes doubled.
+export function csvText(text) {
+  return `"${String(text).replaceAll('"', '""')}"`;
+}
+
 export class LivePlot {
   // spec: {ylabel, window, traces: [{label, dash}]}; width in pixels.
   constructor(container, spec, width) {
@@ -58,8 +63,7 @@ export class LivePlot {
   // The samples kept (the last `window` seconds) as CSV lines: a header of the traces'
   // labels, then one row per sample (empty where a trace had no value).
   csvLines() {
-    const quote = (text) => `"${String(text).replaceAll('"', '""')}"`;
-    const lines = [this.labels.map(quote).join(',')];
+    const lines = [this.labels.map(csvText).join(',')];
     for (let i = 0; i < this.columns[0].length; i++) {
       lines.push(this.columns.map((column) => (column[i] == null ? '' : String(column[i]))).join(','));
     }

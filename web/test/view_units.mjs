@@ -5,7 +5,7 @@
 //
 //   node web/test/view_units.mjs
 import assert from 'node:assert/strict';
-import { Pacer, kSpeeds } from '../lab/pacer.mjs';
+import { Pacer, kSpeeds, nextSpeed } from '../lab/pacer.mjs';
 import { specFromModel } from '../lab/panels.mjs';
 import { draggedPoint, draggedQuat, toBodyFrame } from '../lab/perturb.mjs';
 import { pickMainModel, withPaths } from '../view/files.mjs';
@@ -96,12 +96,12 @@ const tests = {
     assert.equal(steps, before);
   },
   "'-' and '=' step through the speeds and stop at the ends": () => {
-    const pacer = new Pacer({ timestep: 0.001, step: () => {}, now: () => 0 });
-    assert.equal(pacer.changeSpeed(1), 1);
-    assert.equal(pacer.changeSpeed(-1), 1 / 2);
-    for (let k = 0; k < 10; k++) pacer.changeSpeed(-1);
-    assert.equal(pacer.speed, 1 / 64);
-    assert.equal(pacer.changeSpeed(1), 1 / 32);
+    assert.equal(nextSpeed(1, 1), 1);
+    assert.equal(nextSpeed(1, -1), 1 / 2);
+    let speed = 1;
+    for (let k = 0; k < 10; k++) speed = nextSpeed(speed, -1);
+    assert.equal(speed, 1 / 64);
+    assert.equal(nextSpeed(speed, 1), 1 / 32);
   },
   'a pulled point follows the mouse across the image plane at its depth': () => {
     // Camera at the origin looking along +y, right +x, up +z, 90 degree field of view,

@@ -3,7 +3,7 @@
 // the model (web/lab/lab.mjs, mountModelViewer). A served model is reloaded when its file
 // changes on disk.
 import { mountModelViewer, urlSource } from '/lab/lab.mjs';
-import { pickMainModel } from '/view/files.mjs';
+import { filesOfDrop, pickMainModel } from '/view/files.mjs';
 
 const kReloadPollMs = 1500;
 
@@ -61,7 +61,6 @@ document.addEventListener('dragleave', () => document.body.classList.remove('dro
 document.addEventListener('drop', async (event) => {
   event.preventDefault();
   document.body.classList.remove('dropping');
-  const { filesOfDrop } = await import('/view/files.mjs');
   showLocal(await filesOfDrop(event.dataTransfer));
 });
 
