@@ -28,6 +28,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/stack.h"
 #include "math/math.h"
@@ -278,35 +279,50 @@ void EllipsoidForce(const Model& m, Data& d, int body) {
 
 // ------------------------------------------------------------ derivatives
 
-// The 6 x nv Jacobian (rotation rows, then translation rows) of a frame at `point` on
-// `body`, expressed in the frame's axes `rot`.
-void LocalJacobian(const Model& m, Data& d, const double* point, const double* rot, int body,
-                   double* jac) {
-  int nv = m.nv;
-  StackFrame frame(d);
-  double* world = frame.Alloc(6 * nv);
-  Jacobian(m, d, world + 3 * nv, world, point, body);
+// The 6 x n Jacobian (rotation rows, then translation rows) of a frame at `point` on
+// `body`, expressed in the frame's axes `rot`, on the n dofs that move the body (the
+// other columns are zero).
+struct ChainJacobian {
+  int n = 0;
+  int* dofs = nullptr;   // ascending dof indices, n of them
+  double* jac = nullptr; // 6 x n, row-major
+};
+
+ChainJacobian LocalJacobian(const Model& m, Data& d, StackFrame& frame, SolverFrame& ints,
+                            const double* point, const double* rot, int body) {
+  ChainJacobian chain;
+  chain.dofs = ints.IntsToWrite(m.nv);
+  chain.n = MergedDofChain(m, body, body, chain.dofs);
+  int n = chain.n;
+  chain.jac = frame.Alloc(6 * n);
+  StackFrame scratch(d);
+  double* world = scratch.Alloc(6 * n);
+  JacobianOnDofs(m, d, chain.dofs, n, world + 3 * n, world, point, body);
   for (int half = 0; half < 2; half++) {
-    const double* src = world + 3 * half * nv;
-    double* dst = jac + 3 * half * nv;
+    const double* src = world + 3 * half * n;
+    double* dst = chain.jac + 3 * half * n;
     for (int r = 0; r < 3; r++) {
-      for (int c = 0; c < nv; c++) {
-        dst[r * nv + c] = rot[r] * src[c] + rot[3 + r] * src[nv + c] + rot[6 + r] * src[2 * nv + c];
+      for (int c = 0; c < n; c++) {
+        dst[r * n + c] = rot[r] * src[c] + rot[3 + r] * src[n + c] + rot[6 + r] * src[2 * n + c];
       }
     }
   }
+  return chain;
 }
 
-// qDeriv += J^T B J for an n x nv matrix J and an n x n matrix B.
-void AddJacTBJac(const Model& m, Data& d, const double* jac, const double* b, int n) {
-  int nv = m.nv;
-  for (int i = 0; i < n; i++) {
-    for (int j = 0; j < n; j++) {
-      if (b[i * n + j] == 0) continue;
-      for (int k = 0; k < nv; k++) {
-        if (jac[i * nv + k] == 0) continue;
-        double scale = jac[i * nv + k] * b[i * n + j];
-        for (int p = 0; p < nv; p++) d.qDeriv[k * nv + p] += jac[j * nv + p] * scale;
+// qDeriv += J^T B J for B (k x k) and the rows [row0, row0 + k) of a chain Jacobian.
+void AddJacTBJac(const Model& m, Data& d, const ChainJacobian& chain, int row0, const double* b,
+                 int k) {
+  int n = chain.n, nv = m.nv;
+  const double* jac = chain.jac + row0 * n;
+  for (int i = 0; i < k; i++) {
+    for (int j = 0; j < k; j++) {
+      if (b[i * k + j] == 0) continue;
+      for (int c = 0; c < n; c++) {
+        if (jac[i * n + c] == 0) continue;
+        double scale = jac[i * n + c] * b[i * k + j];
+        double* row = &d.qDeriv[chain.dofs[c] * nv];
+        for (int p = 0; p < n; p++) row[chain.dofs[p]] += jac[j * n + p] * scale;
       }
     }
   }
@@ -332,21 +348,21 @@ void InertiaBoxDerivative(const Model& m, Data& d, int i) {
   InertiaBox(m, i, box);
   RelativeVelocity(m, d, i, &d.xipos[3 * i], &d.ximat[9 * i], lvel);
   StackFrame frame(d);
-  double* jac = frame.Alloc(6 * m.nv);
-  LocalJacobian(m, d, &d.xipos[3 * i], &d.ximat[9 * i], i, jac);
+  SolverFrame ints(d.solver_scratch);
+  ChainJacobian chain = LocalJacobian(m, d, frame, ints, &d.xipos[3 * i], &d.ximat[9 * i], i);
 
   // Each local component is damped on its own: B is diagonal, one row of J at a time.
   double slope[6] = {0, 0, 0, 0, 0, 0};
   if (m.opt.viscosity > 0) {
     BoxStokesCoefs(m, box, slope);
-    for (int k = 0; k < 6; k++) AddJacTBJac(m, d, jac + k * m.nv, &slope[k], 1);
+    for (int k = 0; k < 6; k++) AddJacTBJac(m, d, chain, k, &slope[k], 1);
   }
   if (m.opt.density > 0) {
     double coef[6];
     BoxQuadraticCoefs(m, box, coef);
     for (int k = 0; k < 3; k++) slope[k] = -coef[k] * 2 * std::abs(lvel[k]) / 64.0;
     for (int k = 0; k < 3; k++) slope[3 + k] = -coef[3 + k] * 2 * std::abs(lvel[3 + k]);
-    for (int k = 0; k < 6; k++) AddJacTBJac(m, d, jac + k * m.nv, &slope[k], 1);
+    for (int k = 0; k < 6; k++) AddJacTBJac(m, d, chain, k, &slope[k], 1);
   }
 }
 
@@ -475,8 +491,6 @@ void Symmetrize6(double* b) {
 }
 
 void EllipsoidDerivative(const Model& m, Data& d, int body) {
-  StackFrame frame(d);
-  double* jac = frame.Alloc(6 * m.nv);
   double rho = m.opt.density;
   for (int g = m.body_geomadr[body]; g < m.body_geomadr[body] + m.body_geomnum[body]; g++) {
     EllipsoidCoefs c = ReadCoefs(m, g);
@@ -485,7 +499,9 @@ void EllipsoidDerivative(const Model& m, Data& d, int body) {
     GeomSemiAxes(m.geom_type[g], &m.geom_size[3 * g], s);
     const double* rot = &d.geom_xmat[9 * g];
     RelativeVelocity(m, d, body, &d.geom_xpos[3 * g], rot, lvel);
-    LocalJacobian(m, d, &d.geom_xpos[3 * g], rot, m.geom_bodyid[g], jac);
+    StackFrame frame(d);
+    SolverFrame ints(d.solver_scratch);
+    ChainJacobian chain = LocalJacobian(m, d, frame, ints, &d.geom_xpos[3 * g], rot, m.geom_bodyid[g]);
 
     // B = d(torque, force) / d(w, v), term by term.
     EllipsoidShape e = Shape(s);
@@ -501,7 +517,7 @@ void EllipsoidDerivative(const Model& m, Data& d, int body) {
 
     // implicitfast needs a symmetric qDeriv.
     if (m.opt.integrator == kIntegratorImplicitFast) Symmetrize6(b);
-    AddJacTBJac(m, d, jac, b, 6);
+    AddJacTBJac(m, d, chain, 0, b, 6);
   }
 }
 

@@ -9,6 +9,7 @@
 // Jacobians are 3 x nv, row-major.
 #include <algorithm>
 
+#include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/stack.h"
 #include "math/math.h"
@@ -110,15 +111,20 @@ void JacobianPointAxis(const Model& m, Data& d, double* jac_point, double* jac_a
 
 void ApplyForceTorque(const Model& m, Data& d, const double* force, const double* torque,
                       const double* point, int body, double* qfrc) {
+  // Only the dofs of the body's chain move it: J^T f on those columns (the others add 0).
   StackFrame frame(d);
-  double* jacp = frame.Alloc(3 * m.nv);
-  double* jacr = frame.Alloc(3 * m.nv);
-  double* tmp = frame.Alloc(m.nv);
-  Jacobian(m, d, jacp, jacr, point, body);
-  MulJacTVec(m, jacp, force, tmp);
-  for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
-  MulJacTVec(m, jacr, torque, tmp);
-  for (int v = 0; v < m.nv; v++) qfrc[v] += tmp[v];
+  SolverFrame ints(d.solver_scratch);
+  int* dofs = ints.IntsToWrite(m.nv);
+  int n = MergedDofChain(m, body, body, dofs);
+  double* jacp = frame.Alloc(3 * n);
+  double* jacr = frame.Alloc(3 * n);
+  JacobianOnDofs(m, d, dofs, n, jacp, jacr, point, body);
+  for (int k = 0; k < n; k++) {
+    double f = jacp[k] * force[0] + jacp[n + k] * force[1] + jacp[2 * n + k] * force[2];
+    double t = jacr[k] * torque[0] + jacr[n + k] * torque[1] + jacr[2 * n + k] * torque[2];
+    qfrc[dofs[k]] += f;
+    qfrc[dofs[k]] += t;
+  }
 }
 
 void MulJacTVec(const Model& m, const double* jac, const double* vec, double* res) {
