@@ -18,13 +18,14 @@ import { loadOracleModel } from './oracle_model.mjs';
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
-  'nhfield', 'nhfielddata'];
+  'nhfield', 'nhfielddata', 'nbvh'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
   'body_dofnum', 'body_dofadr', 'body_treeid', 'body_geomnum', 'body_geomadr',
   'body_sameframe', 'body_pos', 'body_quat', 'body_ipos', 'body_iquat', 'body_mass',
   'body_subtreemass', 'body_inertia', 'body_gravcomp', 'body_simple', 'body_invweight0',
+  'body_margin', 'body_bvhadr', 'body_bvhnum', 'bvh_depth', 'bvh_child', 'bvh_nodeid', 'bvh_aabb',
   'jnt_type', 'jnt_qposadr', 'jnt_dofadr', 'jnt_bodyid', 'jnt_group', 'jnt_limited',
   'jnt_actfrclimited', 'jnt_actgravcomp', 'jnt_solref', 'jnt_solimp', 'jnt_pos', 'jnt_axis',
   'jnt_stiffness', 'jnt_range', 'jnt_actfrcrange', 'jnt_margin',

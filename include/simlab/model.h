@@ -240,6 +240,16 @@ struct Visual {
   X(int, body_contype, nbody, 1)                   \
   X(int, body_conaffinity, nbody, 1)               \
   X(int, body_plugin, nbody, 1) /* plugin instance, or -1 */ \
+  X(double, body_margin, nbody, 1) /* widest geom margin */ \
+  X(int, body_bvhadr, nbody, 1) /* first node of its tree, or -1 */ \
+  X(int, body_bvhnum, nbody, 1)                    \
+  /* bounding volume hierarchies of the bodies'     \
+     colliding geoms (midphase); MuJoCo's arrays     \
+     also hold its meshes' face trees after them */  \
+  X(int, bvh_depth, nbvh, 1)                       \
+  X(int, bvh_child, nbvh, 2) /* within the body's tree, -1: none */ \
+  X(int, bvh_nodeid, nbvh, 1) /* a leaf's geom, else -1 */ \
+  X(double, bvh_aabb, nbvh, 6) /* centre, half sizes; inertial frame */ \
   /* joints */                                     \
   X(int, jnt_type, njnt, 1)                        \
   X(int, jnt_qposadr, njnt, 1)                     \
@@ -510,6 +520,7 @@ struct Visual {
   X(nmocap)      /* mocap bodies */                                        \
   X(nmocap3)     /* 3 * nmocap (row width of key_mpos) */                  \
   X(nmocap4)     /* 4 * nmocap (row width of key_mquat) */                 \
+  X(nbvh)        /* bounding volumes of the bodies' geom trees */         \
   X(nM)          /* nonzeros of the inertia matrix in tree layout */       \
   X(ngravcomp)   /* bodies with positive gravcomp */                       \
   X(nplugin)     /* plugin instances (<extension>, or implicit ones) */    \

@@ -124,6 +124,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);
+  CompileBodyBvh(&m);
   CompileActuators(spec, state, &m);
   CompilePlugins(spec, state, &m);
   CompileKeyframes(spec, state, &m);

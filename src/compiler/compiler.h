@@ -157,6 +157,8 @@ void CompileEqualities(const mjcf::ModelSpec& spec, Model* m);
 void AutoSpringDamper(const CompileState& state, Model* m);
 // Explicit pairs, exclusions and body_contype/conaffinity (contact.cc).
 void CompileContacts(const mjcf::ModelSpec& spec, Model* m);
+// body_margin and the bodies' bounding volume hierarchies (nbvh, bvh_*) (bvh.cc).
+void CompileBodyBvh(Model* m);
 // eq_data computed from the body poses at qpos0 (connect and weld between bodies).
 void EqualityConstants(Model* m);
 // What an actuator reads and writes (checked): its input signature and control entries

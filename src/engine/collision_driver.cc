@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/collision.h"
+#include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/stack.h"
 #include "engine/timer.h"
@@ -155,13 +156,16 @@ bool SpheresApart(const Model& m, const Data& d, int g1, int g2, double margin) 
   return m.geom_type[g2] == kGeomPlane && r1 > 0 && PlaneGeomDist(d, g2, g1) > margin + r1;
 }
 
-// True when the geoms' oriented bounding boxes (geom_aabb in each geom's frame) are
-// farther than margin apart along one of their six face normals (MuJoCo's mj_collideOBB;
-// a box infinite in every direction is never apart, and the faces of a box are not tested
-// against one infinite in some direction).
-bool BoxesApart(const Model& m, const Data& d, int g1, int g2, double margin) {
-  const double* aabb[2] = {&m.geom_aabb[6 * g1], &m.geom_aabb[6 * g2]};
-  const double* mat[2] = {&d.geom_xmat[9 * g1], &d.geom_xmat[9 * g2]};
+// True when two oriented boxes (aabb: centre and half sizes in a frame at pos with
+// axes mat) are farther than margin apart along one of their six face normals (MuJoCo's
+// mj_collideOBB; a box infinite in every direction is never apart, and the faces of a
+// box are not tested against one infinite in some direction).
+bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* mat1,
+                        const double* aabb2, const double* pos2, const double* mat2,
+                        double margin) {
+  const double* aabb[2] = {aabb1, aabb2};
+  const double* mat[2] = {mat1, mat2};
+  const double* pos[2] = {pos1, pos2};
   bool infinite[2];
   for (int i = 0; i < 2; i++) {
     const double* half = aabb[i] + 3;
@@ -174,7 +178,7 @@ bool BoxesApart(const Model& m, const Data& d, int g1, int g2, double margin) {
   double centre[2][3], offset[3], local[2][3], turn[9];
   for (int i = 0; i < 2; i++) {
     math::MulMatVec3(centre[i], mat[i], aabb[i]);
-    math::Add3(centre[i], centre[i], &d.geom_xpos[3 * (i ? g2 : g1)]);
+    math::Add3(centre[i], centre[i], pos[i]);
   }
   math::Sub3(offset, centre[1], centre[0]);
   math::MulMatTVec3(local[0], mat[0], offset);
@@ -193,6 +197,13 @@ bool BoxesApart(const Model& m, const Data& d, int g1, int g2, double margin) {
     if (reach + margin < std::abs(local[1][k])) return true;
   }
   return false;
+}
+
+// The same for two geoms' boxes (geom_aabb in each geom's frame).
+bool BoxesApart(const Model& m, const Data& d, int g1, int g2, double margin) {
+  return OrientedBoxesApart(&m.geom_aabb[6 * g1], &d.geom_xpos[3 * g1], &d.geom_xmat[9 * g1],
+                            &m.geom_aabb[6 * g2], &d.geom_xpos[3 * g2], &d.geom_xmat[9 * g2],
+                            margin);
 }
 
 // Is a pair's narrow phase costly enough to test the bounding boxes first? Spheres,
@@ -471,7 +482,85 @@ void BroadPhase(const Model& m, Data& d) {
 // ------------------------------------------------------------ one body pair
 
 // The geom pairs of bodies b1 < b2 that no explicit pair in [start, end) covers.
+// The leaf geom of node `node` of body b's tree, or -1 for an inner node.
+int LeafGeom(const Model& m, int b, int node) {
+  const int* child = &m.bvh_child[2 * (m.body_bvhadr[b] + node)];
+  return child[0] < 0 && child[1] < 0 ? m.bvh_nodeid[m.body_bvhadr[b] + node] : -1;
+}
+
+// Do the boxes of node n1 of body b1's tree and node n2 of b2's overlap (within the
+// bodies' margins)?
+bool NodesOverlap(const Model& m, const Data& d, int b1, int n1, int b2, int n2) {
+  double margin = AssignMargin(m, m.body_margin[b1] + m.body_margin[b2]);
+  return !OrientedBoxesApart(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)], &d.xipos[3 * b1],
+                             &d.ximat[9 * b1], &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)],
+                             &d.xipos[3 * b2], &d.ximat[9 * b2], margin);
+}
+
+// Half the surface area of node n of body b's box.
+double NodeArea(const Model& m, int b, int n) {
+  const double* half = &m.bvh_aabb[6 * (m.body_bvhadr[b] + n) + 3];
+  return half[0] * half[1] + half[1] * half[2] + half[2] * half[0];
+}
+
+// Sorts contacts by (geom[0], geom[1]), keeping the order of equal pairs (an insertion
+// sort: a body pair has few contacts, mostly in order already, and it allocates nothing).
+void SortByGeomPair(Contact* con, int n) {
+  auto before = [](const Contact& a, const Contact& b) {
+    return a.geom[0] != b.geom[0] ? a.geom[0] < b.geom[0] : a.geom[1] < b.geom[1];
+  };
+  for (int i = 1; i < n; i++) {
+    if (!before(con[i], con[i - 1])) continue;
+    Contact moving = con[i];
+    int j = i;
+    for (; j > 0 && before(moving, con[j - 1]); j--) con[j] = con[j - 1];
+    con[j] = moving;
+  }
+}
+
+// Collides the geoms of two bodies by walking their trees together (MuJoCo's
+// mj_collideTree for two bodies): a pair of nodes whose boxes are apart is dropped with
+// everything below it; otherwise the larger (by surface) of two inner nodes, or the
+// inner one of a leaf and an inner node, is opened. Leaf pairs go to the narrow phase.
+// The body pair's contacts are then sorted by geom pair, as MuJoCo sorts them, so that
+// the tree's shape never shows in the result.
+void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
+  int ncon_before = d.ncon;
+  SolverFrame ints(d.solver_scratch);
+  int* stack = ints.IntsToWrite(2 * static_cast<size_t>(m.body_bvhnum[b1] + m.body_bvhnum[b2]));
+  int nstack = 1;
+  stack[0] = stack[1] = 0;
+  while (nstack) {
+    nstack--;
+    int n1 = stack[2 * nstack], n2 = stack[2 * nstack + 1];
+    int leaf1 = LeafGeom(m, b1, n1), leaf2 = LeafGeom(m, b2, n2);
+    if (leaf1 >= 0 && leaf2 >= 0) {
+      CollideUnlessPaired(m, d, leaf1, leaf2, start, end);
+      continue;
+    }
+    if (!NodesOverlap(m, d, b1, n1, b2, n2)) continue;
+    // Open node 1 or node 2: push its children.
+    bool open1 = leaf2 >= 0 || (leaf1 < 0 && NodeArea(m, b1, n1) > NodeArea(m, b2, n2));
+    const int* child = &m.bvh_child[2 * ((open1 ? m.body_bvhadr[b1] + n1 : m.body_bvhadr[b2] + n2))];
+    for (int i = 0; i < 2; i++) {
+      if (child[i] < 0) continue;
+      stack[2 * nstack] = open1 ? child[i] : n1;
+      stack[2 * nstack + 1] = open1 ? n2 : child[i];
+      nstack++;
+    }
+  }
+  SortByGeomPair(d.contact.data() + ncon_before, d.ncon - ncon_before);
+}
+
+// Collides the geoms of two bodies: through their trees when both have several geoms
+// (unless the midphase is disabled), else every geom with every geom.
 void CollideBodies(const Model& m, Data& d, int b1, int b2, int start, int end) {
+  bool single = m.body_geomnum[b1] == 1 && m.body_geomnum[b2] == 1;
+  bool trees = m.body_bvhadr[b1] >= 0 && m.body_bvhadr[b2] >= 0;
+  if (!single && trees && !Disabled(m, kDisableMidphase)) {
+    CollideTrees(m, d, b1, b2, start, end);
+    return;
+  }
   for (int g1 = m.body_geomadr[b1]; g1 < m.body_geomadr[b1] + m.body_geomnum[b1]; g1++) {
     for (int g2 = m.body_geomadr[b2]; g2 < m.body_geomadr[b2] + m.body_geomnum[b2]; g2++) {
       CollideUnlessPaired(m, d, g1, g2, start, end);
