@@ -503,19 +503,31 @@ double NodeArea(const Model& m, int b, int n) {
   return half[0] * half[1] + half[1] * half[2] + half[2] * half[0];
 }
 
-// Sorts contacts by (geom[0], geom[1]), keeping the order of equal pairs (an insertion
-// sort: a body pair has few contacts, mostly in order already, and it allocates nothing).
-void SortByGeomPair(Contact* con, int n) {
-  auto before = [](const Contact& a, const Contact& b) {
-    return a.geom[0] != b.geom[0] ? a.geom[0] < b.geom[0] : a.geom[1] < b.geom[1];
-  };
-  for (int i = 1; i < n; i++) {
-    if (!before(con[i], con[i - 1])) continue;
-    Contact moving = con[i];
-    int j = i;
-    for (; j > 0 && before(moving, con[j - 1]); j--) con[j] = con[j - 1];
-    con[j] = moving;
+// Sorts the contacts [first, d.ncon) by (geom[0], geom[1]), keeping the order of equal
+// pairs: an index sort, then one permutation through the free end of d.contact (the
+// contacts are large; this allocates only when that end is short).
+void SortByGeomPair(Data& d, int first) {
+  int n = d.ncon - first;
+  if (n < 2) return;
+  Contact* con = d.contact.data() + first;
+  SolverFrame ints(d.solver_scratch);
+  int* order = ints.IntsToWrite(n);
+  for (int i = 0; i < n; i++) order[i] = i;
+  std::sort(order, order + n, [con](int a, int b) {
+    const int* ga = con[a].geom;
+    const int* gb = con[b].geom;
+    return ga[0] != gb[0] ? ga[0] < gb[0] : ga[1] != gb[1] ? ga[1] < gb[1] : a < b;
+  });
+  bool sorted = true;
+  for (int i = 0; i < n && sorted; i++) sorted = order[i] == i;
+  if (sorted) return;
+  if (d.contact.size() < static_cast<size_t>(d.ncon + n)) {
+    d.contact.resize(static_cast<size_t>(d.ncon + n) * 2);
+    con = d.contact.data() + first;
   }
+  Contact* spare = d.contact.data() + d.ncon;
+  std::copy(con, con + n, spare);
+  for (int i = 0; i < n; i++) con[i] = spare[order[i]];
 }
 
 // Collides the geoms of two bodies by walking their trees together (MuJoCo's
@@ -549,7 +561,7 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
       nstack++;
     }
   }
-  SortByGeomPair(d.contact.data() + ncon_before, d.ncon - ncon_before);
+  SortByGeomPair(d, ncon_before);
 }
 
 // Collides the geoms of two bodies: through their trees when both have several geoms
