@@ -68,7 +68,13 @@ TEST_P(FluidDerivativeTest, MatchesFiniteDifferences) {
   Forward(m, d);
   std::fill(d.qDeriv.begin(), d.qDeriv.end(), 0.0);
   FluidDerivative(m, d);
-  std::vector<double> analytic = d.qDeriv;
+  // qDeriv in the dof-dof pattern D, spread to a dense nv x nv matrix.
+  std::vector<double> analytic(static_cast<size_t>(m.nv) * m.nv, 0.0);
+  for (int i = 0; i < m.nv; i++) {
+    for (int adr = m.D_rowadr[i]; adr < m.D_rowadr[i] + m.D_rownnz[i]; adr++) {
+      analytic[i * m.nv + m.D_colind[adr]] = d.qDeriv[adr];
+    }
+  }
   double scale = 0;
   for (double x : analytic) scale = std::max(scale, std::abs(x));
   ASSERT_GT(scale, 0) << name << ": no fluid derivative";

@@ -18,7 +18,7 @@ import { loadOracleModel } from './oracle_model.mjs';
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
-  'nhfield', 'nhfielddata', 'nbvh'];
+  'nhfield', 'nhfielddata', 'nbvh', 'nD'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -31,7 +31,7 @@ const ARRAYS = [
   'jnt_stiffness', 'jnt_range', 'jnt_actfrcrange', 'jnt_margin',
   'dof_bodyid', 'dof_jntid', 'dof_parentid', 'dof_treeid', 'dof_Madr', 'dof_solref',
   'dof_solimp', 'dof_frictionloss', 'dof_armature', 'dof_damping', 'dof_invweight0',
-  'M_rownnz', 'M_rowadr', 'M_colind',
+  'M_rownnz', 'M_rowadr', 'M_colind', 'D_rownnz', 'D_rowadr', 'D_diag', 'D_colind',
   'geom_type', 'geom_contype', 'geom_conaffinity', 'geom_condim', 'geom_bodyid', 'geom_group',
   'geom_priority', 'geom_sameframe', 'geom_solmix', 'geom_solref', 'geom_solimp', 'geom_size',
   'geom_rbound', 'geom_aabb', 'geom_pos', 'geom_quat', 'geom_friction', 'geom_margin', 'geom_gap',

@@ -175,7 +175,7 @@ struct TimerStat {
   X(double, plugin_state, npluginstate, 1)      \
   X(double, history, nhistory, 1)  /* delayed actuators' and sensors' samples */ \
   /* implicit integration */                    \
-  X(double, qDeriv, nv, nv)                     \
+  X(double, qDeriv, nD, 1)  /* in the dof-dof pattern D (D_rowadr...) */ \
   X(double, qLU, nv, nv)                        \
   X(double, qH, nM, 1)                          \
   X(double, qHDiagInv, nv, 1)

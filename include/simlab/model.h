@@ -287,6 +287,12 @@ struct Visual {
   X(int, M_rownnz, nv, 1)                          \
   X(int, M_rowadr, nv, 1)                          \
   X(int, M_colind, nM, 1)                          \
+  /* the symmetric dof-dof pattern (qDeriv): row i  \
+     holds i's ancestors, i, then its descendants */ \
+  X(int, D_rownnz, nv, 1)                          \
+  X(int, D_rowadr, nv, 1)                          \
+  X(int, D_diag, nv, 1) /* diagonal's place in the row */ \
+  X(int, D_colind, nD, 1)                          \
   /* geoms */                                      \
   X(int, geom_type, ngeom, 1)                      \
   X(int, geom_contype, ngeom, 1)                   \
@@ -521,6 +527,7 @@ struct Visual {
   X(nmocap3)     /* 3 * nmocap (row width of key_mpos) */                  \
   X(nmocap4)     /* 4 * nmocap (row width of key_mquat) */                 \
   X(nbvh)        /* bounding volumes of the bodies' geom trees */         \
+  X(nD)          /* nonzeros of the dof-dof pattern D, 2 nM - nv */        \
   X(nM)          /* nonzeros of the inertia matrix in tree layout */       \
   X(ngravcomp)   /* bodies with positive gravcomp */                       \
   X(nplugin)     /* plugin instances (<extension>, or implicit ones) */    \

@@ -1,9 +1,11 @@
 // The kinematic tree: bodies in depth-first XML order (world = 0), and their joints,
 // geoms and sites in body order; then the model's tree layout (addresses, dof
 // parents, the inertia-matrix layout, qpos0).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "compiler/compiler.h"
 #include "compiler/orientation.h"
@@ -500,6 +502,32 @@ void LayoutSite(const SiteState& st, int sid, const BodyState& b, Model* m) {
   m->site_names[sid] = s.src.name;
 }
 
+// The CSR rows of the symmetric dof-dof pattern D (MuJoCo's D_rownnz, D_rowadr, D_diag,
+// D_colind, the layout of qDeriv): row i holds i's ancestor dofs, i, then its
+// descendant dofs, ascending; row i of M is its beginning.
+void LayoutDofDofMatrix(Model* m) {
+  int nv = m->nv;
+  std::vector<int> descendants(nv, 0);
+  for (int i = 0; i < nv; i++) {
+    for (int j = m->dof_parentid[i]; j >= 0; j = m->dof_parentid[j]) descendants[j]++;
+  }
+  int adr = 0;
+  for (int i = 0; i < nv; i++) {
+    m->D_rowadr[i] = adr;
+    m->D_diag[i] = m->M_rownnz[i] - 1;
+    m->D_rownnz[i] = m->M_rownnz[i] + descendants[i];
+    std::copy_n(&m->M_colind[m->M_rowadr[i]], m->M_rownnz[i], &m->D_colind[adr]);
+    adr += m->D_rownnz[i];
+  }
+  // Descendants in ascending order: each dof appended to its ancestors' rows.
+  std::vector<int> filled(m->M_rownnz.begin(), m->M_rownnz.end());
+  for (int i = 0; i < nv; i++) {
+    for (int j = m->dof_parentid[i]; j >= 0; j = m->dof_parentid[j]) {
+      m->D_colind[m->D_rowadr[j] + filled[j]++] = i;
+    }
+  }
+}
+
 // dof_Madr and the CSR rows of M: each row holds the dof's ancestors, then itself.
 void LayoutInertiaMatrix(Model* m) {
   int adr = 0;
@@ -513,6 +541,7 @@ void LayoutInertiaMatrix(Model* m) {
     for (int j = i; j >= 0; j = m->dof_parentid[j]) m->M_colind[k--] = j;
     adr += count;
   }
+  LayoutDofDofMatrix(m);
 }
 
 // Trees: dof_treeid counts the roots of the dof forest; bodies take their weld's.
@@ -590,6 +619,8 @@ void TreeSizes(const CompileState& state, Model* m) {
   for (size_t i = 0; i < parent.size(); i++) {
     for (int j = static_cast<int>(i); j >= 0; j = parent[j]) m->nM++;
   }
+  // D holds both triangles: every nonzero of M below the diagonal twice, the diagonal once.
+  m->nD = 2 * m->nM - static_cast<int>(parent.size());
 }
 
 }  // namespace simlab::compiler

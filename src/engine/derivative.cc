@@ -1,7 +1,10 @@
 // Analytic derivative of the smooth forces with respect to velocity, for the implicit
 // integrators (MuJoCo mjd_smooth_vel):
 //
-//   qDeriv = d(qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel     (nv x nv, dense)
+//   qDeriv = d(qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel
+//
+// on the entries of the dof-dof pattern D (m.D_rowadr, D_rownnz, D_colind: a dof with its
+// ancestors and descendants), as MuJoCo stores it.
 //
 // Actuators: moment^T (d p / d l') moment where p is affine in l' (bias b2, gain a2 times
 // the input) or a muscle (the force-velocity curve's slope times the input). Passive:
@@ -22,11 +25,14 @@ using namespace math;
 
 namespace {
 
-// qDeriv += J^T b J for a row J (length nv).
+// qDeriv += J^T b J for a row J (length nv), on the entries of the dof-dof pattern D
+// (as MuJoCo, which keeps no coupling between dofs of different chains).
 void AddJtBJ(const Model& m, Data& d, const double* jac, double b) {
   for (int r = 0; r < m.nv; r++) {
     if (jac[r] == 0) continue;
-    for (int c = 0; c < m.nv; c++) d.qDeriv[r * m.nv + c] += jac[r] * b * jac[c];
+    double scale = jac[r] * b;
+    int adr = m.D_rowadr[r], end = adr + m.D_rownnz[r];
+    for (; adr < end; adr++) d.qDeriv[adr] += scale * jac[m.D_colind[adr]];
   }
 }
 
@@ -77,7 +83,7 @@ void PassiveDerivative(const Model& m, Data& d) {
   for (int v = 0; v < m.nv; v++) {
     double poly[kNPoly] = {0, 0};
     double damping = m.dof_damping[v] + ActuatorDamping(m, false, m.dof_jntid[v], poly);
-    d.qDeriv[v * m.nv + v] -= DampingSlope(damping, poly, d.qvel[v]);
+    d.qDeriv[m.D_rowadr[v] + m.D_diag[v]] -= DampingSlope(damping, poly, d.qvel[v]);
   }
   for (int i = 0; i < m.ntendon; i++) {
     double poly[kNPoly] = {0, 0};
@@ -222,7 +228,8 @@ void RneDerivative(const Model& m, Data& d) {
     const double* df = dcfrc + m.dof_bodyid[v] * block;
     for (int k = 0; k < 6; k++) {
       double c = d.cdof[6 * v + k];
-      for (int col = 0; col < nv; col++) d.qDeriv[v * nv + col] -= c * df[k * nv + col];
+      int adr = m.D_rowadr[v], end = adr + m.D_rownnz[v];
+      for (; adr < end; adr++) d.qDeriv[adr] -= c * df[k * nv + m.D_colind[adr]];
     }
   }
 }

@@ -313,7 +313,7 @@ ChainJacobian LocalJacobian(const Model& m, Data& d, StackFrame& frame, SolverFr
 // qDeriv += J^T B J for B (k x k) and the rows [row0, row0 + k) of a chain Jacobian.
 void AddJacTBJac(const Model& m, Data& d, const ChainJacobian& chain, int row0, const double* b,
                  int k) {
-  int n = chain.n, nv = m.nv;
+  int n = chain.n;
   const double* jac = chain.jac + row0 * n;
   for (int i = 0; i < k; i++) {
     for (int j = 0; j < k; j++) {
@@ -321,8 +321,14 @@ void AddJacTBJac(const Model& m, Data& d, const ChainJacobian& chain, int row0, 
       for (int c = 0; c < n; c++) {
         if (jac[i * n + c] == 0) continue;
         double scale = jac[i * n + c] * b[i * k + j];
-        double* row = &d.qDeriv[chain.dofs[c] * nv];
-        for (int p = 0; p < n; p++) row[chain.dofs[p]] += jac[j * n + p] * scale;
+        // Row dofs[c] of D holds every dof of the chain (ascending, as `dofs`).
+        const int* cols = &m.D_colind[m.D_rowadr[chain.dofs[c]]];
+        double* row = &d.qDeriv[m.D_rowadr[chain.dofs[c]]];
+        int at = 0;
+        for (int p = 0; p < n; p++) {
+          while (cols[at] < chain.dofs[p]) at++;
+          row[at] += jac[j * n + p] * scale;
+        }
       }
     }
   }

@@ -156,7 +156,12 @@ void SolveImplicitFull(const Model& m, Data& d, const double* qfrc, double* qacc
   int nv = m.nv;
   double h = m.opt.timestep;
   // qLU = M (full symmetric) - h qDeriv.
-  for (int k = 0; k < nv * nv; k++) d.qLU[k] = -h * d.qDeriv[k];
+  std::fill(d.qLU.begin(), d.qLU.end(), 0.0);
+  for (int i = 0; i < nv; i++) {
+    for (int adr = m.D_rowadr[i]; adr < m.D_rowadr[i] + m.D_rownnz[i]; adr++) {
+      d.qLU[i * nv + m.D_colind[adr]] = -h * d.qDeriv[adr];
+    }
+  }
   for (int i = 0; i < nv; i++) {
     for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {
       int j = m.M_colind[adr];
@@ -190,9 +195,11 @@ void SolveImplicitFast(const Model& m, Data& d, const double* qfrc, double* qacc
   double h = m.opt.timestep;
   for (int i = 0; i < m.nv; i++) {
     bool simple = m.body_simple[m.dof_bodyid[i]] != 0;
-    for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {
-      int j = m.M_colind[adr];
-      d.qH[adr] = simple && j != i ? d.M[adr] : d.M[adr] - h * d.qDeriv[i * m.nv + j];
+    // Row i of M is the beginning of row i of D.
+    const double* deriv = &d.qDeriv[m.D_rowadr[i]];
+    for (int s = 0; s < m.M_rownnz[i]; s++) {
+      int adr = m.M_rowadr[i] + s;
+      d.qH[adr] = simple && m.M_colind[adr] != i ? d.M[adr] : d.M[adr] - h * deriv[s];
     }
   }
   FactorSparse(m, d.qH.data(), d.qHDiagInv.data());
