@@ -176,7 +176,7 @@ struct TimerStat {
   X(double, history, nhistory, 1)  /* delayed actuators' and sensors' samples */ \
   /* implicit integration */                    \
   X(double, qDeriv, nD, 1)  /* in the dof-dof pattern D (D_rowadr...) */ \
-  X(double, qLU, nv, nv)                        \
+  X(double, qLU, nD, 1)  /* M - h qDeriv factored (U + I) L, pattern D */ \
   X(double, qH, nM, 1)                          \
   X(double, qHDiagInv, nv, 1)
 

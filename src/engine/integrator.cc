@@ -11,9 +11,11 @@
 //                 (symmetric, so L^T D L).
 #include <algorithm>
 
+#include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/stack.h"
 #include "engine/timer.h"
+#include "math/dot.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -150,42 +152,71 @@ void RungeKutta4(const Model& m, Data& d) {
 
 namespace {
 
-// qacc = (M - h qDeriv)^-1 qfrc, dense LU without pivoting (M - h qDeriv is
-// dominated by the positive definite M for any sensible step).
-void SolveImplicitFull(const Model& m, Data& d, const double* qfrc, double* qacc) {
-  int nv = m.nv;
+// qLU = M - h qDeriv in the dof-dof pattern D (M's lower triangle mirrored).
+void BuildImplicitMatrix(const Model& m, Data& d) {
   double h = m.opt.timestep;
-  // qLU = M (full symmetric) - h qDeriv.
-  std::fill(d.qLU.begin(), d.qLU.end(), 0.0);
-  for (int i = 0; i < nv; i++) {
-    for (int adr = m.D_rowadr[i]; adr < m.D_rowadr[i] + m.D_rownnz[i]; adr++) {
-      d.qLU[i * nv + m.D_colind[adr]] = -h * d.qDeriv[adr];
+  for (int i = 0; i < m.nv; i++) {
+    int adr = m.D_rowadr[i];
+    for (int s = 0; s < m.D_rownnz[i]; s++) {
+      int j = m.D_colind[adr + s];
+      // Row i of M is the beginning of row i of D; M(j, i) for a descendant j sits in row
+      // j after i's ancestors.
+      double mass = j <= i ? d.M[m.M_rowadr[i] + s] : d.M[m.M_rowadr[j] + m.D_diag[i]];
+      d.qLU[adr + s] = mass + d.qDeriv[adr + s] * -h;
     }
   }
-  for (int i = 0; i < nv; i++) {
-    for (int adr = m.M_rowadr[i]; adr < m.M_rowadr[i] + m.M_rownnz[i]; adr++) {
-      int j = m.M_colind[adr];
-      d.qLU[i * nv + j] += d.M[adr];
-      if (j != i) d.qLU[j * nv + i] += d.M[adr];
+}
+
+// Factors qLU in place, eliminating from the last dof up (MuJoCo's reverse-order sparse
+// LU): afterwards A = (U + I) L with L the lower triangle and diagonal of qLU and U its
+// strictly upper triangle. The pattern D keeps every dof's chain, so elimination fills in
+// nothing: the rows holding column r are r's ancestors', whose remaining columns include
+// every column of row r's.
+void FactorImplicitMatrix(const Model& m, Data& d) {
+  SolverFrame ints(d.solver_scratch);
+  int* remaining = ints.IntsToWrite(m.nv);
+  std::copy(m.D_rownnz.begin(), m.D_rownnz.end(), remaining);
+  double* lu = d.qLU.data();
+  for (int r = m.nv - 1; r >= 0; r--) {
+    // Row r's descendants are eliminated already: its last remaining entry is the pivot.
+    int pivot = m.D_rowadr[r] + --remaining[r];
+    for (int c = m.dof_parentid[r]; c >= 0; c = m.dof_parentid[c]) {
+      // Row c's last remaining entry is (c, r): scale it, then subtract it times row r.
+      int cr = m.D_rowadr[c] + --remaining[c];
+      lu[cr] /= lu[pivot];
+      int rk = m.D_rowadr[r], ck = m.D_rowadr[c];
+      int rend = rk + remaining[r], cend = ck + remaining[c];
+      for (; ck < cend && rk < rend; ck++) {
+        if (m.D_colind[ck] == m.D_colind[rk]) lu[ck] -= lu[rk++] * lu[cr];
+      }
     }
   }
-  // Factor in place (Doolittle), then forward and back substitution.
-  double* a = d.qLU.data();
-  for (int k = 0; k < nv; k++) {
-    for (int i = k + 1; i < nv; i++) {
-      double l = a[i * nv + k] / a[k * nv + k];
-      a[i * nv + k] = l;
-      for (int j = k + 1; j < nv; j++) a[i * nv + j] -= l * a[k * nv + j];
-    }
+}
+
+// qacc = A^-1 qfrc for A = (U + I) L factored by FactorImplicitMatrix.
+void SolveImplicitMatrix(const Model& m, const Data& d, const double* qfrc, double* qacc) {
+  const double* lu = d.qLU.data();
+  // (U + I) y = qfrc, from the last dof up.
+  for (int i = m.nv - 1; i >= 0; i--) {
+    int after = m.D_diag[i] + 1, adr = m.D_rowadr[i] + after;
+    qacc[i] = qfrc[i];
+    int n = m.D_rownnz[i] - after;
+    if (n > 0) qacc[i] -= math::DotSparse(lu + adr, qacc, n, &m.D_colind[adr]);
   }
-  std::copy(qfrc, qfrc + nv, qacc);
-  for (int i = 0; i < nv; i++) {
-    for (int k = 0; k < i; k++) qacc[i] -= a[i * nv + k] * qacc[k];
+  // L qacc = y, from the first dof down.
+  for (int i = 0; i < m.nv; i++) {
+    int adr = m.D_rowadr[i], before = m.D_diag[i];
+    if (before > 0) qacc[i] -= math::DotSparse(lu + adr, qacc, before, &m.D_colind[adr]);
+    qacc[i] /= lu[adr + before];
   }
-  for (int i = nv - 1; i >= 0; i--) {
-    for (int k = i + 1; k < nv; k++) qacc[i] -= a[i * nv + k] * qacc[k];
-    qacc[i] /= a[i * nv + i];
-  }
+}
+
+// qacc = (M - h qDeriv)^-1 qfrc, by the sparse LU of M - h qDeriv (no pivoting: the
+// matrix is dominated by the positive definite M for any sensible step).
+void SolveImplicitFull(const Model& m, Data& d, const double* qfrc, double* qacc) {
+  BuildImplicitMatrix(m, d);
+  FactorImplicitMatrix(m, d);
+  SolveImplicitMatrix(m, d, qfrc, qacc);
 }
 
 // qacc = (M - h qDeriv restricted to M's sparsity)^-1 qfrc, by L^T D L. MuJoCo's M
