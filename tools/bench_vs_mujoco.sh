@@ -86,7 +86,10 @@ gantry-holding|$here/tests/models/bench_gantry_holding.xml|20000
 actuator-bench|$here/models/actuator_bench.xml|200000
 shadow-hand|$src/mjx/mujoco/mjx/test_data/shadow_hand/scene_right.xml|20000
 cube-3x3x3|$work/cube/cube_3x3x3.xml|4000
-22-humanoids|$src/model/humanoid/22_humanoids.xml|1000"
+22-humanoids|$src/model/humanoid/22_humanoids.xml|1000
+cards|$src/model/cards/cards.xml|2000
+replicate-bowl|$src/model/replicate/bowl.xml|10000
+replicate-leaves|$src/model/replicate/leaves.xml|500"
 
 old=$(command -v mujoco-testspeed || true)
 [ $profiler = 1 ] || old=""  # (2.2.2 keeps its profiler)
