@@ -41,6 +41,7 @@ constexpr Mount kMounts[] = {
     {"/dist/", "web/dist"},
     {"/node_modules/three/", "web/node_modules/three"},
     {"/node_modules/uplot/", "web/node_modules/uplot"},
+    {"/node_modules/katex/", "web/node_modules/katex"},
     {"/models/", "models"},
     {"/examples/", "examples"},
 };
@@ -505,7 +506,8 @@ std::string LabMimeType(const fs::path& file) {
       {".map", "application/json"},             {".txt", "text/plain; charset=utf-8"},
       {".xml", "application/xml"},              {".svg", "image/svg+xml"},
       {".png", "image/png"},                    {".jpg", "image/jpeg"},
-      {".csv", "text/csv; charset=utf-8"},
+      {".csv", "text/csv; charset=utf-8"},     {".woff2", "font/woff2"},
+      {".woff", "font/woff"},                   {".ttf", "font/ttf"},
   };
   const std::string ext = file.extension().string();
   for (const auto& [known, type] : kTypes) {

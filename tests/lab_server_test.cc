@@ -211,6 +211,7 @@ TEST_F(LabServerTest, WasmHasItsMimeType) {
   }
   EXPECT_EQ(LabMimeType(scratch_ / "engine.wasm"), "application/wasm");
   EXPECT_EQ(LabMimeType("x.mjs"), "text/javascript; charset=utf-8");
+  EXPECT_EQ(LabMimeType("KaTeX_Main-Regular.woff2"), "font/woff2");
 }
 
 TEST_F(LabServerTest, RefusesPathsOutsideItsRoots) {

@@ -30,9 +30,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-# The web lab's npm packages (web/package.json: three, uPlot, playwright-core), once.
+# The web lab's npm packages (web/package.json: three, uPlot, KaTeX, playwright-core):
+# installed when missing, and again when package-lock.json names packages that
+# node_modules lacks (npm's own record, node_modules/.package-lock.json, is older).
 web="$(dirname "$0")/../web"
-if [ -f "$web/package-lock.json" ] && [ ! -d "$web/node_modules" ]; then
+if [ -f "$web/package-lock.json" ] &&
+   { [ ! -d "$web/node_modules" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; }; then
   echo "installing web/node_modules (npm ci)"
   (cd "$web" && npm ci --no-audit --no-fund >/dev/null)
 fi

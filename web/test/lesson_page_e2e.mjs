@@ -40,9 +40,10 @@ function inventory() {
     })),
     math: document.querySelectorAll('.math').length,
     displayMath: document.querySelectorAll('.math-display').length,
-    fractions: document.querySelectorAll('.math .mfrac').length,
-    subscripts: document.querySelectorAll('.math sub').length,
-    unknownMath: texts('.math[data-unknown]'),
+    fractions: document.querySelectorAll('.math .katex .mfrac').length,
+    subscripts: document.querySelectorAll('.math .katex .msupsub').length,
+    unknownMath: texts('.math[data-error]'),
+    katexFont: getComputedStyle(document.querySelector('.math .katex')).fontFamily,
     mathLeftAsDollars: texts('main p, main td').filter((t) => /\$[^$]+\$/.test(t)),
     codeCaptions: texts('figure.code figcaption'),
     programLines: document.querySelector('figure.code-python pre code').textContent.split('\n').length,
@@ -89,6 +90,7 @@ async function checkPage(page) {
   assert.ok(seen.math >= 25 && seen.displayMath >= 1 && seen.fractions >= 1 && seen.subscripts >= 10,
             `math ${seen.math}, display ${seen.displayMath}, fractions ${seen.fractions}, subs ${seen.subscripts}`);
   assert.deepEqual(seen.unknownMath, []);
+  assert.match(seen.katexFont, /KaTeX_Main/, 'KaTeX stylesheet applied');
   assert.deepEqual(seen.mathLeftAsDollars, []);
   assert.deepEqual(seen.codeCaptions, ['examples/l2_3_actuators.py · run: python3 examples/l2_3_actuators.py · ' +
     'C++: examples/l2_3_actuators.cpp (build/l2_3_actuators)', 'output']);
