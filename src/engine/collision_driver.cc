@@ -488,16 +488,14 @@ int LeafGeom(const Model& m, int b, int node) {
   return child[0] < 0 && child[1] < 0 ? m.bvh_nodeid[m.body_bvhadr[b] + node] : -1;
 }
 
-// Do the boxes of node n1 of body b1's tree and node n2 of b2's overlap (within the
-// bodies' margins)?
-bool NodesOverlap(const Model& m, const Data& d, int b1, int n1, int b2, int n2) {
-  double margin = AssignMargin(m, m.body_margin[b1] + m.body_margin[b2]);
+// Do the boxes of node n1 of body b1's tree and node n2 of b2's overlap (within margin)?
+bool NodesOverlap(const Model& m, const Data& d, int b1, int n1, int b2, int n2, double margin) {
   return !OrientedBoxesApart(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)], &d.xipos[3 * b1],
                              &d.ximat[9 * b1], &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)],
                              &d.xipos[3 * b2], &d.ximat[9 * b2], margin);
 }
 
-// Half the surface area of node n of body b's box.
+// The surface area of node n of body b's box, over 8 (from its half sizes).
 double NodeArea(const Model& m, int b, int n) {
   const double* half = &m.bvh_aabb[6 * (m.body_bvhadr[b] + n) + 3];
   return half[0] * half[1] + half[1] * half[2] + half[2] * half[0];
@@ -538,6 +536,7 @@ void SortByGeomPair(Data& d, int first) {
 // the tree's shape never shows in the result.
 void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
   int ncon_before = d.ncon;
+  double margin = AssignMargin(m, m.body_margin[b1] + m.body_margin[b2]);
   SolverFrame ints(d.solver_scratch);
   int* stack = ints.IntsToWrite(2 * static_cast<size_t>(m.body_bvhnum[b1] + m.body_bvhnum[b2]));
   int nstack = 1;
@@ -550,10 +549,11 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
       CollideUnlessPaired(m, d, leaf1, leaf2, start, end);
       continue;
     }
-    if (!NodesOverlap(m, d, b1, n1, b2, n2)) continue;
+    if (!NodesOverlap(m, d, b1, n1, b2, n2, margin)) continue;
     // Open node 1 or node 2: push its children.
     bool open1 = leaf2 >= 0 || (leaf1 < 0 && NodeArea(m, b1, n1) > NodeArea(m, b2, n2));
-    const int* child = &m.bvh_child[2 * ((open1 ? m.body_bvhadr[b1] + n1 : m.body_bvhadr[b2] + n2))];
+    int opened = open1 ? m.body_bvhadr[b1] + n1 : m.body_bvhadr[b2] + n2;
+    const int* child = &m.bvh_child[2 * opened];
     for (int i = 0; i < 2; i++) {
       if (child[i] < 0) continue;
       stack[2 * nstack] = open1 ? child[i] : n1;

@@ -281,12 +281,26 @@ void EllipsoidForce(const Model& m, Data& d, int body) {
 
 // The 6 x n Jacobian (rotation rows, then translation rows) of a frame at `point` on
 // `body`, expressed in the frame's axes `rot`, on the n dofs that move the body (the
-// other columns are zero).
+// other columns are zero), with where each (dof, dof) pair of the chain sits in qDeriv.
 struct ChainJacobian {
   int n = 0;
-  int* dofs = nullptr;   // ascending dof indices, n of them
-  double* jac = nullptr; // 6 x n, row-major
+  int* dofs = nullptr;    // ascending dof indices, n of them
+  double* jac = nullptr;  // 6 x n, row-major
+  int* deriv = nullptr;   // n x n: qDeriv address of (dofs[c], dofs[p])
 };
+
+// The qDeriv addresses of the chain's pairs: row dofs[c] of D holds every dof of the
+// chain (ascending, as `dofs`), found by one walk along the row.
+void ChainDerivAddresses(const Model& m, ChainJacobian& chain) {
+  int n = chain.n;
+  for (int c = 0; c < n; c++) {
+    int adr = m.D_rowadr[chain.dofs[c]];
+    for (int p = 0; p < n; p++) {
+      while (m.D_colind[adr] < chain.dofs[p]) adr++;
+      chain.deriv[c * n + p] = adr;
+    }
+  }
+}
 
 ChainJacobian LocalJacobian(const Model& m, Data& d, StackFrame& frame, SolverFrame& ints,
                             const double* point, const double* rot, int body) {
@@ -294,6 +308,8 @@ ChainJacobian LocalJacobian(const Model& m, Data& d, StackFrame& frame, SolverFr
   chain.dofs = ints.IntsToWrite(m.nv);
   chain.n = MergedDofChain(m, body, body, chain.dofs);
   int n = chain.n;
+  chain.deriv = ints.IntsToWrite(static_cast<size_t>(n) * n);
+  ChainDerivAddresses(m, chain);
   chain.jac = frame.Alloc(6 * n);
   StackFrame scratch(d);
   double* world = scratch.Alloc(6 * n);
@@ -311,7 +327,7 @@ ChainJacobian LocalJacobian(const Model& m, Data& d, StackFrame& frame, SolverFr
 }
 
 // qDeriv += J^T B J for B (k x k) and the rows [row0, row0 + k) of a chain Jacobian.
-void AddJacTBJac(const Model& m, Data& d, const ChainJacobian& chain, int row0, const double* b,
+void AddJacTBJac(Data& d, const ChainJacobian& chain, int row0, const double* b,
                  int k) {
   int n = chain.n;
   const double* jac = chain.jac + row0 * n;
@@ -321,14 +337,8 @@ void AddJacTBJac(const Model& m, Data& d, const ChainJacobian& chain, int row0, 
       for (int c = 0; c < n; c++) {
         if (jac[i * n + c] == 0) continue;
         double scale = jac[i * n + c] * b[i * k + j];
-        // Row dofs[c] of D holds every dof of the chain (ascending, as `dofs`).
-        const int* cols = &m.D_colind[m.D_rowadr[chain.dofs[c]]];
-        double* row = &d.qDeriv[m.D_rowadr[chain.dofs[c]]];
-        int at = 0;
-        for (int p = 0; p < n; p++) {
-          while (cols[at] < chain.dofs[p]) at++;
-          row[at] += jac[j * n + p] * scale;
-        }
+        const int* deriv = chain.deriv + c * n;
+        for (int p = 0; p < n; p++) d.qDeriv[deriv[p]] += jac[j * n + p] * scale;
       }
     }
   }
@@ -361,14 +371,14 @@ void InertiaBoxDerivative(const Model& m, Data& d, int i) {
   double slope[6] = {0, 0, 0, 0, 0, 0};
   if (m.opt.viscosity > 0) {
     BoxStokesCoefs(m, box, slope);
-    for (int k = 0; k < 6; k++) AddJacTBJac(m, d, chain, k, &slope[k], 1);
+    for (int k = 0; k < 6; k++) AddJacTBJac(d, chain, k, &slope[k], 1);
   }
   if (m.opt.density > 0) {
     double coef[6];
     BoxQuadraticCoefs(m, box, coef);
     for (int k = 0; k < 3; k++) slope[k] = -coef[k] * 2 * std::abs(lvel[k]) / 64.0;
     for (int k = 0; k < 3; k++) slope[3 + k] = -coef[3 + k] * 2 * std::abs(lvel[3 + k]);
-    for (int k = 0; k < 6; k++) AddJacTBJac(m, d, chain, k, &slope[k], 1);
+    for (int k = 0; k < 6; k++) AddJacTBJac(d, chain, k, &slope[k], 1);
   }
 }
 
@@ -523,7 +533,7 @@ void EllipsoidDerivative(const Model& m, Data& d, int body) {
 
     // implicitfast needs a symmetric qDeriv.
     if (m.opt.integrator == kIntegratorImplicitFast) Symmetrize6(b);
-    AddJacTBJac(m, d, chain, 0, b, 6);
+    AddJacTBJac(d, chain, 0, b, 6);
   }
 }
 

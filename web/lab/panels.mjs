@@ -63,27 +63,26 @@ function jointReadouts(info) {
   return group('joint positions', entries);
 }
 
-function forceReadouts(info) {
+// One readout per entry of a Data array that each element owns a slice of (adr[i],
+// num[i] entries), labelled by the element's name.
+function sliceReadouts(count, names, kind, adr, num, field) {
   const entries = [];
-  for (let a = 0; a < info.sizes.nactuator; a++) {
-    const adr = info.actuator_outadr[a], num = info.actuator_outnum[a];
-    for (let j = 0; j < num; j++) {
-      entries.push({ label: entryLabel(info.names.actuator[a], 'actuator', a, j, num),
-                     expr: `data.actuator_force[${adr + j}]` });
+  for (let i = 0; i < count; i++) {
+    for (let j = 0; j < num[i]; j++) {
+      entries.push({ label: entryLabel(names[i], kind, i, j, num[i]), expr: `data.${field}[${adr[i] + j}]` });
     }
   }
-  return group('actuator forces', entries);
+  return entries;
+}
+
+function forceReadouts(info) {
+  return group('actuator forces', sliceReadouts(info.sizes.nactuator, info.names.actuator, 'actuator',
+                                                info.actuator_outadr, info.actuator_outnum, 'actuator_force'));
 }
 
 function sensorReadouts(info) {
-  const entries = [];
-  for (let s = 0; s < info.sizes.nsensor; s++) {
-    const adr = info.sensor_adr[s], dim = info.sensor_dim[s];
-    for (let j = 0; j < dim; j++) {
-      entries.push({ label: entryLabel(info.names.sensor[s], 'sensor', s, j, dim), expr: `data.sensordata[${adr + j}]` });
-    }
-  }
-  return group('sensors', entries);
+  return group('sensors', sliceReadouts(info.sizes.nsensor, info.names.sensor, 'sensor',
+                                        info.sensor_adr, info.sensor_dim, 'sensordata'));
 }
 
 // MuJoCo's default free camera (mjv_defaultFreeCamera): looking at the model's centre
