@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/rows.h"
 #include "engine/stack.h"
@@ -34,18 +35,24 @@ void AddPathPoint(Data& d, int tendon, int* count, const double* p, int obj) {
   (*count)++;
 }
 
-// jac (nv) += scale * (J_b - J_a)^T dir for points a on body_a and b on body_b.
+// jac (nv) += scale * (J_b - J_a)^T dir for points a on body_a and b on body_b, on the
+// dofs that move either body only (every other column of J_b - J_a is zero). Each column
+// sums its three rows in order, as the dense product does.
 void AddSegmentJacobian(const Model& m, Data& d, const double* a, int body_a, const double* b,
                         int body_b, const double* dir, double scale, double* jac) {
-  StackFrame frame(d);
-  double* jac_a = frame.Alloc(3 * m.nv);
-  double* jac_b = frame.Alloc(3 * m.nv);
-  double* proj = frame.Alloc(m.nv);
-  Jacobian(m, d, jac_a, nullptr, a, body_a);
-  Jacobian(m, d, jac_b, nullptr, b, body_b);
-  for (int k = 0; k < 3 * m.nv; k++) jac_b[k] -= jac_a[k];
-  MulJacTVec(m, jac_b, dir, proj);
-  for (int v = 0; v < m.nv; v++) jac[v] += proj[v] * scale;
+  SolverFrame frame(d.solver_scratch);
+  int* dofs = frame.IntsToWrite(m.nv);
+  int n = MergedDofChain(m, body_a, body_b, dofs);
+  if (n == 0) return;
+  double* jac_a = frame.RealsToWrite(3 * static_cast<size_t>(n));
+  double* jac_b = frame.RealsToWrite(3 * static_cast<size_t>(n));
+  JacobianOnDofs(m, d, dofs, n, jac_a, nullptr, a, body_a);
+  JacobianOnDofs(m, d, dofs, n, jac_b, nullptr, b, body_b);
+  for (int k = 0; k < n; k++) {
+    double proj = 0;
+    for (int r = 0; r < 3; r++) proj += (jac_b[r * n + k] - jac_a[r * n + k]) * dir[r];
+    jac[dofs[k]] += proj * scale;
+  }
 }
 
 void FixedTendon(const Model& m, Data& d, int i, double* jac) {
