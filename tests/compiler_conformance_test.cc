@@ -131,6 +131,12 @@ void CheckModel(const std::string& name, const std::string& path) {
   if (sizes.contains("neq")) EXPECT_EQ(m.neq, sizes["neq"].get<int>());
   if (sizes.contains("ncam")) EXPECT_EQ(m.ncam, sizes["ncam"].get<int>());
   if (sizes.contains("nmeshnormal")) EXPECT_EQ(m.nmeshnormal, sizes["nmeshnormal"].get<int>());
+  if (sizes.contains("nlight")) {
+    EXPECT_EQ(m.nlight, sizes["nlight"].get<int>());
+    EXPECT_EQ(m.ntex, sizes["ntex"].get<int>());
+    EXPECT_EQ(m.ntexdata, sizes["ntexdata"].get<int>());
+    EXPECT_EQ(m.nmat, sizes["nmat"].get<int>());
+  }
   if (::testing::Test::HasFailure()) return;
 
   // Every array we have and MuJoCo dumped.
@@ -218,6 +224,8 @@ TEST(CompilerConformance, Fluid) { CheckModel("fluid", Local("fluid.xml")); }
 
 // Cameras: modes, orientations, frames, defaults and intrinsics (cam_* fields).
 TEST(CompilerConformance, Cameras) { CheckModel("cameras", Local("cameras.xml")); }
+// Textures (builtin patterns and PNG files), materials and lights.
+TEST(CompilerConformance, Visual) { CheckModel("visual", Local("visual.xml")); }
 // Muscle lengthranges MuJoCo finds by simulation: a limited hinge, and arm26's tendons.
 TEST(CompilerConformance, LengthRangeBySimulation) {
   CheckModel("lengthrange_sim", Local("lengthrange_sim.xml"));

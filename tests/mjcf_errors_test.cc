@@ -211,5 +211,55 @@ TEST(MjcfErrors, TruncatedFilesNeverCrash) {
   EXPECT_GT(errors, 0);
 }
 
+// Textures, materials and lights: files that are missing or are no PNG, references to
+// nothing, impossible sizes.
+std::string TextureModel(const std::string& asset) {
+  return "<mujoco>\n<asset>\n" + asset + "\n</asset>\n</mujoco>";
+}
+
+std::string LoadWithAssets(const std::string& xml, const Assets& assets) {
+  try {
+    LoadXmlString(xml, "bad.xml", assets);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MjcfErrors, TextureFiles) {
+  ExpectError(TextureModel("<texture name=\"t\" type=\"2d\" file=\"missing.png\"/>"),
+              {"bad.xml:3:", "<texture name=\"t\">", "cannot open texture file", "missing.png"});
+  ExpectError(TextureModel("<texture type=\"2d\" file=\"image.jpg\"/>"),
+              {"bad.xml:3:", "unsupported texture file", "PNG"});
+  std::ifstream in(std::string(SIMLAB_SOURCE_DIR) + "/tests/compiler_models/textures/rgba8.png",
+                   std::ios::binary);
+  std::string png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(png.size(), 60u);
+  std::string xml = TextureModel("<texture type=\"2d\" file=\"a.png\"/>");
+  test_util::ExpectMessageParts(LoadWithAssets(xml, {{"a.png", "not a png at all"}}),
+                                {"bad.xml:3:", "cannot read PNG file", "a.png"}, xml);
+  test_util::ExpectMessageParts(LoadWithAssets(xml, {{"a.png", png.substr(0, 60)}}),
+                                {"bad.xml:3:", "cannot read PNG file"}, xml);
+  std::string grid = TextureModel("<texture type=\"cube\" file=\"a.png\" gridsize=\"3 3\"/>");
+  test_util::ExpectMessageParts(LoadWithAssets(grid, {{"a.png", png}}),
+                                {"bad.xml:3:", "integer multiple of gridsize"}, grid);
+}
+
+TEST(MjcfErrors, TextureSizesAndReferences) {
+  ExpectError(TextureModel("<texture type=\"2d\" builtin=\"checker\" width=\"0\" height=\"4\"/>"),
+              {"bad.xml:3:", "invalid width of builtin texture"});
+  ExpectError(TextureModel("<texture type=\"2d\" builtin=\"checker\" width=\"100000\" height=\"100000\"/>"),
+              {"bad.xml:3:", "too large"});
+  ExpectError(TextureModel("<texture type=\"2d\"/>"), {"bad.xml:3:", "needs a file or a builtin"});
+  ExpectError(TextureModel("<material name=\"m\" texture=\"nothing\"/>"),
+              {"bad.xml:3:", "<material name=\"m\">", "unknown texture 'nothing'"});
+  ExpectError("<mujoco>\n<worldbody>\n<geom size=\".1\" material=\"none\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<geom>", "unknown material 'none'"});
+  ExpectError("<mujoco>\n<worldbody>\n<light dir=\"0 0 0\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "<light>", "zero direction in light"});
+  ExpectError("<mujoco>\n<worldbody>\n<light mode=\"targetbody\" target=\"nobody\"/>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "unknown body 'nobody'"});
+}
+
 }  // namespace
 }  // namespace simlab

@@ -4,11 +4,13 @@
 #
 #   bash tools/build_wasm.sh            # build dir build-wasm (SIMLAB_WASM_BUILD=... to change)
 #
-# pugixml and qhull have no WebAssembly build in Debian: their Debian source packages (the
-# same pugixml 1.13 and qhull 2020.2 the native build links) are fetched once with
-# apt-get source, through private package lists under the build folder, and compiled with
-# emscripten: pugixml installed under build-wasm/_deps, qhull's reentrant C library
-# (src/libqhull_r) compiled by the engine's CMake (SIMLAB_QHULL_SOURCE).
+# pugixml, qhull, libpng and zlib have no WebAssembly build in Debian: their Debian source
+# packages (the same versions the native build links) are fetched once with apt-get
+# source, through private package lists under the build folder, and compiled with
+# emscripten: pugixml installed under build-wasm/_deps; qhull's reentrant C library
+# (src/libqhull_r), libpng and zlib compiled by the engine's CMake (SIMLAB_QHULL_SOURCE,
+# SIMLAB_PNG_SOURCE, SIMLAB_ZLIB_SOURCE). libpng is unpacked with Debian's patches
+# applied (dpkg-source), since it reads the model's image files.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -22,7 +24,8 @@ unset EM_CACHE
 command -v emcmake >/dev/null || { echo "build_wasm: emscripten is missing (bash tools/install_deps.sh)"; exit 1; }
 
 # ---------------------------------------------------------------- Debian sources
-# Downloads and unpacks the source package $1 (its upstream tarball) into _deps/src.
+# Downloads the source package $1 into _deps/src and unpacks it into _deps/src/$1-src:
+# with Debian's patches (dpkg-source) when $2 is "patched", else its upstream tarball.
 fetch_debian_source() {
   local apt="$deps/apt"
   mkdir -p "$apt/lists/partial" "$deps/src"
@@ -31,13 +34,18 @@ fetch_debian_source() {
               -o Dir::State::Lists="$apt/lists" -o APT::Sandbox::User=root)
   apt-get "${opts[@]}" -qq update
   (cd "$deps/src" && apt-get "${opts[@]}" -qq source --download-only "$1")
-  tar -xzf "$deps/src/$1"_*.orig.tar.gz -C "$deps/src"
+  if [ "${2:-}" = patched ]; then
+    (cd "$deps/src" && dpkg-source --no-check -x "$1"_*.dsc "$1-src" >/dev/null)
+  else
+    mkdir -p "$deps/src/$1-src"
+    tar -xf "$deps/src/$1"_*.orig.tar.* -C "$deps/src/$1-src" --strip-components=1
+  fi
 }
 
-# The unpacked source folder of package $1, fetched first if missing.
+# The unpacked source folder of package $1, fetched first if missing ($2 as above).
 debian_source_dir() {
-  ls -d "$deps/src/$1"-*/ >/dev/null 2>&1 || fetch_debian_source "$1" >&2
-  ls -d "$deps/src/$1"-*/ | head -1
+  [ -d "$deps/src/$1-src" ] || fetch_debian_source "$1" "${2:-}" >&2
+  echo "$deps/src/$1-src/"
 }
 
 # ---------------------------------------------------------------- pugixml for wasm
@@ -53,9 +61,14 @@ fi
 # ---------------------------------------------------------------- qhull for wasm
 qhull_src=$(debian_source_dir qhull)
 
+# ---------------------------------------------------------------- libpng and zlib for wasm
+png_src=$(debian_source_dir libpng1.6 patched)
+zlib_src=$(debian_source_dir zlib)
+
 # ---------------------------------------------------------------- the engine and binding
 emcmake cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSIMLAB_TESTS=OFF -DSIMLAB_BENCH=OFF \
   -DEigen3_DIR=/usr/share/eigen3/cmake -Dpugixml_DIR="$(dirname "$pugixml_config")" \
-  -DSIMLAB_QHULL_SOURCE="${qhull_src%/}" >/dev/null
+  -DSIMLAB_QHULL_SOURCE="${qhull_src%/}" -DSIMLAB_PNG_SOURCE="${png_src%/}" \
+  -DSIMLAB_ZLIB_SOURCE="${zlib_src%/}" >/dev/null
 cmake --build "$build" -j2 --target simlab_wasm
 ls -l web/dist/simlab.mjs web/dist/simlab.wasm

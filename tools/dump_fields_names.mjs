@@ -18,7 +18,8 @@ const { mj, model } = await loadOracleModel(modelPath);
 const KINDS = [['body', 'mjOBJ_BODY', 'nbody'], ['jnt', 'mjOBJ_JOINT', 'njnt'],
   ['geom', 'mjOBJ_GEOM', 'ngeom'], ['site', 'mjOBJ_SITE', 'nsite'],
   ['cam', 'mjOBJ_CAMERA', 'ncam'], ['mesh', 'mjOBJ_MESH', 'nmesh'],
-  ['hfield', 'mjOBJ_HFIELD', 'nhfield'], ['pair', 'mjOBJ_PAIR', 'npair'],
+  ['hfield', 'mjOBJ_HFIELD', 'nhfield'], ['light', 'mjOBJ_LIGHT', 'nlight'],
+  ['tex', 'mjOBJ_TEXTURE', 'ntex'], ['mat', 'mjOBJ_MATERIAL', 'nmat'], ['pair', 'mjOBJ_PAIR', 'npair'],
   ['exclude', 'mjOBJ_EXCLUDE', 'nexclude'], ['eq', 'mjOBJ_EQUALITY', 'neq'],
   ['tendon', 'mjOBJ_TENDON', 'ntendon'], ['actuator', 'mjOBJ_ACTUATOR', 'nu'],
   ['sensor', 'mjOBJ_SENSOR', 'nsensor'], ['key', 'mjOBJ_KEY', 'nkey']];

@@ -18,7 +18,7 @@ import { loadOracleModel } from './oracle_model.mjs';
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
-  'nhfield', 'nhfielddata', 'nbvh', 'nD'];
+  'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -41,7 +41,14 @@ const ARRAYS = [
   'mesh_normaladr', 'mesh_normalnum', 'mesh_normal',
   'hfield_size', 'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data',
   'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
-  'site_quat', 'site_rgba',
+  'site_quat', 'site_rgba', 'geom_matid', 'site_matid',
+  'light_mode', 'light_bodyid', 'light_targetbodyid', 'light_type', 'light_texid',
+  'light_castshadow', 'light_bulbradius', 'light_intensity', 'light_range', 'light_active',
+  'light_pos', 'light_dir', 'light_poscom0', 'light_pos0', 'light_dir0', 'light_attenuation',
+  'light_cutoff', 'light_exponent', 'light_ambient', 'light_diffuse', 'light_specular',
+  'tex_type', 'tex_colorspace', 'tex_height', 'tex_width', 'tex_nchannel', 'tex_adr',
+  'tex_data', 'mat_texid', 'mat_texuniform', 'mat_texrepeat', 'mat_emission', 'mat_specular',
+  'mat_shininess', 'mat_reflectance', 'mat_metallic', 'mat_roughness', 'mat_rgba',
   'cam_mode', 'cam_bodyid', 'cam_targetbodyid', 'cam_pos', 'cam_quat', 'cam_poscom0',
   'cam_pos0', 'cam_mat0', 'cam_projection', 'cam_fovy', 'cam_ipd', 'cam_resolution',
   'cam_output', 'cam_sensorsize', 'cam_intrinsic',

@@ -6,11 +6,13 @@ set -euo pipefail
 packages=(
   g++ cmake make
   libeigen3-dev libpugixml-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev libbenchmark-dev libqhull-dev
+  libgtest-dev libbenchmark-dev libqhull-dev libpng-dev
   # the Python package (pybind11 module for Debian's python3, numpy) and its tests
   pybind11-dev python3-dev python3-numpy python3-pytest
   # the browser lab: the engine in WebAssembly, and a headless browser for its tests
   emscripten chromium
+  # (dpkg-source: the WebAssembly build unpacks Debian's patched libpng source)
+  dpkg-dev
   # the fuzzer (tools/fuzz.sh: clang's libFuzzer and sanitizer runtimes) and a compiler
   # cache for the extra sanitizer and fuzzer builds
   clang-14 libclang-rt-14-dev ccache

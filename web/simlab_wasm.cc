@@ -151,6 +151,13 @@ val ShapeOf(const FieldView& f) {
 }
 
 // A JS object of named numbers ({timestep: 0.002, ...}).
+// A JS array of n numbers.
+val NumberArray(const double* values, int n) {
+  val out = val::array();
+  for (int i = 0; i < n; i++) out.call<void>("push", values[i]);
+  return out;
+}
+
 val NumbersObject(std::initializer_list<std::pair<const char*, double>> entries) {
   val object = val::object();
   for (const auto& [name, value] : entries) object.set(name, value);
@@ -368,12 +375,22 @@ class Simulation {
   }
   // {select, active, localmass, selpos (the point now, world), refselpos, refquat}.
   val PerturbState() const;
-  // What viewers read of <visual>: {fovy, azimuth, elevation, stiffness, stiffnessrot}.
+  // What viewers read of <visual>: {fovy, azimuth, elevation, stiffness, stiffnessrot,
+  // znear, zfar, headlight: {ambient, diffuse, specular, active}, haze}.
   val Visual() const {
     const simlab::Visual& v = m_.vis;
-    return NumbersObject({{"fovy", v.global.fovy}, {"azimuth", v.global.azimuth},
-                          {"elevation", v.global.elevation}, {"stiffness", v.map.stiffness},
-                          {"stiffnessrot", v.map.stiffnessrot}});
+    val out = NumbersObject({{"fovy", v.global.fovy}, {"azimuth", v.global.azimuth},
+                             {"elevation", v.global.elevation}, {"stiffness", v.map.stiffness},
+                             {"stiffnessrot", v.map.stiffnessrot}, {"znear", v.map.znear},
+                             {"zfar", v.map.zfar}});
+    val headlight = val::object();
+    headlight.set("ambient", NumberArray(v.headlight.ambient.data(), 3));
+    headlight.set("diffuse", NumberArray(v.headlight.diffuse.data(), 3));
+    headlight.set("specular", NumberArray(v.headlight.specular.data(), 3));
+    headlight.set("active", v.headlight.active);
+    out.set("headlight", headlight);
+    out.set("haze", NumberArray(v.rgba.haze.data(), 4));
+    return out;
   }
 
   // force being the 6 numbers of MuJoCo's mj_contactForce (contact frame).

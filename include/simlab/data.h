@@ -131,6 +131,8 @@ struct TimerStat {
   X(double, site_xmat, nsite, 9)                \
   X(double, cam_xpos, ncam, 3)                  \
   X(double, cam_xmat, ncam, 9)                  \
+  X(double, light_xpos, nlight, 3)              \
+  X(double, light_xdir, nlight, 3)              \
   X(double, subtree_com, nbody, 3)              \
   X(double, cdof, nv, 6)                        \
   X(double, cinert, nbody, 10)                  \

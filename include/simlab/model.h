@@ -102,6 +102,7 @@ inline constexpr int kNBias = 10;
 // Numbers per row of eq_data (mjNEQDATA): connect anchors (0-5), weld anchors, relative
 // quaternion and torquescale (0-10), joint/tendon polynomial coefficients (0-4).
 inline constexpr int kNEqData = 11;
+inline constexpr int kNTexRole = 10;  // texture roles of a material (mjNTEXROLE)
 inline constexpr int kNPoly = 2;  // higher-order damping terms (MuJoCo 3.7+ mjNPOLY)
 inline constexpr int kNFluid = 12;  // geom_fluid row (mjNFLUID): flag, 5 coefs, added mass, inertia
 
@@ -193,7 +194,8 @@ struct Statistic {
 };
 
 // What a viewer needs of <visual> (MuJoCo's mjVisual, its defaults): the free camera's
-// start and field of view, and the mouse perturbation's springs.
+// start and field of view, the mouse perturbation's springs, clipping, the headlight and
+// the haze colour.
 struct Visual {
   struct Global {
     double fovy = 45;        // degrees
@@ -203,7 +205,19 @@ struct Visual {
   struct Map {
     double stiffness = 100;     // translational perturbation spring (per unit mass)
     double stiffnessrot = 500;  // rotational perturbation spring (per unit inertia)
+    double znear = 0.01;        // clipping planes, in units of the model's extent
+    double zfar = 50;
   } map;
+  // The light that moves with the free camera.
+  struct Headlight {
+    std::array<double, 3> ambient = {0.1, 0.1, 0.1};
+    std::array<double, 3> diffuse = {0.4, 0.4, 0.4};
+    std::array<double, 3> specular = {0.5, 0.5, 0.5};
+    int active = 1;
+  } headlight;
+  struct Rgba {
+    std::array<double, 4> haze = {0.15, 0.25, 0.35, 1};  // the horizon's colour
+  } rgba;
 };
 
 // ---------------------------------------------------------------- the field table
@@ -316,6 +330,7 @@ struct Visual {
   X(double, geom_rgba, ngeom, 4)                   \
   X(double, geom_fluid, ngeom, kNFluid)            \
   X(int, geom_dataid, ngeom, 1)                    \
+  X(int, geom_matid, ngeom, 1) /* material, or -1 */ \
   /* meshes (vertices hold float-rounded values, as MuJoCo stores floats) */ \
   X(int, mesh_vertadr, nmesh, 1)                   \
   X(int, mesh_vertnum, nmesh, 1)                   \
@@ -359,6 +374,7 @@ struct Visual {
   X(double, site_pos, nsite, 3)                    \
   X(double, site_quat, nsite, 4)                   \
   X(double, site_rgba, nsite, 4)                   \
+  X(int, site_matid, nsite, 1)                     \
   /* cameras (sensorsize and intrinsic hold float-rounded values, as MuJoCo) */ \
   X(int, cam_mode, ncam, 1)                        \
   X(int, cam_bodyid, ncam, 1)                      \
@@ -375,6 +391,48 @@ struct Visual {
   X(int, cam_output, ncam, 1)                      \
   X(double, cam_sensorsize, ncam, 2)               \
   X(double, cam_intrinsic, ncam, 4)                \
+  /* lights (colours and intensities float-rounded, as MuJoCo's) */ \
+  X(int, light_mode, nlight, 1)   /* mjtCamLight, as cam_mode */ \
+  X(int, light_bodyid, nlight, 1)                  \
+  X(int, light_targetbodyid, nlight, 1)            \
+  X(int, light_type, nlight, 1)   /* mjtLightType: spot, directional, point, image */ \
+  X(int, light_texid, nlight, 1)                   \
+  X(int, light_castshadow, nlight, 1)              \
+  X(double, light_bulbradius, nlight, 1)           \
+  X(double, light_intensity, nlight, 1)            \
+  X(double, light_range, nlight, 1)                \
+  X(int, light_active, nlight, 1)                  \
+  X(double, light_pos, nlight, 3)                  \
+  X(double, light_dir, nlight, 3)                  \
+  X(double, light_poscom0, nlight, 3)              \
+  X(double, light_pos0, nlight, 3)                 \
+  X(double, light_dir0, nlight, 3)                 \
+  X(double, light_attenuation, nlight, 3)          \
+  X(double, light_cutoff, nlight, 1)               \
+  X(double, light_exponent, nlight, 1)             \
+  X(double, light_ambient, nlight, 3)              \
+  X(double, light_diffuse, nlight, 3)              \
+  X(double, light_specular, nlight, 3)             \
+  /* textures: tex_data holds bytes (0-255), row by row, nchannel per pixel; cube and \
+     skybox textures are 6 square faces stacked (height = 6 width) */ \
+  X(int, tex_type, ntex, 1)       /* mjtTexture: 2d, cube, skybox */ \
+  X(int, tex_colorspace, ntex, 1)                  \
+  X(int, tex_height, ntex, 1)                      \
+  X(int, tex_width, ntex, 1)                       \
+  X(int, tex_nchannel, ntex, 1)                    \
+  X(int, tex_adr, ntex, 1)                         \
+  X(int, tex_data, ntexdata, 1)                    \
+  /* materials (float-rounded, as MuJoCo's); mat_texid: a texture per mjtTextureRole */ \
+  X(int, mat_texid, nmat, kNTexRole)               \
+  X(int, mat_texuniform, nmat, 1)                  \
+  X(double, mat_texrepeat, nmat, 2)                \
+  X(double, mat_emission, nmat, 1)                 \
+  X(double, mat_specular, nmat, 1)                 \
+  X(double, mat_shininess, nmat, 1)                \
+  X(double, mat_reflectance, nmat, 1)              \
+  X(double, mat_metallic, nmat, 1)                 \
+  X(double, mat_roughness, nmat, 1)                \
+  X(double, mat_rgba, nmat, 4)                     \
   /* equality constraints */                       \
   X(int, eq_type, neq, 1)                          \
   X(int, eq_obj1id, neq, 1)                        \
@@ -485,6 +543,9 @@ struct Visual {
   X(cam, ncam)                \
   X(mesh, nmesh)              \
   X(hfield, nhfield)          \
+  X(light, nlight)            \
+  X(tex, ntex)                \
+  X(mat, nmat)                \
   X(pair, npair)              \
   X(exclude, nexclude)        \
   X(eq, neq)                  \
@@ -513,6 +574,10 @@ struct Visual {
   X(nmeshnormal) /* normals of all meshes (mesh_normal rows) */           \
   X(nhfield)     /* height fields */                                       \
   X(nhfielddata) /* elevation numbers of all height fields */              \
+  X(nlight)      /* lights */                                              \
+  X(ntex)        /* textures */                                            \
+  X(ntexdata)    /* bytes of all textures */                               \
+  X(nmat)        /* materials */                                           \
   X(npair)       /* explicit geom pairs (<contact><pair>) */               \
   X(nexclude)    /* excluded body pairs (<contact><exclude>) */            \
   X(ntendon)     /* tendons */                                             \

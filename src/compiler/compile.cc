@@ -102,6 +102,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CheckBodyCount(spec, state);
   CompileMeshes(spec, &state);
   CompileHFields(spec, &state);
+  std::vector<TextureImage> textures = CompileTextures(spec);
   CompileBodies(&state);
   CheckMovingBodies(state);
   CheckHFieldCollisions(spec, state);
@@ -114,6 +115,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   m.ncam = CameraCount(state);
   MeshSizes(state, &m);
   HFieldSizes(state, &m);
+  VisualSizes(spec, state, textures, &m);
   SectionSizes(spec, &m);
   CheckModelBudget(spec, m);
   m.Allocate();
@@ -121,6 +123,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   CompileCameras(spec, state, &m);
   LayoutMeshes(state, &m);
   LayoutHFields(state, &m);
+  LayoutVisual(spec, state, textures, &m);
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);
@@ -140,6 +143,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
     mjcf::ThrowAt(PluginInstanceSource(spec, e.instance), e.what());
   }
   CameraConstants(&m);
+  LightConstants(&m);
   EqualityConstants(&m);
   AutoSpringDamper(state, &m);
   ComputeLengthRanges(spec, &m);

@@ -146,6 +146,21 @@ void GeomAabb(const GeomState& g, double aabb[6]);
 void GeomFluid(const GeomState& g, double* fluid);
 void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
+// Textures, materials and lights (visual.cc): textures made before the sizes (their
+// bytes count), the rest laid out with the tree; the lights' tracking offsets at qpos0
+// once the constants are known.
+struct TextureImage {
+  int width = 0, height = 0, nchannel = 3;
+  int colorspace = 0;  // mjtColorSpace; a file's when the texture says auto
+  std::vector<uint8_t> data;
+};
+std::vector<TextureImage> CompileTextures(const mjcf::ModelSpec& spec);
+void VisualSizes(const mjcf::ModelSpec& spec, const CompileState& state,
+                 const std::vector<TextureImage>& images, Model* m);
+void LayoutVisual(const mjcf::ModelSpec& spec, const CompileState& state,
+                  const std::vector<TextureImage>& images, Model* m);
+void LightConstants(Model* m);
+
 // Cameras in body order (camera.cc); their tracking offsets at qpos0 once the
 // constants are known.
 int CameraCount(const CompileState& state);

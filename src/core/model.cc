@@ -29,6 +29,9 @@ const std::vector<std::string>* Model::Names(ObjType type) const {
     case kObjCamera: return &cam_names;
     case kObjMesh: return &mesh_names;
     case kObjHfield: return &hfield_names;
+    case kObjLight: return &light_names;
+    case kObjTexture: return &tex_names;
+    case kObjMaterial: return &mat_names;
     case kObjPair: return &pair_names;
     case kObjExclude: return &exclude_names;
     case kObjEquality: return &eq_names;

@@ -1,5 +1,5 @@
-// Camera poses, part of the position stage (MuJoCo's mj_camlight, without lights):
-// a camera starts at its fixed pose in its body's frame, then its mode adjusts it.
+// Camera and light poses, part of the position stage (MuJoCo's mj_camlight): a camera
+// or light starts at its fixed pose in its body's frame, then its mode adjusts it.
 //
 //   fixed          the body frame carries it
 //   track          world orientation kept from qpos0, position at a fixed offset from the body
@@ -58,7 +58,51 @@ void CameraFixedPose(const Model& m, Data& d, int i) {
                 &m.cam_quat[4 * i], m.cam_bodyid[i], 0);
 }
 
+void LightFixedPose(const Model& m, Data& d, int i) {
+  int body = m.light_bodyid[i];
+  const double* xmat = &d.xmat[9 * body];
+  MulMatVec3(&d.light_xpos[3 * i], xmat, &m.light_pos[3 * i]);
+  Add3(&d.light_xpos[3 * i], &d.light_xpos[3 * i], &d.xpos[3 * body]);
+  MulMatVec3(&d.light_xdir[3 * i], xmat, &m.light_dir[3 * i]);
+}
+
+namespace {
+
+// A light's pose: fixed in its body, then adjusted by its mode as a camera's; the
+// direction is a unit vector.
+void LightPose(const Model& m, Data& d, int i) {
+  LightFixedPose(m, d, i);
+  int body = m.light_bodyid[i], target = m.light_targetbodyid[i];
+  double* xpos = &d.light_xpos[3 * i];
+  double* xdir = &d.light_xdir[3 * i];
+  switch (m.light_mode[i]) {
+    case kCamTrack:
+    case kCamTrackCom:
+      Copy3(xdir, &m.light_dir0[3 * i]);
+      if (m.light_mode[i] == kCamTrack) {
+        Add3(xpos, &d.xpos[3 * body], &m.light_pos0[3 * i]);
+      } else {
+        Add3(xpos, &d.subtree_com[3 * body], &m.light_poscom0[3 * i]);
+      }
+      break;
+    case kCamTargetBody:
+    case kCamTargetBodyCom:
+      if (target >= 0) {
+        const double* point = m.light_mode[i] == kCamTargetBody ? &d.xpos[3 * target]
+                                                                : &d.subtree_com[3 * target];
+        Sub3(xdir, point, xpos);
+      }
+      break;
+    default:
+      break;
+  }
+  Normalize3(xdir);
+}
+
+}  // namespace
+
 void CamLight(const Model& m, Data& d) {
+  for (int i = 0; i < m.nlight; i++) LightPose(m, d, i);
   for (int i = 0; i < m.ncam; i++) {
     CameraFixedPose(m, d, i);
     int target = m.cam_targetbodyid[i];

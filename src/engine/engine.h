@@ -32,6 +32,8 @@ void LocalToGlobal(const Data& d, double* xpos, double* xmat, const double* pos,
                    const double* quat, int body, int sameframe);
 // Camera i's pose carried by its body alone (the fixed mode).
 void CameraFixedPose(const Model& m, Data& d, int i);
+// Light i's pose as if its mode were fixed (the compiler's offsets at qpos0 start here).
+void LightFixedPose(const Model& m, Data& d, int i);
 // ten_length, ten_J, ten_wrapadr, ten_wrapnum, wrap_obj, wrap_xpos (tendon.cc).
 void Tendon(const Model& m, Data& d);
 // ten_velocity = ten_J qvel (tendon.cc).

@@ -260,6 +260,12 @@ struct Attachment {
 
 namespace {
 
+void RenameLight(LightSpec* light, Attachment* att) {
+  att->Rename(&light->src.name, kObjLight);
+  att->Rename(&light->target);
+  att->Rename(&light->texture);
+}
+
 // Renames a copied subtree and maps the child's elements to their copies.
 void RenameTree(const BodySpec& original, BodySpec* copy, Attachment* att) {
   att->bodies[&original] = copy;
@@ -268,12 +274,19 @@ void RenameTree(const BodySpec& original, BodySpec* copy, Attachment* att) {
     att->joints[&original.joints[i]] = &copy->joints[i];
     att->Rename(&copy->joints[i].src.name, kObjJoint);
   }
-  for (GeomSpec& g : copy->geoms) att->Rename(&g.src.name, kObjGeom);
-  for (SiteSpec& s : copy->sites) att->Rename(&s.src.name, kObjSite);
+  for (GeomSpec& g : copy->geoms) {
+    att->Rename(&g.src.name, kObjGeom);
+    att->Rename(&g.material);
+  }
+  for (SiteSpec& s : copy->sites) {
+    att->Rename(&s.src.name, kObjSite);
+    att->Rename(&s.material);
+  }
   for (CameraSpec& c : copy->cameras) {
     att->Rename(&c.src.name, kObjCamera);
     att->Rename(&c.target);
   }
+  for (LightSpec& l : copy->lights) RenameLight(&l, att);
   for (size_t i = 0; i < copy->bodies.size(); i++) {
     RenameTree(*original.bodies[i], copy->bodies[i].get(), att);
   }
@@ -454,12 +467,28 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
       att.Rename(&c.target);
       body->cameras.push_back(std::move(c));
     }
+    for (LightSpec l : cs.world.lights) {
+      l.frame = Rebase(l.frame, base);
+      RenameLight(&l, &att);
+      body->lights.push_back(std::move(l));
+    }
   }
   for (const BodySpec* original : originals) {
     auto copy = std::make_unique<BodySpec>(*original);
     RenameTree(*original, copy.get(), &att);
     copy->frame = body_name.empty() ? Rebase(original->frame, base) : base;
     body->bodies.push_back(std::move(copy));
+  }
+
+  // The child's textures and materials come along, prefixed as its geoms' references are.
+  for (TextureSpec t : cs.textures) {
+    att.Rename(&t.src.name, kObjTexture);
+    spec_->textures.push_back(std::move(t));
+  }
+  for (MaterialSpec mat : cs.materials) {
+    att.Rename(&mat.src.name, kObjMaterial);
+    for (std::string& tex : mat.textures) att.Rename(&tex);
+    spec_->materials.push_back(std::move(mat));
   }
 
   // Elements outside the tree that reference only what was copied, in MuJoCo's order.

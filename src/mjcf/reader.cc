@@ -169,7 +169,7 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
     } else if (tag == "camera") {
       ReadCamera(c, &def->camera, true);
     } else if (tag == "light") {
-      Light(c, true);
+      ReadLight(c, &def->light, true);
     } else if (tag == "equality") {
       ReadEquality(c, &def->equality, true);
     } else if (tag == "pair") {
@@ -177,8 +177,7 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
     } else if (tag == "mesh") {
       ReadMesh(c, &def->mesh, true);
     } else if (tag == "material") {
-      // Settings for features that do not change the compiled fields we produce.
-      continue;
+      ReadMaterial(c, &def->material, true);
     } else if (IsActuatorElement(tag)) {
       ReadActuator(c, &def->actuator, true);
     } else {
@@ -245,7 +244,10 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     cam.frame = frame;
     body->cameras.push_back(std::move(cam));
   } else if (tag == "light") {
-    Light(c, false);
+    LightSpec light = cls->light;
+    ReadLight(c, &light, false);
+    light.frame = frame;
+    body->lights.push_back(std::move(light));
   } else if (tag == "frame") {
     Frame(c, body, frame, def);
   } else if (tag == "body") {

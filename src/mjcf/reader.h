@@ -72,9 +72,13 @@ class Reader {
   // mesh assets (reader_mesh.cc)
   void ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) const;
   void ReadBuiltin(const XmlElement& e, MeshSpec* mesh) const;
+  std::string AssetPath(const std::string& written, const std::string& dir) const;
   void ReadHField(const XmlElement& e, HFieldSpec* hfield) const;
   void ReadCamera(const XmlElement& e, CameraSpec* cam, bool in_default) const;
-  void Light(const XmlElement& e, bool in_default) const;
+  // textures, materials and lights (reader_visual.cc)
+  void ReadTexture(const XmlElement& e, TextureSpec* tex) const;
+  void ReadMaterial(const XmlElement& e, MaterialSpec* mat, bool in_default) const;
+  void ReadLight(const XmlElement& e, LightSpec* light, bool in_default) const;
 
   // defaults and the body tree (reader.cc)
   void Default(const XmlElement& e, const DefaultClass* parent);

@@ -98,6 +98,7 @@ void Reader::ReadGeom(const XmlElement& e, GeomSpec* g, bool in_default) const {
   e.Text("mesh", &g->mesh);
   e.Number("fitscale", &g->fitscale);
   e.Numbers("rgba", g->rgba);
+  e.Text("material", &g->material);
   int fluidshape = g->fluid_ellipsoid ? 1 : 0;
   e.Enum("fluidshape", &fluidshape, {{"none", 0}, {"ellipsoid", 1}});
   g->fluid_ellipsoid = fluidshape == 1;
@@ -129,6 +130,7 @@ void Reader::ReadSite(const XmlElement& e, SiteSpec* s, bool in_default) const {
   e.Numbers("pos", s->pos);
   e.Quat("quat", s->quat);
   e.Numbers("rgba", s->rgba);
+  e.Text("material", &s->material);
   e.Numbers("fromto", s->fromto);
   e.Orient(&s->alt);
   e.Vector("user");

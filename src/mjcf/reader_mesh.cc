@@ -88,11 +88,7 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   // Geometry: a file or inline data (and normals); texture coordinates are checked only.
   if (e.Has("file")) {
     e.RequiredText("file", &mesh->file);
-    std::string dir = spec_->compiler.meshdir.empty() ? spec_->compiler.assetdir
-                                                      : spec_->compiler.meshdir;
-    std::string file = spec_->compiler.strippath ? mesh->file.substr(mesh->file.find_last_of('/') + 1)
-                                                 : mesh->file;
-    mesh->path = JoinPath(JoinPath(FolderOf(file_), dir), file);
+    mesh->path = AssetPath(mesh->file, spec_->compiler.meshdir);
   }
   e.Text("content_type", &mesh->content_type);
   mesh->vertex = ReadList(e, "vertex", ParseFloat);
@@ -123,6 +119,15 @@ void Reader::ReadBuiltin(const XmlElement& e, MeshSpec* mesh) const {
   if (!mesh->vertex.empty()) e.Fail("builtin mesh cannot be used with user vertex data");
   // A plate is flat: MuJoCo gives it shell inertia whatever the element says.
   if (mesh->builtin == kMeshBuiltinPlate) mesh->inertia = kMeshShell;
+}
+
+// A file an asset names, found against the model's folder and `dir` (the asset kind's
+// folder, else assetdir), without its folders under strippath.
+std::string Reader::AssetPath(const std::string& written, const std::string& dir) const {
+  const std::string& folder = dir.empty() ? spec_->compiler.assetdir : dir;
+  std::string file = spec_->compiler.strippath ? written.substr(written.find_last_of('/') + 1)
+                                               : written;
+  return JoinPath(JoinPath(FolderOf(file_), folder), file);
 }
 
 // ---------------------------------------------------------------- <hfield>

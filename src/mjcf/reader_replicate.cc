@@ -46,6 +46,7 @@ void CollectTree(const BodySpec& body, NameTable* names) {
   for (const GeomSpec& g : body.geoms) names->Add(kObjGeom, g.src.name);
   for (const SiteSpec& s : body.sites) names->Add(kObjSite, s.src.name);
   for (const CameraSpec& c : body.cameras) names->Add(kObjCamera, c.src.name);
+  for (const LightSpec& l : body.lights) names->Add(kObjLight, l.src.name);
   for (const auto& child : body.bodies) CollectTree(*child, names);
 }
 
@@ -283,8 +284,8 @@ class FrameRebase {
   std::map<const FrameSpec*, FramePtr> done_;
 };
 
-// Appends the suffix to every name of a body subtree (camera targets included, as
-// MuJoCo namespaces them).
+// Appends the suffix to every name of a body subtree (camera and light targets
+// included, as MuJoCo namespaces them).
 void SuffixTree(BodySpec* body, const std::string& suffix) {
   body->src.name = Suffixed(body->src.name, suffix);
   for (JointSpec& j : body->joints) j.src.name = Suffixed(j.src.name, suffix);
@@ -293,6 +294,10 @@ void SuffixTree(BodySpec* body, const std::string& suffix) {
   for (CameraSpec& c : body->cameras) {
     c.src.name = Suffixed(c.src.name, suffix);
     c.target = Suffixed(c.target, suffix);
+  }
+  for (LightSpec& l : body->lights) {
+    l.src.name = Suffixed(l.src.name, suffix);
+    l.target = Suffixed(l.target, suffix);
   }
   for (auto& child : body->bodies) SuffixTree(child.get(), suffix);
 }
@@ -306,6 +311,7 @@ void CopyReplica(const BodySpec& scratch, FrameRebase& rebase, const std::string
   renamed.geoms = scratch.geoms;
   renamed.sites = scratch.sites;
   renamed.cameras = scratch.cameras;
+  renamed.lights = scratch.lights;
   renamed.bodies = scratch.bodies;
   SuffixTree(&renamed, suffix);
   CollectTree(renamed, names);  // (`renamed` itself has no name)
@@ -319,6 +325,7 @@ void CopyReplica(const BodySpec& scratch, FrameRebase& rebase, const std::string
   move_all(renamed.geoms, body->geoms);
   move_all(renamed.sites, body->sites);
   move_all(renamed.cameras, body->cameras);
+  move_all(renamed.lights, body->lights);
   for (auto& child : renamed.bodies) {
     child->frame = rebase(child->frame);
     body->bodies.push_back(std::move(child));
@@ -330,7 +337,8 @@ void CopyReplica(const BodySpec& scratch, FrameRebase& rebase, const std::string
 uint64_t ReplicaBytes(const BodySpec& body) {
   uint64_t bytes = sizeof(FrameSpec);
   bytes += body.joints.size() * sizeof(JointSpec) + body.geoms.size() * sizeof(GeomSpec) +
-           body.sites.size() * sizeof(SiteSpec) + body.cameras.size() * sizeof(CameraSpec);
+           body.sites.size() * sizeof(SiteSpec) + body.cameras.size() * sizeof(CameraSpec) +
+           body.lights.size() * sizeof(LightSpec);
   for (const auto& child : body.bodies) bytes += sizeof(BodySpec) + ReplicaBytes(*child);
   return bytes;
 }

@@ -27,6 +27,7 @@ void Reader::Compiler(const XmlElement& e) {
   e.Bool("balanceinertia", &c.balanceinertia);
   e.Bool("strippath", &c.strippath);
   e.Text("meshdir", &c.meshdir);
+  e.Text("texturedir", &c.texturedir);
   e.Text("assetdir", &c.assetdir);
   e.Bool("fitaabb", &c.fitaabb);
   int global = 0;
@@ -230,6 +231,8 @@ void Reader::Visual(const XmlElement& e) {
     // and the perturbation springs are kept for viewers.
     if (c.tag() == "map") {
       c.Number("znear", &spec_->znear);
+      c.Number("znear", &spec_->vis.map.znear);
+      c.Number("zfar", &spec_->vis.map.zfar);
       c.Number("stiffness", &spec_->vis.map.stiffness);
       c.Number("stiffnessrot", &spec_->vis.map.stiffnessrot);
     }
@@ -238,6 +241,14 @@ void Reader::Visual(const XmlElement& e) {
       c.Number("azimuth", &spec_->vis.global.azimuth);
       c.Number("elevation", &spec_->vis.global.elevation);
     }
+    if (c.tag() == "headlight") {
+      Visual::Headlight& h = spec_->vis.headlight;
+      c.Numbers("ambient", h.ambient);
+      c.Numbers("diffuse", h.diffuse);
+      c.Numbers("specular", h.specular);
+      c.Int("active", &h.active);
+    }
+    if (c.tag() == "rgba") c.Numbers("haze", spec_->vis.rgba.haze);
   }
 }
 
@@ -286,16 +297,13 @@ void Reader::Asset(const XmlElement& e) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     if (c.tag() == "texture") {
-      c.CheckAttributes({"name", "type", "colorspace", "content_type", "file", "gridsize",
-                         "gridlayout", "fileright", "fileleft", "fileup", "filedown",
-                         "filefront", "fileback", "builtin", "rgb1", "rgb2", "mark",
-                         "markrgb", "random", "width", "height", "hflip", "vflip",
-                         "nchannel"});
+      spec_->textures.emplace_back();
+      ReadTexture(c, &spec_->textures.back());
     } else if (c.tag() == "material") {
-      c.CheckAttributes({"name", "class", "texture", "texrepeat", "texuniform", "emission",
-                         "specular", "shininess", "reflectance", "metallic", "roughness",
-                         "rgba"});
-      FindClass(c, "class");
+      const DefaultClass* cls = FindClass(c, "class");
+      MaterialSpec mat = cls ? cls->material : classes_.at("main")->material;
+      ReadMaterial(c, &mat, false);
+      spec_->materials.push_back(std::move(mat));
     } else if (c.tag() == "model") {
       AssetModel(c);
     } else if (c.tag() == "mesh") {
@@ -515,20 +523,5 @@ void Reader::ReadCamera(const XmlElement& e, CameraSpec* cam, bool in_default) c
   e.Vector("user");
 }
 
-void Reader::Light(const XmlElement& e, bool in_default) const {
-  if (in_default) {
-    e.CheckAttributes({"pos", "dir", "bulbradius", "intensity", "range", "directional",
-                       "type", "castshadow", "active", "attenuation", "cutoff", "exponent",
-                       "ambient", "diffuse", "specular", "mode"});
-  } else {
-    e.CheckAttributes({"name", "class", "directional", "type", "castshadow", "active", "pos",
-                       "dir", "bulbradius", "intensity", "range", "attenuation", "cutoff",
-                       "exponent", "ambient", "diffuse", "specular", "mode", "target",
-                       "texture"});
-  }
-  std::array<double, 3> pos;
-  e.Numbers("pos", pos);
-  e.Numbers("dir", pos);
-}
 
 }  // namespace simlab::mjcf

@@ -111,6 +111,7 @@ struct GeomSpec {
   std::array<double, 5> fluidcoef = {0.5, 0.25, 1.5, 1.0, 1.0};
   std::string mesh;
   std::string hfield;
+  std::string material;
   double fitscale = 1;  // scale of a primitive fitted to a mesh
   FramePtr frame;
 };
@@ -125,6 +126,27 @@ struct SiteSpec {
   std::array<double, 4> quat = {1, 0, 0, 0};
   Orientation alt;
   std::array<double, 4> rgba = {0.5, 0.5, 0.5, 1};
+  std::string material;
+  FramePtr frame;
+};
+
+// A light (MuJoCo's mjsLight): where it sits in its body, where it points, and its colours.
+struct LightSpec {
+  Source src;
+  int mode = 0;                // mjtCamLight, as cameras
+  std::string target;          // target body of the targetbody modes
+  int type = 0;                // mjtLightType: spot, directional, point, image
+  bool castshadow = true;
+  bool active = true;
+  double bulbradius = 0.02, intensity = 0, range = 10;
+  std::array<double, 3> pos = {0, 0, 0};
+  std::array<double, 3> dir = {0, 0, -1};
+  std::array<double, 3> attenuation = {1, 0, 0};
+  double cutoff = 45, exponent = 10;
+  std::array<double, 3> ambient = {0, 0, 0};
+  std::array<double, 3> diffuse = {0.7, 0.7, 0.7};
+  std::array<double, 3> specular = {0.3, 0.3, 0.3};
+  std::string texture;
   FramePtr frame;
 };
 
@@ -195,6 +217,7 @@ struct BodySpec {
   std::vector<GeomSpec> geoms;
   std::vector<SiteSpec> sites;
   std::vector<CameraSpec> cameras;
+  std::vector<LightSpec> lights;
   BodyList bodies;
   PluginUse plugin;  // a <plugin> child: the instance attached to this body
 };
@@ -384,6 +407,42 @@ struct HFieldSpec {
   std::vector<float> elevation;               // nrow * ncol, or empty (all zero)
 };
 
+// A texture asset (MuJoCo's mjsTexture): a builtin pattern or image files.
+enum TextureType : int { kTexture2D = 0, kTextureCube = 1, kTextureSkybox = 2 };
+enum TextureBuiltin : int { kBuiltinNone = 0, kBuiltinGradient, kBuiltinChecker, kBuiltinFlat };
+enum TextureMark : int { kMarkNone = 0, kMarkEdge, kMarkCross, kMarkRandom };
+
+struct TextureSpec {
+  Source src;
+  int type = kTextureCube;
+  int colorspace = 0;           // mjtColorSpace: auto, linear, sRGB
+  int builtin = kBuiltinNone;
+  int mark = kMarkNone;
+  std::array<double, 3> rgb1 = {0.8, 0.8, 0.8};
+  std::array<double, 3> rgb2 = {0.5, 0.5, 0.5};
+  std::array<double, 3> markrgb = {0, 0, 0};
+  double random = 0.01;
+  int width = 0, height = 0;
+  int nchannel = 3;
+  bool hflip = false, vflip = false;
+  std::string file;                  // as written
+  std::string path;                  // resolved against the model folder and texturedir
+  std::array<std::string, 6> cubefiles;  // right, left, up, down, front, back (resolved)
+  std::array<int, 2> gridsize = {1, 1};
+  std::string gridlayout = "............";
+};
+
+// A material asset (MuJoCo's mjsMaterial): a texture name per role, and its surface.
+struct MaterialSpec {
+  Source src;
+  std::array<std::string, kNTexRole> textures;
+  bool texuniform = false;
+  std::array<double, 2> texrepeat = {1, 1};
+  double emission = 0, specular = 0.5, shininess = 0.5, reflectance = 0;
+  double metallic = -1, roughness = -1;
+  std::array<double, 4> rgba = {1, 1, 1, 1};
+};
+
 // A keyframe that came with an attached model (defined in mjcf/compose.h).
 struct AttachedKey;
 
@@ -409,6 +468,8 @@ struct DefaultClass {
   EqualitySpec equality;
   PairSpec pair;
   MeshSpec mesh;
+  MaterialSpec material;
+  LightSpec light;
 };
 
 // <compiler> settings that affect the compiled model.
@@ -435,6 +496,7 @@ struct CompilerSpec {
   bool alignfree = false;
   // Mesh files: folders (meshdir over assetdir), and whether to drop a file's folders.
   std::string meshdir;
+  std::string texturedir;
   std::string assetdir;
   bool strippath = false;
   bool fitaabb = false;  // primitives fitted to a mesh's bounding box, not its inertia box
@@ -461,6 +523,8 @@ struct ModelSpec {
   std::vector<ExcludeSpec> excludes;
   std::vector<MeshSpec> meshes;
   std::vector<HFieldSpec> hfields;
+  std::vector<TextureSpec> textures;
+  std::vector<MaterialSpec> materials;
   std::vector<KeySpec> keys;
   int nkey = 0;  // <size nkey>: at least this many keyframes
   int nuser_sensor = -1;  // <size nuser_sensor>; -1: the longest sensor user data

@@ -84,7 +84,8 @@ class DataViews {
 }
 
 // The Data arrays the 3D view reads every frame.
-const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator', 'xpos', 'xmat'];
+const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator', 'xpos', 'xmat',
+  'light_xpos', 'light_xdir'];
 
 // A speed as shown: "1x", "1/8x".
 function speedText(speed) {
@@ -234,7 +235,7 @@ class Lab {
     if (spec.note) root.appendChild(make('p', 'simlab-lab-note', spec.note));
     this.sceneModel = this.modelObject();
     this.resolveArrays();
-    this.scene.build(this.sceneModel, sim.statistic().extent || 1);
+    this.scene.build(this.sceneModel, sim.statistic().extent || 1, sim.visual());
     if (options.perturb) this.attachPerturber();
     this.observers = [new ResizeObserver(() => this.resize())];
     this.observers[0].observe(root);
@@ -274,7 +275,11 @@ class Lab {
   modelObject() {
     const names = ['geom_type', 'geom_size', 'geom_rgba', 'geom_group', 'geom_dataid', 'mesh_vertadr',
       'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_vert', 'mesh_face', 'hfield_size',
-      'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data', 'jnt_type', 'jnt_dofadr'];
+      'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data', 'jnt_type', 'jnt_dofadr',
+      'geom_matid', 'mat_rgba', 'mat_specular', 'mat_shininess', 'mat_emission', 'mat_texid',
+      'mat_texrepeat', 'mat_texuniform', 'tex_type', 'tex_width', 'tex_height', 'tex_nchannel',
+      'tex_adr', 'tex_data', 'light_type', 'light_active', 'light_castshadow', 'light_ambient',
+      'light_diffuse', 'light_cutoff', 'light_exponent'];
     const model = {};
     for (const name of names) model[name] = this.array('model', name) ?? new Float64Array(0);
     return model;
@@ -588,6 +593,8 @@ class Lab {
     state.xanchor = this.dataViews.get('xanchor');
     state.xaxis = this.dataViews.get('xaxis');
     state.qfrc_actuator = this.dataViews.get('qfrc_actuator');
+    state.light_xpos = this.dataViews.get('light_xpos');
+    state.light_xdir = this.dataViews.get('light_xdir');
     return state;
   }
 

@@ -3,6 +3,12 @@
 // mouse orbit, pan and zoom, and overlays for contacts, forces and joint axes.
 import * as THREE from '../node_modules/three/build/three.module.js';
 
+import { Lights, Materials } from './materials.mjs';
+
+// Colours as MuJoCo draws them: numbers go to the screen as they are (no sRGB decoding of
+// inputs, no encoding of the output), as in MuJoCo's OpenGL renderer.
+THREE.ColorManagement.enabled = false;
+
 // mjtGeom numbers.
 const kPlane = 0, kHfield = 1, kSphere = 2, kCapsule = 3, kEllipsoid = 4, kCylinder = 5,
   kBox = 6, kMesh = 7;
@@ -61,9 +67,8 @@ function geomGeometry(model, g, extent) {
   const s = model.geom_size.subarray(3 * g, 3 * g + 3);
   switch (model.geom_type[g]) {
     case kPlane: {
-      // A zero size means an infinite plane; draw it large relative to the model.
-      const half = (k) => (s[k] > 0 ? s[k] : 4 * extent);
-      return new THREE.PlaneGeometry(2 * half(0), 2 * half(1));
+      const [hx, hy] = planeHalfSize(model, g, extent);
+      return new THREE.PlaneGeometry(2 * hx, 2 * hy);
     }
     case kHfield: return heightFieldGeometry(model, model.geom_dataid[g]);
     case kSphere: return new THREE.SphereGeometry(s[0], 24, 16);
@@ -76,12 +81,11 @@ function geomGeometry(model, g, extent) {
   }
 }
 
-function geomMaterial(model, g) {
-  const [r, gr, b, a] = model.geom_rgba.subarray(4 * g, 4 * g + 4);
-  return new THREE.MeshStandardMaterial({
-    color: new THREE.Color(r, gr, b), opacity: a, transparent: a < 1,
-    roughness: 0.7, metalness: 0.05, flatShading: model.geom_type[g] === kMesh,
-  });
+// The half sizes a plane is drawn with (a zero size is infinite: drawn large relative to
+// the model).
+function planeHalfSize(model, g, extent) {
+  const s = model.geom_size.subarray(3 * g, 3 * g + 3);
+  return [0, 1].map((k) => (s[k] > 0 ? s[k] : 4 * extent));
 }
 
 // Sets a three.js object's matrix from row `g` of geom_xpos (3 numbers) and geom_xmat
@@ -157,16 +161,16 @@ export class LabScene {
   constructor(container, height, cameraSpec) {
     this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    this.renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
+    this.renderer.shadowMap.enabled = true;
+    this.renderer.shadowMap.type = THREE.PCFShadowMap;
     this.renderer.domElement.className = 'simlab-lab-canvas';
     container.appendChild(this.renderer.domElement);
     this.container = container;
     this.height = height;
     this.scene = new THREE.Scene();
+    // (a model's skybox replaces the background; the lights come with the model, see build)
     this.scene.background = new THREE.Color(0.93, 0.95, 0.98);
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 1.6));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.8);
-    sun.position.set(1, -1.5, 3);
-    this.scene.add(sun);
     // MuJoCo's default vertical field of view is 45 degrees.
     this.camera = new THREE.PerspectiveCamera(45, 1, 0.005, 100);
     this.camera.up.set(0, 0, 1);
@@ -225,7 +229,11 @@ export class LabScene {
 
   // Geoms of `body` glow (the selected body), others not; body -1: none.
   highlightBody(body, bodyOfGeom) {
-    for (const { g, mesh } of this.geoms) mesh.material.emissive?.setHex(bodyOfGeom[g] === body ? 0x404000 : 0);
+    for (const { g, mesh } of this.geoms) {
+      const material = mesh.material;
+      material.userData.emissive ??= material.emissive.clone();
+      material.emissive.copy(bodyOfGeom[g] === body ? new THREE.Color(0x404000) : material.userData.emissive);
+    }
   }
 
   // The perturbation's line, or none (null).
@@ -246,18 +254,34 @@ export class LabScene {
     this.camera.updateProjectionMatrix();
   }
 
-  // One three.js mesh per visible geom of the model.
-  build(model, extent) {
+  // One three.js mesh per visible geom of the model, in its material; the skybox, the
+  // headlight and the model's lights (`visual`: sim.visual(), for the headlight).
+  build(model, extent, visual = null) {
     this.geoms = [];
+    this.materials = new Materials(model);
     for (let g = 0; g < model.geom_type.length; g++) {
       if (model.geom_group[g] >= kVisibleGroups) continue;
       const geometry = geomGeometry(model, g, extent);
       if (!geometry) continue;
-      const mesh = new THREE.Mesh(geometry, geomMaterial(model, g));
+      const plane = model.geom_type[g] === kPlane;
+      const material = this.materials.geomMaterial(g, plane ? planeHalfSize(model, g, extent) : null,
+                                                   !!geometry.attributes.uv);
+      const mesh = new THREE.Mesh(geometry, material);
       mesh.matrixAutoUpdate = false;
+      mesh.receiveShadow = true;
+      mesh.castShadow = !plane && !material.transparent;
       this.scene.add(mesh);
       this.geoms.push({ g, mesh });
     }
+    const sky = this.materials.skybox();
+    if (sky) {
+      this.scene.background = sky;
+      // (MuJoCo's skybox has its up face at +z; three.js puts a cube texture's at +y)
+      this.scene.backgroundRotation = new THREE.Euler(Math.PI / 2, 0, 0);
+    }
+    this.lights = new Lights(this.scene, this.camera, model, visual, extent);
+    // (the shaders compiled now, before the first frames, which would otherwise stall)
+    this.renderer.compile(this.scene, this.camera);
   }
 
   // Poses every geom from the state, then draws the toggled overlays. state.contacts
@@ -265,6 +289,7 @@ export class LabScene {
   // ({stride, pos, frame, force}, the module's constants).
   update(state, toggles) {
     for (const { g, mesh } of this.geoms) setPose(mesh, state.geom_xpos, state.geom_xmat, g);
+    this.lights?.update(state);
     const ncon = state.contacts ? state.contacts.length / state.contactLayout.stride : 0;
     this.drawContacts(toggles.contacts ? state : null, ncon);
     this.drawForces(toggles.forces ? state : null, ncon);
