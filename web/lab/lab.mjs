@@ -85,7 +85,9 @@ class DataViews {
 
 // The Data arrays the 3D view reads every frame.
 const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator', 'xpos', 'xmat',
-  'light_xpos', 'light_xdir'];
+  'light_xpos', 'light_xdir', 'cam_xpos', 'cam_xmat', 'subtree_com'];
+// Bodies the camera chooser offers to track, at most.
+const kMaxTracked = 40;
 
 // A speed as shown: "1x", "1/8x".
 function speedText(speed) {
@@ -304,6 +306,7 @@ class Lab {
       }));
       this.keySelect.value = this.key === null || this.key === undefined ? '' : String(this.key);
     }
+    this.buildCameraSelect(bar);
     for (const name of this.spec.toggles ?? []) {
       if (!(name in this.toggles)) continue;
       const label = bar.appendChild(make('label', 'simlab-lab-toggle'));
@@ -327,6 +330,42 @@ class Lab {
     this.warningText = bar.appendChild(make('span', 'simlab-lab-warning'));
     this.statsText = bar.appendChild(make('span', 'simlab-lab-stats'));
     this.updatePlayButton();
+  }
+
+  // The camera chooser: the free camera, a free camera tracking each moving body (at most
+  // kMaxTracked of them), and each of the model's cameras. '[' and ']' cycle through them,
+  // Escape goes back to the free camera (simulate's keys).
+  buildCameraSelect(bar) {
+    const sizes = this.sim.sizes();
+    const parent = this.sim.model('body_parentid'), weld = this.sim.model('body_weldid');
+    const fovy = this.sim.model('cam_fovy');
+    const name = (kind, id, fallback) => this.sim.idToName(kind, id) || fallback;
+    this.cameraChoices = [{ label: 'free camera', choice: { kind: 'free' } }];
+    for (let b = 1, n = 0; b < sizes.nbody && n < kMaxTracked; b++) {
+      // (bodies that move, and only the top of a chain that moves together)
+      if (weld[b] === 0 || (parent[b] !== 0 && weld[parent[b]] === weld[b])) continue;
+      this.cameraChoices.push({ label: `track ${name('body', b, `body ${b}`)}`, choice: { kind: 'track', body: b } });
+      n++;
+    }
+    for (let c = 0; c < sizes.ncam; c++) {
+      this.cameraChoices.push({ label: `camera ${name('camera', c, String(c))}`,
+                                choice: { kind: 'fixed', camera: c, fovy: fovy[c] } });
+    }
+    if (this.cameraChoices.length === 1) return;
+    this.cameraSelect = bar.appendChild(this.buildSelect('simlab-lab-camera', 'camera',
+      this.cameraChoices.map(({ label }, k) => [String(k), label]), (value) => this.chooseCamera(Number(value))));
+    this.scene.onLeaveFixed = () => this.chooseCamera(0);
+  }
+
+  // Draws with camera choice k (an index into cameraChoices).
+  chooseCamera(k) {
+    const count = this.cameraChoices?.length ?? 1;
+    const index = ((k % count) + count) % count;
+    this.cameraIndex = index;
+    this.scene.setCamera(this.cameraChoices?.[index]?.choice ?? { kind: 'free' });
+    if (this.cameraSelect) this.cameraSelect.value = String(index);
+    this.sceneStale = true;
+    this.draw();
   }
 
   // simulate's info panel over the view: time, real-time factor, step time, contacts,
@@ -383,7 +422,8 @@ class Lab {
   }
 
   // simulate's keys, on the whole page (for a page with one lab): Space plays or pauses,
-  // Right arrow takes one step, Backspace resets, '-' and '=' slow down and speed up.
+  // Right arrow takes one step, Backspace resets, '-' and '=' slow down and speed up, '['
+  // and ']' change the camera and Escape goes back to the free one.
   // Keys typed into a form field, or pressed on a focused button, are theirs.
   listenToKeys() {
     this.onKey = (event) => {
@@ -396,6 +436,9 @@ class Lab {
         '-': () => this.changeSpeed(-1),
         '=': () => this.changeSpeed(1),
         '+': () => this.changeSpeed(1),
+        ']': () => this.chooseCamera((this.cameraIndex ?? 0) + 1),
+        '[': () => this.chooseCamera((this.cameraIndex ?? 0) - 1),
+        Escape: () => this.chooseCamera(0),
       };
       const action = actions[event.key];
       if (!action) return;
@@ -595,6 +638,9 @@ class Lab {
     state.qfrc_actuator = this.dataViews.get('qfrc_actuator');
     state.light_xpos = this.dataViews.get('light_xpos');
     state.light_xdir = this.dataViews.get('light_xdir');
+    state.cam_xpos = this.dataViews.get('cam_xpos');
+    state.cam_xmat = this.dataViews.get('cam_xmat');
+    state.subtree_com = this.dataViews.get('subtree_com');
     return state;
   }
 

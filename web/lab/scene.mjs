@@ -288,6 +288,7 @@ export class LabScene {
   // holds contactData()'s rows, or null; state.contactLayout says where what is in a row
   // ({stride, pos, frame, force}, the module's constants).
   update(state, toggles) {
+    this.cameraState = state;
     for (const { g, mesh } of this.geoms) setPose(mesh, state.geom_xpos, state.geom_xmat, g);
     this.lights?.update(state);
     const ncon = state.contacts ? state.contacts.length / state.contactLayout.stride : 0;
@@ -365,10 +366,42 @@ export class LabScene {
     }
   }
 
-  render() {
+  // Which camera draws: {kind: 'free'}, {kind: 'track', body} (the free camera's target
+  // follows the body's subtree centre of mass, as MuJoCo's tracking camera) or
+  // {kind: 'fixed', camera} (model camera `camera`, posed by the engine).
+  setCamera(choice) {
+    this.cameraChoice = choice;
+    if (choice.kind !== 'fixed') this.camera.fov = this.freeFovy ?? 45;
+    this.camera.updateProjectionMatrix();
+  }
+
+  // Places the camera: a model camera at cam_xpos/cam_xmat with its fovy (looking along
+  // its -z, y up, as three.js cameras), else the free camera around its target.
+  placeCamera() {
+    const choice = this.cameraChoice ?? { kind: 'free' };
+    const state = this.cameraState;
+    if (choice.kind === 'fixed' && state?.cam_xpos) {
+      const p = state.cam_xpos, r = state.cam_xmat, c = choice.camera;
+      const m = new THREE.Matrix4().set(r[9 * c], r[9 * c + 1], r[9 * c + 2], p[3 * c],
+                                        r[9 * c + 3], r[9 * c + 4], r[9 * c + 5], p[3 * c + 1],
+                                        r[9 * c + 6], r[9 * c + 7], r[9 * c + 8], p[3 * c + 2], 0, 0, 0, 1);
+      m.decompose(this.camera.position, this.camera.quaternion, this.camera.scale);
+      if (this.camera.fov !== choice.fovy) {
+        this.camera.fov = choice.fovy;
+        this.camera.updateProjectionMatrix();
+      }
+      return;
+    }
+    if (choice.kind === 'track' && state?.subtree_com) {
+      for (let k = 0; k < 3; k++) this.view.target[k] = state.subtree_com[3 * choice.body + k];
+    }
     const target = this.view.target;
     cameraPosition(this.view, this.camera.position);
     this.camera.lookAt(target[0], target[1], target[2]);
+  }
+
+  render() {
+    this.placeCamera();
     this.renderer.render(this.scene, this.camera);
   }
 
@@ -413,13 +446,21 @@ export class LabScene {
     }, { passive: false });
   }
 
+  // (orbiting or panning from a model camera goes back to the free camera, as in simulate)
+  leaveFixedCamera() {
+    if (this.cameraChoice?.kind === 'fixed') this.onLeaveFixed?.();
+  }
+
   orbit(dx, dy) {
+    this.leaveFixedCamera();
     this.view.azimuth -= 0.4 * dx;
     this.view.elevation = Math.max(-89, Math.min(89, this.view.elevation + 0.4 * dy));
   }
 
   // Moves the target in the camera's image plane, by the pixels dragged at its distance.
   pan(dx, dy) {
+    this.leaveFixedCamera();
+    if (this.cameraChoice?.kind === 'track') return;  // (the tracked body holds the target)
     const perPixel = 2 * this.view.distance * Math.tan(Math.PI / 8) / this.height;
     const right = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 0);
     const up = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 1);

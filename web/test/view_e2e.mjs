@@ -5,7 +5,8 @@
 // and changes the actuator's force; simulate's keys pause (time stops), single-step (one
 // timestep), reset (time 0) and change the speed; the info panel shows time, contacts and
 // solver iterations; a click on a readout plots it and the
-// CSV export holds the plotted series; the screenshot export is a PNG. On the mug (a
+// CSV export holds the plotted series; the screenshot export is a PNG; the camera chooser
+// tracks a body and draws from a model camera. On the mug (a
 // free body): a double-click selects it and a Ctrl+drag pulls it up. Screenshots of each
 // model go to --shots.
 //
@@ -156,6 +157,46 @@ async function checkPerturbation(page, body) {
         `let go, it fell to ${dropped.toFixed(3)}`);
 }
 
+// The camera chooser: ']' tracks the first moving body (the view's target is its subtree
+// centre of mass), the model's camera "side" draws from cam_xpos with its field of view
+// (a screenshot), and Escape returns to the free camera.
+async function checkCameras(page) {
+  const select = page.locator('select.simlab-lab-camera');
+  const labels = await select.locator('option').allTextContents();
+  check(labels.includes('track torso') && labels.includes('camera side'),
+        `the camera chooser offers ${labels.length} cameras (${labels.slice(0, 3).join(', ')}, ...)`);
+  await page.locator('.simlab-lab-canvas').click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press(']');
+  await page.waitForTimeout(300);
+  const tracked = await page.evaluate(() => {
+    const lab = window.lab, body = lab.sim.nameToId('body', 'torso');
+    lab.scene.render();
+    const com = Array.from(lab.sim.data('subtree_com').slice(3 * body, 3 * body + 3));
+    return { value: lab.cameraSelect.value, target: [...lab.scene.view.target], com };
+  });
+  const gap = Math.max(...tracked.target.map((v, k) => Math.abs(v - tracked.com[k])));
+  check(tracked.value === '1' && gap < 0.05,
+        `']' tracks the torso: the view's target is ${gap.toExponential(1)} m from its centre of mass`);
+  const side = labels.indexOf('camera side');
+  await select.selectOption(String(side));
+  await page.waitForTimeout(300);
+  const fixed = await page.evaluate(() => {
+    const lab = window.lab, cam = lab.sim.nameToId('camera', 'side');
+    lab.scene.render();
+    const pos = Array.from(lab.sim.data('cam_xpos').slice(3 * cam, 3 * cam + 3));
+    return { pos, drawn: lab.scene.camera.position.toArray(), fov: lab.scene.camera.fov,
+             fovy: lab.sim.model('cam_fovy')[cam] };
+  });
+  const off = Math.max(...fixed.pos.map((v, k) => Math.abs(v - fixed.drawn[k])));
+  check(off < 1e-6 && fixed.fov === fixed.fovy,
+        `the model camera "side" draws from cam_xpos (${off.toExponential(1)} m off) with fovy ${fixed.fov}`);
+  await page.screenshot({ path: path.join(options.shots, 'view_camera_side.png') });
+  await page.locator('.simlab-lab-canvas').click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press('Escape');
+  const free = await page.evaluate(() => window.lab.cameraSelect.value);
+  check(free === '0', 'Escape goes back to the free camera');
+}
+
 async function testModel(file, interactive) {
   const name = path.basename(file, '.xml');
   const { session, page, problems } = await openViewer(path.join(options.corpus, file));
@@ -165,6 +206,7 @@ async function testModel(file, interactive) {
       await checkSlider(page);
       await checkKeys(page);
       await checkPlotAndExports(page);
+      await checkCameras(page);
     }
     if (name === 'mug') await checkPerturbation(page, 1);
     check(problems.length === 0, `${name}: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
