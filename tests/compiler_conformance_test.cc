@@ -137,6 +137,7 @@ void CheckModel(const std::string& name, const std::string& path) {
     EXPECT_EQ(m.ntexdata, sizes["ntexdata"].get<int>());
     EXPECT_EQ(m.nmat, sizes["nmat"].get<int>());
   }
+  if (sizes.contains("nmeshtexcoord")) EXPECT_EQ(m.nmeshtexcoord, sizes["nmeshtexcoord"].get<int>());
   if (::testing::Test::HasFailure()) return;
 
   // Every array we have and MuJoCo dumped.

@@ -18,7 +18,7 @@ import { loadOracleModel } from './oracle_model.mjs';
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
-  'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat'];
+  'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat', 'nmeshtexcoord'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -38,7 +38,8 @@ const ARRAYS = [
   'geom_rgba', 'geom_fluid', 'geom_dataid',
   'mesh_vertadr', 'mesh_vertnum', 'mesh_faceadr', 'mesh_facenum', 'mesh_graphadr', 'mesh_scale',
   'mesh_pos', 'mesh_quat', 'mesh_vert', 'mesh_face', 'mesh_graph',
-  'mesh_normaladr', 'mesh_normalnum', 'mesh_normal',
+  'mesh_normaladr', 'mesh_normalnum', 'mesh_normal', 'mesh_texcoordadr', 'mesh_texcoordnum',
+  'mesh_texcoord', 'mesh_facetexcoord',
   'hfield_size', 'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data',
   'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
   'site_quat', 'site_rgba', 'geom_matid', 'site_matid',

@@ -347,6 +347,12 @@ struct Visual {
   X(int, mesh_normaladr, nmesh, 1)                 \
   X(int, mesh_normalnum, nmesh, 1)                 \
   X(double, mesh_normal, nmeshnormal, 3)           \
+  /* texture coordinates (float-rounded; v flipped as MuJoCo's OBJ reader does), and the \
+     coordinate of each face corner (all 0 for meshes without coordinates) */ \
+  X(int, mesh_texcoordadr, nmesh, 1)  /* first row in mesh_texcoord, or -1 */ \
+  X(int, mesh_texcoordnum, nmesh, 1)               \
+  X(double, mesh_texcoord, nmeshtexcoord, 2)       \
+  X(int, mesh_facetexcoord, nmeshface, 3)          \
   /* height fields (elevation normalized to [0, 1], float-rounded as MuJoCo's) */ \
   X(double, hfield_size, nhfield, 4)  /* x, y, top z, base depth */ \
   X(int, hfield_nrow, nhfield, 1)                  \
@@ -572,6 +578,7 @@ struct Visual {
   X(nmeshface)   /* triangles of all meshes */                             \
   X(nmeshgraph)  /* ints of all convex-hull graphs (mesh_graph) */         \
   X(nmeshnormal) /* normals of all meshes (mesh_normal rows) */           \
+  X(nmeshtexcoord) /* texture coordinates of all meshes */                \
   X(nhfield)     /* height fields */                                       \
   X(nhfielddata) /* elevation numbers of all height fields */              \
   X(nlight)      /* lights */                                              \

@@ -53,6 +53,8 @@ struct MeshState {
   std::vector<int> face;
   std::vector<int> graph;
   std::vector<float> normal;  // x y z each, single precision as MuJoCo keeps them
+  std::vector<float> texcoord;    // u v each
+  std::vector<int> facetexcoord;  // a texcoord per face corner, when there are texcoords
   double pos[3] = {0, 0, 0};
   double quat[4] = {1, 0, 0, 0};
   double aamm[6] = {0, 0, 0, 0, 0, 0};  // bounding box (min, max) in the inertial frame

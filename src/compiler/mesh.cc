@@ -62,6 +62,11 @@ MeshData LoadGeometry(const mjcf::MeshSpec& s, const mjcf::AssetFiles* assets) {
   } else if (!s.normal.empty()) {
     ThrowAt(s.src, "repeated normal specification");
   }
+  if (data.texcoord.empty()) {
+    data.texcoord = s.texcoord;
+  } else if (!s.texcoord.empty()) {
+    ThrowAt(s.src, "repeated texcoord specification");
+  }
   return data;
 }
 
@@ -69,6 +74,11 @@ void CheckGeometry(const mjcf::MeshSpec& s, const MeshData& data) {
   if (data.vert.size() % 3) ThrowAt(s.src, "vertex data must be a multiple of 3");
   if (data.face.size() % 3) ThrowAt(s.src, "face data must be a multiple of 3");
   if (data.normal.size() % 3) ThrowAt(s.src, "normal data must be a multiple of 3");
+  if (data.texcoord.size() % 2) ThrowAt(s.src, "texcoord must be a multiple of 2");
+  if (!data.texcoord.empty() && data.facetexcoord.empty() &&
+      data.texcoord.size() != 2 * (data.vert.size() / 3)) {
+    ThrowAt(s.src, "texcoord must be 2*nv if face texcoord indices are not provided in an OBJ file");
+  }
   if (data.vert.size() < 12) ThrowAt(s.src, "at least 4 vertices required");
   for (float c : data.vert) {
     if (!std::isfinite(c)) ThrowAt(s.src, "vertex coordinates must be finite");
@@ -393,6 +403,7 @@ void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh)
   mesh->vert.assign(data.vert.begin(), data.vert.end());
   mesh->face = std::move(data.face);
   mesh->normal = std::move(data.normal);
+  mesh->texcoord = std::move(data.texcoord);
   if (s.inertia == kMeshExact) CheckOrientation(*mesh);
 
   // The hull (on the vertices as read); a mesh without faces takes the hull's.
@@ -401,6 +412,10 @@ void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh)
     if (mesh->graph.empty()) ThrowAt(s.src, "the mesh has no faces and no convex hull");
     const int* hull = HullFaces(*mesh);
     mesh->face.assign(hull, hull + 3 * mesh->graph[1]);
+  }
+  // Texture coordinates per face corner: the file's, else the corner's vertex.
+  if (!mesh->texcoord.empty()) {
+    mesh->facetexcoord = data.facetexcoord.empty() ? mesh->face : std::move(data.facetexcoord);
   }
   if (mesh->normal.empty()) MakeVertexNormals(mesh);
 
@@ -556,8 +571,9 @@ void MeshGeomSize(GeomState* g) {
 
 void MeshSizes(const CompileState& state, Model* m) {
   m->nmesh = static_cast<int>(state.meshes.size());
-  m->nmeshvert = m->nmeshface = m->nmeshgraph = m->nmeshnormal = 0;
+  m->nmeshvert = m->nmeshface = m->nmeshgraph = m->nmeshnormal = m->nmeshtexcoord = 0;
   for (const MeshState& mesh : state.meshes) {
+    m->nmeshtexcoord += static_cast<int>(mesh.texcoord.size() / 2);
     m->nmeshvert += static_cast<int>(mesh.vert.size() / 3);
     m->nmeshnormal += static_cast<int>(mesh.normal.size() / 3);
     m->nmeshface += static_cast<int>(mesh.face.size() / 3);
@@ -566,7 +582,7 @@ void MeshSizes(const CompileState& state, Model* m) {
 }
 
 void LayoutMeshes(const CompileState& state, Model* m) {
-  int vert = 0, face = 0, graph = 0, normal = 0;
+  int vert = 0, face = 0, graph = 0, normal = 0, texcoord = 0;
   for (int i = 0; i < m->nmesh; i++) {
     const MeshState& mesh = state.meshes[i];
     m->mesh_vertadr[i] = vert;
@@ -588,6 +604,13 @@ void LayoutMeshes(const CompileState& state, Model* m) {
     m->mesh_normalnum[i] = static_cast<int>(mesh.normal.size() / 3);
     std::copy(mesh.normal.begin(), mesh.normal.end(), m->mesh_normal.begin() + 3 * normal);
     normal += m->mesh_normalnum[i];
+    // (faces of a mesh without coordinates keep coordinate 0, as in MuJoCo)
+    m->mesh_texcoordadr[i] = mesh.texcoord.empty() ? -1 : texcoord;
+    m->mesh_texcoordnum[i] = static_cast<int>(mesh.texcoord.size() / 2);
+    std::copy(mesh.texcoord.begin(), mesh.texcoord.end(), m->mesh_texcoord.begin() + 2 * texcoord);
+    std::copy(mesh.facetexcoord.begin(), mesh.facetexcoord.end(),
+              m->mesh_facetexcoord.begin() + 3 * face);
+    texcoord += m->mesh_texcoordnum[i];
     vert += m->mesh_vertnum[i];
     face += m->mesh_facenum[i];
     graph += static_cast<int>(mesh.graph.size());

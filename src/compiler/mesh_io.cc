@@ -193,11 +193,14 @@ void ProjectionAxes(const std::vector<float>& v, const std::vector<int>& poly, i
 
 // Cuts a polygon into triangles by ear clipping in its projection plane, in the order
 // of MuJoCo's OBJ loader (a quad 0123 gives 012 and 023).
-void Triangulate(const std::vector<float>& v, std::vector<int> poly, std::vector<int>* tris) {
+// `poly` holds the polygon's corners (0..n-1), `vertex_of` each corner's vertex; the
+// triangles are given as corners too, so that each corner keeps its texture coordinate.
+void Triangulate(const std::vector<float>& v, const std::vector<int>& vertex_of,
+                 std::vector<int> poly, std::vector<int>* tris) {
   int axes[2];
-  ProjectionAxes(v, poly, axes);
-  auto x = [&](int vi) { return v[3 * vi + axes[0]]; };
-  auto y = [&](int vi) { return v[3 * vi + axes[1]]; };
+  ProjectionAxes(v, vertex_of, axes);
+  auto x = [&](int corner) { return v[3 * vertex_of[corner] + axes[0]]; };
+  auto y = [&](int corner) { return v[3 * vertex_of[corner] + axes[1]]; };
 
   // Signed area of the projection (its sign tells convex from reflex corners).
   float area = 0;
@@ -243,27 +246,44 @@ void Triangulate(const std::vector<float>& v, std::vector<int> poly, std::vector
   if (poly.size() == 3) tris->insert(tris->end(), poly.begin(), poly.end());
 }
 
-// A face corner "v", "v/vt", "v//vn" or "v/vt/vn": the 0-based vertex index
-// (negative indices count back from the last vertex read).
-int ObjVertexIndex(const mjcf::MeshSpec& mesh, const std::string& token, int nvert, int line) {
-  char* end = nullptr;
-  long idx = std::strtol(token.c_str(), &end, 10);
-  if (end == token.c_str() || (*end != '\0' && *end != '/') || idx == 0) {
+// One index of a face corner, 0-based (negative indices count back from the last of
+// `count` read); `text` starts at the number.
+int ObjIndex(const mjcf::MeshSpec& mesh, const char* text, int count, int line, const char** end) {
+  char* stop = nullptr;
+  long idx = std::strtol(text, &stop, 10);
+  *end = stop;
+  if (stop == text || (*stop != '\0' && *stop != '/') || idx == 0) {
     ThrowAt(mesh.src, "could not parse OBJ file '" + mesh.path + "' (line " +
-                          std::to_string(line) + ": bad face index '" + token + "')");
+                          std::to_string(line) + ": bad face index '" + text + "')");
   }
-  long zero_based = idx > 0 ? idx - 1 : nvert + idx;
+  long zero_based = idx > 0 ? idx - 1 : count + idx;
   if (zero_based < 0) {
     ThrowAt(mesh.src, "OBJ file '" + mesh.path + "' line " + std::to_string(line) +
-                          ": vertex index " + std::to_string(idx) + " does not exist");
+                          ": index " + std::to_string(idx) + " does not exist");
   }
   return static_cast<int>(zero_based);
+}
+
+// A face corner "v", "v/vt", "v//vn" or "v/vt/vn": its vertex and texture coordinate
+// (-1 when none is given).
+struct ObjCorner {
+  int vertex = 0, texcoord = -1;
+};
+ObjCorner ParseObjCorner(const mjcf::MeshSpec& mesh, const std::string& token, int nvert,
+                         int ntexcoord, int line) {
+  ObjCorner corner;
+  const char* end = nullptr;
+  corner.vertex = ObjIndex(mesh, token.c_str(), nvert, line, &end);
+  if (end[0] == '/' && end[1] != '/' && end[1] != '\0') {
+    corner.texcoord = ObjIndex(mesh, end + 1, ntexcoord, line, &end);
+  }
+  return corner;
 }
 
 // Only the first group or object with faces is used (MuJoCo takes the first shape).
 MeshData ReadObj(const mjcf::MeshSpec& mesh, const std::string& bytes) {
   MeshData out;
-  std::vector<std::vector<int>> polygons;
+  std::vector<std::vector<ObjCorner>> polygons;
   bool first_shape_done = false;
   std::istringstream in(bytes);
   std::string text;
@@ -279,10 +299,19 @@ MeshData ReadObj(const mjcf::MeshSpec& mesh, const std::string& bytes) {
         if (words >> t) value = std::strtod(t.c_str(), nullptr);
         target->push_back(static_cast<float>(value));
       }
+    } else if (key == "vt") {
+      // u and v (a third number is ignored); v is flipped, as MuJoCo stores it
+      for (int k = 0; k < 2; k++) {
+        std::string t;
+        double value = 0;
+        if (words >> t) value = std::strtod(t.c_str(), nullptr);
+        out.texcoord.push_back(k == 0 ? static_cast<float>(value) : 1 - static_cast<float>(value));
+      }
     } else if (key == "f" && !first_shape_done) {
-      std::vector<int> poly;
+      std::vector<ObjCorner> poly;
       int nvert = static_cast<int>(out.vert.size() / 3);
-      for (std::string t; words >> t;) poly.push_back(ObjVertexIndex(mesh, t, nvert, line));
+      int ntexcoord = static_cast<int>(out.texcoord.size() / 2);
+      for (std::string t; words >> t;) poly.push_back(ParseObjCorner(mesh, t, nvert, ntexcoord, line));
       if (poly.size() >= 3) polygons.push_back(std::move(poly));
     } else if ((key == "g" || key == "o") && !polygons.empty()) {
       first_shape_done = true;
@@ -292,19 +321,30 @@ MeshData ReadObj(const mjcf::MeshSpec& mesh, const std::string& bytes) {
   // Triangles; a left-handed scale swaps each triangle's 2nd and 3rd corner.
   bool righthand = RightHanded(mesh);
   int nvert = static_cast<int>(out.vert.size() / 3);
-  for (const std::vector<int>& poly : polygons) {
-    for (int vi : poly) {
-      if (vi >= nvert) {
-        ThrowAt(mesh.src, "OBJ file '" + mesh.path + "': vertex index " + std::to_string(vi + 1) +
-                              " does not exist");
+  int ntexcoord = static_cast<int>(out.texcoord.size() / 2);
+  for (const std::vector<ObjCorner>& poly : polygons) {
+    std::vector<int> vertex_of, corners;
+    for (const ObjCorner& c : poly) {
+      if (c.vertex >= nvert) {
+        ThrowAt(mesh.src, "OBJ file '" + mesh.path + "': vertex index " +
+                              std::to_string(c.vertex + 1) + " does not exist");
       }
+      if (c.texcoord >= ntexcoord) {
+        ThrowAt(mesh.src, "OBJ file '" + mesh.path + "': texture coordinate index " +
+                              std::to_string(c.texcoord + 1) + " does not exist");
+      }
+      corners.push_back(static_cast<int>(vertex_of.size()));
+      vertex_of.push_back(c.vertex);
     }
     std::vector<int> tris;
-    Triangulate(out.vert, poly, &tris);
+    Triangulate(out.vert, vertex_of, corners, &tris);
     for (size_t t = 0; t < tris.size(); t += 3) {
-      out.face.push_back(tris[t]);
-      out.face.push_back(tris[t + (righthand ? 1 : 2)]);
-      out.face.push_back(tris[t + (righthand ? 2 : 1)]);
+      for (int k : {0, righthand ? 1 : 2, righthand ? 2 : 1}) {
+        const ObjCorner& c = poly[tris[t + k]];
+        out.face.push_back(c.vertex);
+        // (a corner without a coordinate takes the first, as MuJoCo's reader does)
+        if (ntexcoord > 0) out.facetexcoord.push_back(std::max(c.texcoord, 0));
+      }
     }
   }
   return out;
@@ -338,9 +378,12 @@ MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
   MeshData out;
   out.vert.resize(3 * static_cast<size_t>(n[0]));
   out.normal.resize(3 * static_cast<size_t>(n[1]));
+  out.texcoord.resize(2 * static_cast<size_t>(n[2]));
   out.face.resize(3 * static_cast<size_t>(n[3]));
   CopyFromBytes(bytes.data() + sizeof(n), &out.vert);
   CopyFromBytes(bytes.data() + sizeof(n) + out.vert.size() * sizeof(float), &out.normal);
+  CopyFromBytes(bytes.data() + sizeof(n) + (out.vert.size() + out.normal.size()) * sizeof(float),
+                &out.texcoord);
   CopyFromBytes(bytes.data() + sizeof(n) + floats * sizeof(float), &out.face);
   if (!RightHanded(mesh)) {
     for (size_t i = 0; i < out.face.size(); i += 3) std::swap(out.face[i + 1], out.face[i + 2]);

@@ -17,6 +17,8 @@ struct MeshData {
   std::vector<float> vert;
   std::vector<int> face;
   std::vector<float> normal;
+  std::vector<float> texcoord;   // u v per coordinate
+  std::vector<int> facetexcoord; // a coordinate per face corner (empty: the face's vertex)
 };
 
 // Reads mesh.path, from `assets` (may be null) when one has its file name, else from

@@ -85,7 +85,7 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   }
   if (in_default) return;
 
-  // Geometry: a file or inline data (and normals); texture coordinates are checked only.
+  // Geometry: a file or inline data (and normals, texture coordinates).
   if (e.Has("file")) {
     e.RequiredText("file", &mesh->file);
     mesh->path = AssetPath(mesh->file, spec_->compiler.meshdir);
@@ -94,7 +94,7 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   mesh->vertex = ReadList(e, "vertex", ParseFloat);
   mesh->face = ReadList(e, "face", ParseInt);
   mesh->normal = ReadList(e, "normal", ParseFloat);
-  ReadList(e, "texcoord", ParseFloat);
+  mesh->texcoord = ReadList(e, "texcoord", ParseFloat);
   e.Bool("smoothnormal", &mesh->smoothnormal);
   e.Numbers("refpos", mesh->refpos);
   e.Numbers("refquat", mesh->refquat);

@@ -389,6 +389,7 @@ struct MeshSpec {
   std::vector<float> vertex;
   std::vector<int> face;
   std::vector<float> normal;  // inline normals (x y z each); empty: the compiler makes them
+  std::vector<float> texcoord;  // inline texture coordinates (u v per vertex)
   bool smoothnormal = false;  // keep faces at large angles in the vertex normals
   std::array<double, 3> refpos = {0, 0, 0};
   std::array<double, 4> refquat = {1, 0, 0, 0};

@@ -281,7 +281,8 @@ class Lab {
       'geom_matid', 'mat_rgba', 'mat_specular', 'mat_shininess', 'mat_emission', 'mat_texid',
       'mat_texrepeat', 'mat_texuniform', 'tex_type', 'tex_width', 'tex_height', 'tex_nchannel',
       'tex_adr', 'tex_data', 'light_type', 'light_active', 'light_castshadow', 'light_ambient',
-      'light_diffuse', 'light_cutoff', 'light_exponent'];
+      'light_diffuse', 'light_cutoff', 'light_exponent', 'mesh_texcoordadr', 'mesh_texcoord',
+      'mesh_facetexcoord'];
     const model = {};
     for (const name of names) model[name] = this.array('model', name) ?? new Float64Array(0);
     return model;

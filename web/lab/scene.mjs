@@ -47,11 +47,27 @@ function heightFieldGeometry(model, id) {
 }
 
 // A triangle mesh of mesh `id` in the geom's frame (the compiler already centred it).
+// With texture coordinates, every face corner gets its own vertex (a vertex can have
+// different coordinates in different faces).
 function meshGeometry(model, id) {
   const vadr = model.mesh_vertadr[id], vnum = model.mesh_vertnum[id];
   const fadr = model.mesh_faceadr[id], fnum = model.mesh_facenum[id];
-  const positions = Float32Array.from(model.mesh_vert.subarray(3 * vadr, 3 * (vadr + vnum)));
-  return indexedGeometry(positions, Array.from(model.mesh_face.subarray(3 * fadr, 3 * (fadr + fnum))));
+  const tadr = model.mesh_texcoordadr?.[id] ?? -1;
+  if (tadr < 0) {
+    const positions = Float32Array.from(model.mesh_vert.subarray(3 * vadr, 3 * (vadr + vnum)));
+    return indexedGeometry(positions, Array.from(model.mesh_face.subarray(3 * fadr, 3 * (fadr + fnum))));
+  }
+  const positions = new Float32Array(9 * fnum), uvs = new Float32Array(6 * fnum);
+  for (let c = 0; c < 3 * fnum; c++) {
+    const v = vadr + model.mesh_face[3 * fadr + c], t = tadr + model.mesh_facetexcoord[3 * fadr + c];
+    positions.set(model.mesh_vert.subarray(3 * v, 3 * v + 3), 3 * c);
+    uvs.set(model.mesh_texcoord.subarray(2 * t, 2 * t + 2), 2 * c);
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setAttribute('uv', new THREE.BufferAttribute(uvs, 2));
+  geometry.computeVertexNormals();
+  return geometry;
 }
 
 function indexedGeometry(positions, indices) {
