@@ -125,9 +125,9 @@ void CompileCameras(const mjcf::ModelSpec& spec, const CompileState& state, Mode
   }
 }
 
-void CameraConstants(Model* m) {
-  if (m->ncam == 0) return;
-  // The fixed poses at qpos0 (every camera as if its mode were fixed).
+void CamLightConstants(Model* m) {
+  if (m->ncam == 0 && m->nlight == 0) return;
+  // The fixed poses at qpos0 (every camera and light as if its mode were fixed).
   Data d = MakeData(*m);
   Kinematics(*m, d);
   ComPos(*m, d);
@@ -139,6 +139,15 @@ void CameraConstants(Model* m) {
     math::Sub3(&m->cam_pos0[3 * i], &d.cam_xpos[3 * i], &d.xpos[3 * body]);
     math::Sub3(&m->cam_poscom0[3 * i], &d.cam_xpos[3 * i], &d.subtree_com[3 * com_body]);
     for (int k = 0; k < 9; k++) m->cam_mat0[9 * i + k] = d.cam_xmat[9 * i + k];
+  }
+  for (int i = 0; i < m->nlight; i++) {
+    LightFixedPose(*m, d, i);
+    int body = m->light_bodyid[i];
+    int target = m->light_targetbodyid[i];
+    int com_body = target >= 0 ? target : body;
+    math::Sub3(&m->light_pos0[3 * i], &d.light_xpos[3 * i], &d.xpos[3 * body]);
+    math::Sub3(&m->light_poscom0[3 * i], &d.light_xpos[3 * i], &d.subtree_com[3 * com_body]);
+    math::Copy3(&m->light_dir0[3 * i], &d.light_xdir[3 * i]);
   }
 }
 

@@ -142,8 +142,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   } catch (const PluginInitError& e) {
     mjcf::ThrowAt(PluginInstanceSource(spec, e.instance), e.what());
   }
-  CameraConstants(&m);
-  LightConstants(&m);
+  CamLightConstants(&m);
   EqualityConstants(&m);
   AutoSpringDamper(state, &m);
   ComputeLengthRanges(spec, &m);

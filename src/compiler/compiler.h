@@ -149,8 +149,8 @@ void GeomFluid(const GeomState& g, double* fluid);
 void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
 // Textures, materials and lights (visual.cc): textures made before the sizes (their
-// bytes count), the rest laid out with the tree; the lights' tracking offsets at qpos0
-// once the constants are known.
+// bytes count), the rest laid out with the tree (the lights' tracking offsets come with
+// the cameras', CamLightConstants).
 struct TextureImage {
   int width = 0, height = 0, nchannel = 3;
   int colorspace = 0;  // mjtColorSpace; a file's when the texture says auto
@@ -161,13 +161,14 @@ void VisualSizes(const mjcf::ModelSpec& spec, const CompileState& state,
                  const std::vector<TextureImage>& images, Model* m);
 void LayoutVisual(const mjcf::ModelSpec& spec, const CompileState& state,
                   const std::vector<TextureImage>& images, Model* m);
-void LightConstants(Model* m);
 
 // Cameras in body order (camera.cc); their tracking offsets at qpos0 once the
 // constants are known.
 int CameraCount(const CompileState& state);
 void CompileCameras(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
-void CameraConstants(Model* m);
+// The tracking offsets of cameras and lights (cam_pos0, light_dir0, ...), from one pose
+// of the model at qpos0.
+void CamLightConstants(Model* m);
 void CompileTendons(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 void CompileEqualities(const mjcf::ModelSpec& spec, Model* m);
 // Stiffness and damping of joints given as springdamper (constants.cc).

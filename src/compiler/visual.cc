@@ -352,21 +352,4 @@ void LayoutVisual(const mjcf::ModelSpec& spec, const CompileState& state,
   }
 }
 
-void LightConstants(Model* m) {
-  if (m->nlight == 0) return;
-  // The fixed poses at qpos0 (every light as if its mode were fixed).
-  Data d = MakeData(*m);
-  Kinematics(*m, d);
-  ComPos(*m, d);
-  for (int i = 0; i < m->nlight; i++) {
-    LightFixedPose(*m, d, i);
-    int body = m->light_bodyid[i];
-    int target = m->light_targetbodyid[i];
-    int com_body = target >= 0 ? target : body;
-    math::Sub3(&m->light_pos0[3 * i], &d.light_xpos[3 * i], &d.xpos[3 * body]);
-    math::Sub3(&m->light_poscom0[3 * i], &d.light_xpos[3 * i], &d.subtree_com[3 * com_body]);
-    math::Copy3(&m->light_dir0[3 * i], &d.light_xdir[3 * i]);
-  }
-}
-
 }  // namespace simlab::compiler

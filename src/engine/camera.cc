@@ -51,6 +51,12 @@ void TrackPose(const Model& m, Data& d, int i) {
   }
 }
 
+// The point the targetbody modes look at: the target's origin, or its subtree centre of
+// mass (targetbodycom).
+const double* TargetPoint(const Data& d, int mode, int target) {
+  return mode == kCamTargetBody ? &d.xpos[3 * target] : &d.subtree_com[3 * target];
+}
+
 }  // namespace
 
 void CameraFixedPose(const Model& m, Data& d, int i) {
@@ -87,11 +93,7 @@ void LightPose(const Model& m, Data& d, int i) {
       break;
     case kCamTargetBody:
     case kCamTargetBodyCom:
-      if (target >= 0) {
-        const double* point = m.light_mode[i] == kCamTargetBody ? &d.xpos[3 * target]
-                                                                : &d.subtree_com[3 * target];
-        Sub3(xdir, point, xpos);
-      }
+      if (target >= 0) Sub3(xdir, TargetPoint(d, m.light_mode[i], target), xpos);
       break;
     default:
       break;
@@ -115,9 +117,7 @@ void CamLight(const Model& m, Data& d) {
       case kCamTargetBodyCom:
         // Without a target body the camera stays fixed.
         if (target >= 0) {
-          const double* point = m.cam_mode[i] == kCamTargetBody ? &d.xpos[3 * target]
-                                                                : &d.subtree_com[3 * target];
-          LookAt(&d.cam_xpos[3 * i], point, &d.cam_xmat[9 * i]);
+          LookAt(&d.cam_xpos[3 * i], TargetPoint(d, m.cam_mode[i], target), &d.cam_xmat[9 * i]);
         }
         break;
       default:

@@ -32,6 +32,10 @@ void ReadModel(const std::string& text, const std::string& file, ParsedModel* ou
 
 // Is `tag` one of the <actuator> section's elements (general, motor, ..., pid)?
 bool IsActuatorElement(const std::string& tag);
+// A file name without folders and extension (reader_mesh.cc).
+std::string StemOf(const std::string& path);
+// The modes of cameras and lights, mjtCamLight (reader_sections.cc).
+extern const std::initializer_list<Keyword> kCamLightModes;
 
 // The reader's state while walking one document.
 class Reader {

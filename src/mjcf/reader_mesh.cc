@@ -53,12 +53,6 @@ std::string FolderOf(const std::string& path) {
   return slash == std::string::npos ? "" : path.substr(0, slash + 1);
 }
 
-// A file name without folders and extension: the name of an unnamed mesh.
-std::string StemOf(const std::string& path) {
-  std::string base = path.substr(path.find_last_of('/') + 1);
-  size_t dot = base.find_last_of('.');
-  return dot == std::string::npos ? base : base.substr(0, dot);
-}
 
 }  // namespace
 
@@ -119,6 +113,14 @@ void Reader::ReadBuiltin(const XmlElement& e, MeshSpec* mesh) const {
   if (!mesh->vertex.empty()) e.Fail("builtin mesh cannot be used with user vertex data");
   // A plate is flat: MuJoCo gives it shell inertia whatever the element says.
   if (mesh->builtin == kMeshBuiltinPlate) mesh->inertia = kMeshShell;
+}
+
+// A file name without folders and extension: the name of an
+// unnamed mesh or texture.
+std::string StemOf(const std::string& path) {
+  std::string base = path.substr(path.find_last_of('/') + 1);
+  size_t dot = base.find_last_of('.');
+  return dot == std::string::npos ? base : base.substr(0, dot);
 }
 
 // A file an asset names, found against the model's folder and `dir` (the asset kind's

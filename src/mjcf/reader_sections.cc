@@ -466,10 +466,11 @@ void Reader::Keyframe(const XmlElement& e) {
 
 // ---------------------------------------------------------------- cameras and lights
 
-namespace {
-
 const std::initializer_list<Keyword> kCamLightModes = {
     {"fixed", 0}, {"track", 1}, {"trackcom", 2}, {"targetbody", 3}, {"targetbodycom", 4}};
+
+namespace {
+
 const std::initializer_list<Keyword> kProjections = {{"perspective", 0}, {"orthographic", 1}};
 const std::initializer_list<Keyword> kCameraOutputs = {
     {"rgb", 1}, {"depth", 2}, {"distance", 4}, {"normal", 8}, {"segmentation", 16}};

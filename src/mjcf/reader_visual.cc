@@ -22,8 +22,6 @@ const std::initializer_list<Keyword> kTextureRoles = {
     {"normal", 5}, {"opacity", 6}, {"emissive", 7},  {"rgba", 8},      {"orm", 9}};
 const std::initializer_list<Keyword> kLightTypes = {
     {"spot", 0}, {"directional", 1}, {"point", 2}, {"image", 3}};
-const std::initializer_list<Keyword> kLightModes = {
-    {"fixed", 0}, {"track", 1}, {"trackcom", 2}, {"targetbody", 3}, {"targetbodycom", 4}};
 
 // The six files of a cube texture given face by face, in MuJoCo's face order.
 constexpr const char* kCubeFileAttrs[6] = {"fileright", "fileleft", "fileup",
@@ -63,10 +61,7 @@ void Reader::ReadTexture(const XmlElement& e, TextureSpec* tex) const {
     }
   }
   // An unnamed texture is named by its file, as MuJoCo does.
-  if (tex->src.name.empty() && !tex->file.empty()) {
-    std::string base = tex->file.substr(tex->file.find_last_of('/') + 1);
-    tex->src.name = base.substr(0, base.find_last_of('.'));
-  }
+  if (tex->src.name.empty() && !tex->file.empty()) tex->src.name = StemOf(tex->file);
 }
 
 void Reader::ReadMaterial(const XmlElement& e, MaterialSpec* mat, bool in_default) const {
@@ -117,7 +112,7 @@ void Reader::ReadLight(const XmlElement& e, LightSpec* light, bool in_default) c
     e.Text("target", &light->target);
     e.Text("texture", &light->texture);
   }
-  e.Enum("mode", &light->mode, kLightModes);
+  e.Enum("mode", &light->mode, kCamLightModes);
   // directional is the older spelling of type="directional" (spot when false).
   bool directional = false;
   if (e.Bool("directional", &directional)) light->type = directional ? 1 : 0;

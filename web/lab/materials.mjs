@@ -92,6 +92,7 @@ export class Materials {
   constructor(model) {
     this.model = model;
     this.textures = new Map();  // texture id -> three.js texture (made once)
+    this.repeats = new Map();   // "material:repeat" -> that texture with the material's repeat
   }
 
   texture(t) {
@@ -100,6 +101,11 @@ export class Materials {
       this.textures.set(t, m.tex_type[t] === kTexture2D ? texture2D(m, t) : cubeTexture(m, t));
     }
     return this.textures.get(t);
+  }
+
+  // Frees every texture made (the GPU side).
+  dispose() {
+    for (const texture of [...this.textures.values(), ...this.repeats.values()]) texture.dispose();
   }
 
   // The skybox: the first skybox texture, as the scene's background (z up), or null.
@@ -148,23 +154,24 @@ export class Materials {
       // (one checker pair per metre, the map applied over the plane's full size)
       params.map.repeat.set(size[0], size[1]);
     }
-    if (params.map) params.color = new THREE.Color(1, 1, 1).multiply(params.color);
     return new THREE.MeshPhongMaterial(params);
   }
 
-  // A copy of `texture` with material mat's repeat: per unit length on a plane of half
-  // size `size` when texuniform, else over the whole surface.
+  // `texture` with material mat's repeat: per unit length on a plane of half size `size`
+  // when texuniform, else over the whole surface. Geoms with the same repeat share one
+  // copy (one upload).
   repeated(texture, mat, size) {
     const m = this.model;
-    const copy = texture.clone();
-    copy.needsUpdate = true;
     const [rx, ry] = [m.mat_texrepeat[2 * mat], m.mat_texrepeat[2 * mat + 1]];
-    if (size && m.mat_texuniform[mat]) {
-      copy.repeat.set(2 * size[0] * rx, 2 * size[1] * ry);
-    } else {
-      copy.repeat.set(rx, ry);
+    const repeat = size && m.mat_texuniform[mat] ? [2 * size[0] * rx, 2 * size[1] * ry] : [rx, ry];
+    const key = `${mat}:${repeat.join(',')}`;
+    if (!this.repeats.has(key)) {
+      const copy = texture.clone();
+      copy.needsUpdate = true;
+      copy.repeat.set(repeat[0], repeat[1]);
+      this.repeats.set(key, copy);
     }
-    return copy;
+    return this.repeats.get(key);
   }
 }
 

@@ -492,6 +492,7 @@ export class LabScene {
       const materials = Array.isArray(object.material) ? object.material : [object.material];
       for (const material of materials) material?.dispose();
     });
+    this.materials?.dispose();
     this.renderer.dispose();
     this.renderer.domElement.remove();
   }
