@@ -30,6 +30,7 @@
 #include "engine/engine.h"
 #include "simlab/perturb.h"
 #include "simlab/simlab.h"
+#include "simlab/state_history.h"
 
 namespace simlab::web {
 namespace {
@@ -218,15 +219,18 @@ class Simulation {
 
   // ---- state
   // Engine errors (std::exception) reach JavaScript as Errors with their message.
+  // A reset starts the history anew from the reset state.
   void Reset() {
     Guarded([&] {
       ResetData(m_, d_);
+      RestartHistory();
       return 0;
     });
   }
   void ResetKeyframe(const val& key) {
     Guarded([&] {
       ResetDataKeyframe(m_, d_, KeyIndex(key));
+      RestartHistory();
       return 0;
     });
   }
@@ -236,18 +240,39 @@ class Simulation {
       return 0;
     });
   }
+  // Each step is recorded in the history (stepping on from a scrubbed-back state drops
+  // the states after it).
   void Step(int n) {
     Guarded([&] {
       for (int i = 0; i < n; i++) {
         // (a mouse perturbation's springs act in every step)
         ApplyPerturbForce(m_, d_, perturb_);
         simlab::Step(m_, d_);
+        history_.Record(m_, d_);
       }
       return 0;
     });
   }
   void StepOnce() { Step(1); }
   double Time() const { return d_.time; }
+
+  // ---- the history of the last seconds (simlab/state_history.h), as simulate's
+  // {size, back, capacity, oldest, newest}: states kept, how far back the state now is,
+  // and the times of the oldest and newest.
+  val History() const {
+    return NumbersObject({{"size", history_.size()}, {"back", history_.back()},
+                          {"capacity", history_.capacity()},
+                          {"oldest", history_.TimeAt(history_.size() - 1)},
+                          {"newest", history_.TimeAt(0)}});
+  }
+  // Loads the state `back` states before the newest and runs forward (for drawing).
+  void Scrub(int back) {
+    Guarded([&] {
+      history_.Load(m_, d_, back);
+      simlab::Forward(m_, d_);
+      return 0;
+    });
+  }
   void SetTime(double t) { d_.time = t; }
 
   // ---- arrays by name (looked up in tables built once: no allocation in wasm memory)
@@ -401,10 +426,16 @@ class Simulation {
 
  private:
   explicit Simulation(simlab::Model&& m)
-      : m_(std::move(m)), d_(MakeData(m_)), model_fields_(m_.Fields()),
+      : m_(std::move(m)), d_(MakeData(m_)),
+        history_(m_, StateHistory::CapacityFor(m_, kHistorySeconds)), model_fields_(m_.Fields()),
         data_fields_(DataFields(m_, d_)), first_row_field_(data_fields_.size()) {
     data_fields_.resize(first_row_field_ + kRowFieldCount);
     RefreshRowFields();
+    history_.Record(m_, d_);
+  }
+  void RestartHistory() {
+    history_.Clear();
+    history_.Record(m_, d_);
   }
   static simlab::Model Load(const std::string& filename, const std::string& xml,
                             const val& files);
@@ -427,6 +458,9 @@ class Simulation {
   simlab::Model m_;
   simlab::Data d_;
   simlab::Perturb perturb_;
+  // The last kHistorySeconds of simulated time (at most 64 MiB of states).
+  static constexpr double kHistorySeconds = 10;
+  StateHistory history_;
   // Name -> array tables, built once. Model arrays never move and Data's own arrays are
   // allocated once by MakeData; the efc_* arrays (after first_row_field_) are resized by
   // every step, so their pointers and row counts are read again before each lookup.
@@ -596,6 +630,8 @@ EMSCRIPTEN_BINDINGS(simlab) {
       .function("forward", &Simulation::Forward)
       .function("step", &Simulation::Step)
       .function("step", &Simulation::StepOnce)
+      .function("history", &Simulation::History)
+      .function("scrub", &Simulation::Scrub)
       .function("perturbSelect", &Simulation::PerturbSelect)
       .function("perturbStart", &Simulation::PerturbStart)
       .function("perturbMoveTo", &Simulation::PerturbMoveTo)

@@ -5,6 +5,8 @@
 // mountModelViewer(element, folder, filename) does the same for any model, with panels
 // generated from it (simlab view). See web/README.md, "The lab".
 import { arrayReader, arraysOf, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
+import { HistoryScrubber } from './history.mjs';
+import { actuatorPoint, kLabelKinds, labelTexts } from './labels.mjs';
 import { gatherModelFiles } from './model_files.mjs';
 import { modelInfo, specFromModel } from './panels.mjs';
 import { Perturber } from './perturb.mjs';
@@ -121,6 +123,16 @@ const kStyle = `
 .simlab-lab-info { position: absolute; left: 8px; top: 8px; margin: 0; padding: 4px 6px;
   font: 11px ui-monospace, monospace; color: #fff; background: rgba(20, 30, 45, 0.6);
   border-radius: 4px; pointer-events: none; }
+.simlab-lab-history { display: inline-flex; align-items: center; gap: 4px; }
+.simlab-lab-history input { width: 9em; }
+.simlab-lab-history-text { font-variant-numeric: tabular-nums; min-width: 5.5em; color: #555; }
+.simlab-lab-inset { position: absolute; box-sizing: border-box; border: 2px solid rgba(255, 255, 255, 0.9);
+  box-shadow: 0 0 0 1px rgba(20, 30, 45, 0.5); border-radius: 3px; pointer-events: none;
+  font: 11px system-ui, sans-serif; color: #fff; }
+.simlab-lab-inset span { background: rgba(20, 30, 45, 0.6); padding: 1px 5px; border-radius: 0 0 3px 0; }
+.simlab-lab-labels { position: absolute; left: 0; top: 0; pointer-events: none; }
+.simlab-lab-label { position: absolute; left: 0; top: 0; font: 11px system-ui, sans-serif; color: #fff;
+  white-space: nowrap; text-shadow: 0 0 2px #000, 0 0 2px #000; }
 .simlab-lab-pickable { cursor: pointer; border-radius: 3px; padding: 0 3px; }
 .simlab-lab-pickable:hover { background: #eef2f8; }
 .simlab-lab-picked { background: #dde8f7; }
@@ -192,7 +204,7 @@ export async function mountModelViewer(element, source, options = {}) {
     const { simlab, sim } = await openModel(distUrl, source);
     status.remove();
     const lab = new Lab(root, specFromModel(modelInfo(sim), filename), sim, contactLayoutOf(simlab),
-                        { keyboard: true, exports: true, perturb: true, info: true });
+                        { keyboard: true, exports: true, perturb: true, info: true, inset: false });
     element.simlabLab = lab;
     return lab;
   } catch (error) {
@@ -216,6 +228,8 @@ class Lab {
     this.modelArrays = new Map();
     this.dataViews = new DataViews(sim);
     this.read = arrayReader((source, name) => this.array(source, name));
+    this.history = new HistoryScrubber(sim);
+    this.labelItems = [];
     // Frame rate and real-time factor over the last half second; engineFactor is simulated
     // time per second spent stepping (how much faster than real time it could run).
     // totalFrames: counted since mounting.
@@ -295,7 +309,8 @@ class Lab {
     const reset = bar.appendChild(make('button', 'simlab-lab-reset', 'reset'));
     reset.addEventListener('click', () => this.guarded(() => this.reset()));
     const step = bar.appendChild(make('button', 'simlab-lab-step', 'step'));
-    step.addEventListener('click', () => this.guarded(() => this.stepOnce()));
+    step.addEventListener('click', () => this.guarded(() => this.stepForward()));
+    this.buildHistory(bar);
     this.speedSelect = bar.appendChild(this.buildSelect('simlab-lab-speed', 'speed',
       kSpeeds.map((speed) => [String(speed), `speed ${speedText(speed)}`]), (value) => this.setSpeed(Number(value))));
     if (this.spec.keys?.length) {
@@ -308,6 +323,8 @@ class Lab {
       this.keySelect.value = this.key === null || this.key === undefined ? '' : String(this.key);
     }
     this.buildCameraSelect(bar);
+    this.buildLabelSelect(bar);
+    this.buildInsetToggle(bar);
     for (const name of this.spec.toggles ?? []) {
       if (!(name in this.toggles)) continue;
       const label = bar.appendChild(make('label', 'simlab-lab-toggle'));
@@ -356,6 +373,133 @@ class Lab {
     this.cameraSelect = bar.appendChild(this.buildSelect('simlab-lab-camera', 'camera',
       this.cameraChoices.map(({ label }, k) => [String(k), label]), (value) => this.chooseCamera(Number(value))));
     this.scene.onLeaveFixed = () => this.chooseCamera(0);
+  }
+
+  // The history slider (simulate's): from the oldest state kept (left) to the newest
+  // (right), with how far back the state shown is, in seconds. Moving it pauses and loads
+  // that state; Left and Right arrows move one step (see stepBack, stepForward).
+  buildHistory(bar) {
+    const box = bar.appendChild(make('label', 'simlab-lab-history', 'history '));
+    this.historySlider = box.appendChild(make('input'));
+    Object.assign(this.historySlider, { type: 'range', min: 0, max: 0, step: 1, value: 0 });
+    this.historySlider.setAttribute('aria-label', 'history');
+    this.historyText = box.appendChild(make('span', 'simlab-lab-history-text'));
+    this.historySlider.addEventListener('input', () => this.guarded(() => {
+      this.scrubTo(Number(this.historySlider.max) - Number(this.historySlider.value));
+    }));
+  }
+
+  // The slider and its text from the engine's history now (DOM writes only on change).
+  showHistory() {
+    const { slider, text } = this.history.sliderState(this.sim.time);
+    if (this.historySlider.max !== slider.max) this.historySlider.max = slider.max;
+    if (this.historySlider.value !== slider.value) this.historySlider.value = slider.value;
+    if (this.historyText.textContent !== text) this.historyText.textContent = text;
+  }
+
+  // Pauses and shows the state `back` steps before the newest (clamped to what is kept).
+  // Plots keep their samples until the simulation steps on from there.
+  scrubTo(back) {
+    this.pause();
+    if (!this.history.scrubTo(back)) return;
+    this.scrubbed = true;
+    this.syncControls();
+    this.draw();
+  }
+
+  // Left arrow: one state back in the history.
+  stepBack() {
+    this.scrubTo(this.history.back() + 1);
+  }
+
+  // Right arrow and the step button: one state forward in the history when scrubbed
+  // back, else one step of the simulation.
+  stepForward() {
+    const back = this.history.back();
+    if (back > 0) this.scrubTo(back - 1);
+    else this.stepOnce();
+  }
+
+  // Stepping on from a scrubbed state: the plots' samples after it are dropped (the
+  // engine drops the newer states).
+  leaveScrubbed() {
+    if (!this.scrubbed) return;
+    this.scrubbed = false;
+    for (const { plot } of this.plots) plot.dropAfter(this.sim.time);
+  }
+
+  // The sliders show the values their targets hold now (a scrubbed state brings its ctrl).
+  syncControls() {
+    for (const control of this.controls) {
+      if (!control.target) continue;
+      control.slider.value = this.dataViews.get(control.target.name)[control.target.index];
+      control.shown.textContent = `${Number(control.slider.value)} ${control.spec.unit ?? ''}`;
+    }
+  }
+
+  // simulate's label option: the name of every object of one kind over the view.
+  buildLabelSelect(bar) {
+    const sizes = this.sim.sizes();
+    const kinds = Object.keys(kLabelKinds).filter((kind) => {
+      const { size, first = 0 } = kLabelKinds[kind];
+      return sizes[size] > first;
+    });
+    const choices = [['', 'no labels'], ...kinds.map((kind) => [kind, `label ${kind}`])];
+    this.labelSelect = bar.appendChild(this.buildSelect('simlab-lab-label-kind', 'labels', choices,
+      (value) => this.guarded(() => this.chooseLabels(value))));
+  }
+
+  // Labels on every object of `kind` ('' for none): their texts and the Data array and
+  // index of their positions are looked up now, the positions read every frame.
+  chooseLabels(kind) {
+    const model = { actuator_trntype: this.array('model', 'actuator_trntype'),
+                    actuator_trnid: this.array('model', 'actuator_trnid') };
+    const nameOf = (k, id) => this.sim.idToName(k, id);
+    this.labelItems = [];
+    for (const { id, text } of kind ? labelTexts(kind, this.sim.sizes(), nameOf) : []) {
+      const [array, index] = kind === 'actuator' ? actuatorPoint(model, id) ?? [] : [kLabelKinds[kind].array, id];
+      if (!array || !this.dataViews.get(array)) continue;
+      this.labelItems.push({ text, array, index, position: [0, 0, 0] });
+    }
+    if (this.labelSelect) this.labelSelect.value = kind;
+    this.sceneStale = true;
+    this.draw();
+  }
+
+  // The labels at their objects' positions now.
+  drawLabels() {
+    if (!this.labelItems.length && !this.labelsShown) return;
+    for (const item of this.labelItems) {
+      const view = this.dataViews.get(item.array);
+      for (let k = 0; k < 3; k++) item.position[k] = view[3 * item.index + k];
+    }
+    this.scene.drawLabels(this.labelItems);
+    this.labelsShown = this.labelItems.length > 0;
+  }
+
+  // A close-up in the view's corner through the model's first camera (a lesson's model
+  // places one where the action is: the gantry's follows the fingers and the cube), on
+  // by default in a lesson's lab; a checkbox turns it off and on.
+  buildInsetToggle(bar) {
+    if (!this.sim.sizes().ncam) return;
+    const label = bar.appendChild(make('label', 'simlab-lab-toggle'));
+    this.insetBox = label.appendChild(make('input'));
+    this.insetBox.type = 'checkbox';
+    this.insetBox.className = 'simlab-lab-inset-toggle';
+    this.insetBox.checked = this.options.inset ?? true;
+    label.append(' inset');
+    this.insetBox.addEventListener('change', () => this.guarded(() => this.showInset(this.insetBox.checked)));
+    this.showInset(this.insetBox.checked);
+  }
+
+  showInset(on) {
+    const name = this.sim.idToName('camera', 0);
+    // (on the left, where a lesson's camera leaves floor; on the right beside the
+    // viewer's info panel)
+    const side = this.options.info ? 'right' : 'left';
+    this.scene.setInset(on ? { camera: 0, fovy: this.sim.model('cam_fovy')[0], label: `camera ${name || 0}`, side } : null);
+    this.sceneStale = true;
+    if (this.state.geom_xpos) this.drawScene();
   }
 
   // Draws with camera choice k (an index into cameraChoices).
@@ -423,7 +567,8 @@ class Lab {
   }
 
   // simulate's keys, on the whole page (for a page with one lab): Space plays or pauses,
-  // Right arrow takes one step, Backspace resets, '-' and '=' slow down and speed up, '['
+  // Right arrow takes one step (or one state forward in the history when scrubbed back),
+  // Left arrow goes one state back in the history, Backspace resets, '-' and '=' slow down and speed up, '['
   // and ']' change the camera and Escape goes back to the free one.
   // Keys typed into a form field, or pressed on a focused button, are theirs.
   listenToKeys() {
@@ -432,7 +577,8 @@ class Lab {
       if (['INPUT', 'SELECT', 'TEXTAREA', 'BUTTON'].includes(tag) || event.ctrlKey || event.metaKey || event.altKey) return;
       const actions = {
         ' ': () => (this.playing ? this.pause() : this.play()),
-        ArrowRight: () => this.stepOnce(),
+        ArrowRight: () => this.stepForward(),
+        ArrowLeft: () => this.stepBack(),
         Backspace: () => this.reset(),
         '-': () => this.changeSpeed(-1),
         '=': () => this.changeSpeed(1),
@@ -608,13 +754,15 @@ class Lab {
       if (r.value.textContent !== text) r.value.textContent = text;
     }
     const time = this.sim.time;
-    for (const { traces, values, plot } of this.plots) {
+    // (a scrubbed state is shown, not plotted: the plots keep the newer samples)
+    for (const { traces, values, plot } of this.scrubbed ? [] : this.plots) {
       for (let i = 0; i < traces.length; i++) values[i] = traces[i] ? this.evaluate(traces[i]) : NaN;
       plot.push(time, values);
       plot.draw();
     }
     this.sceneStale = true;
     if (this.onScreen) this.drawScene();
+    if (this.historySlider) this.showHistory();
   }
 
   // The 3D view: posed anew from the state when a draw left it stale, then rendered.
@@ -623,6 +771,7 @@ class Lab {
     this.sceneStale = false;
     if (this.perturber) this.scene.setPerturbLine(this.perturber.line());
     this.scene.render();
+    this.drawLabels();
   }
 
   // What the view draws (one object, refilled every frame): contacts as ncon rows of
@@ -726,6 +875,7 @@ class Lab {
   // Paused, one step forward.
   stepOnce() {
     this.pause();
+    this.leaveScrubbed();
     this.step(1);
   }
 
@@ -741,6 +891,7 @@ class Lab {
   }
 
   play() {
+    this.leaveScrubbed();
     this.playing = true;
     this.pacer.clearDebt();
     this.updatePlayButton();
@@ -763,6 +914,7 @@ class Lab {
     }
     this.sim.forward();
     for (const { plot } of this.plots) plot.clear();
+    this.scrubbed = false;
     this.pacer.clearDebt();
     this.stats.simStart = this.sim.time;
     this.draw();

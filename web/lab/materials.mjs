@@ -7,7 +7,7 @@
 import * as THREE from '../node_modules/three/build/three.module.js';
 
 // mjtTexture and mjtLightType numbers, the rgb texture role.
-const kTexture2D = 0, kTextureSkybox = 2;
+const kTexture2D = 0, kTextureCube = 1, kTextureSkybox = 2;
 const kLightDirectional = 1, kLightPoint = 2;
 const kRoleRgb = 1, kNumRoles = 10;
 const kPlane = 0;
@@ -69,6 +69,25 @@ function cubeTexture(model, t) {
   texture.minFilter = THREE.LinearFilter;
   texture.needsUpdate = true;
   return texture;
+}
+
+// Draws a cube texture on a geom as MuJoCo does: the texel is looked up in the
+// direction of the surface point from the geom's centre (its object coordinates), and
+// multiplies the surface colour. three.js has no such mapping, so the Phong shader gets
+// it (material.onBeforeCompile).
+function addCubeMap(material, cube) {
+  material.userData.cubeMap = cube;
+  material.onBeforeCompile = (shader) => {
+    shader.uniforms.geomCubeMap = { value: cube };
+    shader.vertexShader = shader.vertexShader
+      .replace('#include <common>', '#include <common>\nvarying vec3 vObjectPosition;')
+      .replace('#include <begin_vertex>', '#include <begin_vertex>\nvObjectPosition = position;');
+    shader.fragmentShader = shader.fragmentShader
+      .replace('#include <common>', '#include <common>\nuniform samplerCube geomCubeMap;\nvarying vec3 vObjectPosition;')
+      .replace('#include <map_fragment>',
+               '#include <map_fragment>\ndiffuseColor.rgb *= textureCube(geomCubeMap, vObjectPosition).rgb;');
+  };
+  material.customProgramCacheKey = () => 'simlab-geom-cube-map';
 }
 
 // A light grey checker for planes drawn without a material, so that distances and motion
@@ -154,7 +173,9 @@ export class Materials {
       // (one checker pair per metre, the map applied over the plane's full size)
       params.map.repeat.set(size[0], size[1]);
     }
-    return new THREE.MeshPhongMaterial(params);
+    const material = new THREE.MeshPhongMaterial(params);
+    if (tex >= 0 && m.tex_type[tex] === kTextureCube) addCubeMap(material, this.texture(tex));
+    return material;
   }
 
   // `texture` with material mat's repeat: per unit length on a plane of half size `size`
@@ -207,6 +228,13 @@ export class Lights {
     }
     this.ambient = new THREE.AmbientLight(ambient, kLightScale);
     scene.add(this.ambient);
+  }
+
+  // Moves the headlight (and its target) onto `camera`, the camera about to draw.
+  attachHeadlight(camera) {
+    if (!this.headlight || this.headlight.parent === camera) return;
+    camera.add(this.headlight);
+    camera.add(this.headlight.target);
   }
 
   makeLight(i, extent) {

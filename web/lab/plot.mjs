@@ -10,6 +10,17 @@ export function csvText(text) {
   return `"${String(text).replaceAll('"', '""')}"`;
 }
 
+// The texts of an axis's ticks, with as many decimals as their spacing needs (so that
+// ticks 0.01 apart do not all read "0").
+export function tickTexts(chart, ticks) {
+  const spacing = ticks.length > 1 ? Math.abs(ticks[1] - ticks[0]) : 1;
+  const decimals = spacing > 0 ? Math.min(12, Math.max(0, -Math.floor(Math.log10(spacing) + 1e-9))) : 0;
+  return ticks.map((v) => {
+    const text = v.toFixed(decimals);
+    return /^-0(\.0*)?$/.test(text) ? text.slice(1) : text;  // (no "-0")
+  });
+}
+
 export class LivePlot {
   // spec: {ylabel, window, traces: [{label, dash}]}; width in pixels.
   constructor(container, spec, width) {
@@ -33,7 +44,7 @@ export class LivePlot {
       width, height: kHeight, series, legend: { live: false },
       cursor: { show: false },
       scales: { x: { time: false } },
-      axes: [{ label: 'time (s)' }, { label: spec.ylabel ?? '', size: 55 }],
+      axes: [{ label: 'time (s)' }, { label: spec.ylabel ?? '', size: 55, values: tickTexts }],
     }, this.columns, container);
   }
 
@@ -68,6 +79,13 @@ export class LivePlot {
       lines.push(this.columns.map((column) => (column[i] == null ? '' : String(column[i]))).join(','));
     }
     return lines;
+  }
+
+  // Drops the samples after `time` (the simulation stepped on from an earlier state).
+  dropAfter(time) {
+    let keep = this.columns[0].length;
+    while (keep > 0 && this.columns[0][keep - 1] > time) keep--;
+    for (const column of this.columns) column.length = keep;
   }
 
   clear() {

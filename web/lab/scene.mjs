@@ -3,6 +3,7 @@
 // mouse orbit, pan and zoom, and overlays for contacts, forces and joint axes.
 import * as THREE from '../node_modules/three/build/three.module.js';
 
+import { SceneLabels } from './labels.mjs';
 import { Lights, Materials } from './materials.mjs';
 
 // Colours as MuJoCo draws them: numbers go to the screen as they are (no sRGB decoding of
@@ -173,6 +174,22 @@ export function cameraPosition({ azimuth, elevation, distance, target }, out = n
   return [x, y, z];
 }
 
+// Poses a three.js camera as model camera c: at cam_xpos, turned by cam_xmat (MuJoCo's
+// cameras look along their -z with y up, as three.js cameras do), with vertical field of
+// view `fovy` degrees.
+function placeModelCamera(camera, state, c, fovy) {
+  const p = state.cam_xpos, r = state.cam_xmat;
+  kPose.set(r[9 * c], r[9 * c + 1], r[9 * c + 2], p[3 * c],
+            r[9 * c + 3], r[9 * c + 4], r[9 * c + 5], p[3 * c + 1],
+            r[9 * c + 6], r[9 * c + 7], r[9 * c + 8], p[3 * c + 2], 0, 0, 0, 1);
+  kPose.decompose(camera.position, camera.quaternion, camera.scale);
+  if (camera.fov !== fovy) {
+    camera.fov = fovy;
+    camera.updateProjectionMatrix();
+  }
+}
+const kPose = new THREE.Matrix4();
+
 export class LabScene {
   constructor(container, height, cameraSpec) {
     this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -215,14 +232,25 @@ export class LabScene {
     this.perturbLine.frustumCulled = false;
     this.scene.add(this.perturbLine);
     this.perturber = null;
+    // The inset: a model camera's picture in the view's corner (setInset), framed and
+    // captioned by an element over the canvas.
+    this.inset = null;
+    this.insetCamera = new THREE.PerspectiveCamera(45, 1, 0.005, 100);
+    this.insetFrame = container.appendChild(document.createElement('div'));
+    this.insetFrame.className = 'simlab-lab-inset';
+    this.insetFrame.style.display = 'none';
+    this.labels = new SceneLabels(container);
+    this.projected = new THREE.Vector3();
     this.raycaster = new THREE.Raycaster();
     this.attachMouse(this.renderer.domElement);
     this.resize();
   }
 
-  // The geom under the pointer and the world point hit ({g, point}), or null.
+  // The geom under the pointer and the world point hit ({g, point}), or null (also over
+  // the inset).
   pick(clientX, clientY) {
     const box = this.renderer.domElement.getBoundingClientRect();
+    if (this.inInset(clientX - box.left, clientY - box.top)) return null;
     const ndc = new THREE.Vector2(2 * (clientX - box.left) / box.width - 1, 1 - 2 * (clientY - box.top) / box.height);
     this.camera.updateMatrixWorld();
     this.raycaster.setFromCamera(ndc, this.camera);
@@ -296,6 +324,7 @@ export class LabScene {
       this.scene.backgroundRotation = new THREE.Euler(Math.PI / 2, 0, 0);
     }
     this.lights = new Lights(this.scene, this.camera, model, visual, extent);
+    this.scene.add(this.insetCamera);
     // (the shaders compiled now, before the first frames, which would otherwise stall)
     this.renderer.compile(this.scene, this.camera);
   }
@@ -397,15 +426,7 @@ export class LabScene {
     const choice = this.cameraChoice ?? { kind: 'free' };
     const state = this.cameraState;
     if (choice.kind === 'fixed' && state?.cam_xpos) {
-      const p = state.cam_xpos, r = state.cam_xmat, c = choice.camera;
-      const m = new THREE.Matrix4().set(r[9 * c], r[9 * c + 1], r[9 * c + 2], p[3 * c],
-                                        r[9 * c + 3], r[9 * c + 4], r[9 * c + 5], p[3 * c + 1],
-                                        r[9 * c + 6], r[9 * c + 7], r[9 * c + 8], p[3 * c + 2], 0, 0, 0, 1);
-      m.decompose(this.camera.position, this.camera.quaternion, this.camera.scale);
-      if (this.camera.fov !== choice.fovy) {
-        this.camera.fov = choice.fovy;
-        this.camera.updateProjectionMatrix();
-      }
+      placeModelCamera(this.camera, state, choice.camera, choice.fovy);
       return;
     }
     if (choice.kind === 'track' && state?.subtree_com) {
@@ -419,6 +440,74 @@ export class LabScene {
   render() {
     this.placeCamera();
     this.renderer.render(this.scene, this.camera);
+    this.renderInset();
+  }
+
+  // A model camera's picture in a bottom corner of the view ({camera, fovy, label, side:
+  // 'left' or 'right'}), or none (null).
+  setInset(inset) {
+    this.inset = inset;
+    this.insetFrame.style.display = inset ? '' : 'none';
+    this.insetFrame.textContent = '';
+    if (inset) this.insetFrame.appendChild(document.createElement('span')).textContent = inset.label;
+  }
+
+  // The inset's rectangle in CSS pixels from the view's top left ({left, top, width,
+  // height}): in its bottom corner, nearly the view's height, at most 40% of its width.
+  insetRect() {
+    const margin = 8;
+    const width = this.container.clientWidth || 640;
+    const height = Math.max(60, Math.round(0.9 * this.height) - margin);
+    const w = Math.round(Math.min(1.25 * height, 0.4 * width));
+    const left = this.inset?.side === 'left' ? margin : width - w - margin;
+    return { left, top: this.height - height - margin, width: w, height };
+  }
+
+  inInset(x, y) {
+    if (!this.inset) return false;
+    const r = this.insetRect();
+    return x >= r.left && x <= r.left + r.width && y >= r.top && y <= r.top + r.height;
+  }
+
+  // Draws the inset over the corner of the picture (scissored; the shadow maps of the
+  // main picture are reused).
+  renderInset() {
+    if (!this.inset || !this.cameraState?.cam_xpos) return;
+    const r = this.insetRect();
+    const bottom = this.height - r.top - r.height;
+    placeModelCamera(this.insetCamera, this.cameraState, this.inset.camera, this.inset.fovy);
+    if (this.insetCamera.aspect !== r.width / r.height) {
+      this.insetCamera.aspect = r.width / r.height;
+      this.insetCamera.updateProjectionMatrix();
+    }
+    Object.assign(this.insetFrame.style, { left: `${r.left}px`, top: `${r.top}px`,
+                                           width: `${r.width}px`, height: `${r.height}px` });
+    const renderer = this.renderer;
+    // (the headlight lights the picture of the camera that draws, as in MuJoCo)
+    this.lights?.attachHeadlight(this.insetCamera);
+    renderer.shadowMap.autoUpdate = false;
+    renderer.setScissorTest(true);
+    renderer.setScissor(r.left, bottom, r.width, r.height);
+    renderer.setViewport(r.left, bottom, r.width, r.height);
+    renderer.render(this.scene, this.insetCamera);
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, this.container.clientWidth || 640, this.height);
+    renderer.shadowMap.autoUpdate = true;
+    this.lights?.attachHeadlight(this.camera);
+  }
+
+  // Labels (see labels.mjs) at the items' positions as the camera sees them now, or none
+  // (an empty list).
+  drawLabels(items) {
+    this.placeCamera();
+    this.camera.updateMatrixWorld();
+    const v = this.projected, ndc = [0, 0, 0];
+    const project = (p) => {
+      v.set(p[0], p[1], p[2]).project(this.camera);
+      ndc[0] = v.x; ndc[1] = v.y; ndc[2] = v.z;
+      return ndc;
+    };
+    this.labels.draw(items, project, this.container.clientWidth || 640, this.height);
   }
 
   // Left drag orbits (azimuth, elevation), right or shift drag pans the target, the

@@ -51,8 +51,10 @@ export function startLabServer(simlabExe, lesson, args = ['lab', lesson]) {
 
 // In the page: what the lab's 3D view shows now, rendered once: how many distinct
 // colours (4 bits a channel), the share of pixels unlike the top-left one, and, given a
-// world point, the pixel (x, y) it projects to and its colour `at`.
-export function pictureStats(point = null) {
+// world point, the pixel (x, y) it projects to, its colour `at` and whether it is inside
+// the picture (through the main camera, or with `inset` through the inset's camera into
+// the inset).
+export function pictureStats([point = null, inset = false] = []) {
   const lab = window.lab;
   lab.scene.render();
   const canvas = lab.scene.renderer.domElement;
@@ -71,9 +73,15 @@ export function pictureStats(point = null) {
   }
   const stats = { colours: colours.size, unlike: unlike / (data.length / 4) };
   if (!point) return stats;
-  const p = lab.scene.camera.position.clone().set(...point).project(lab.scene.camera);
-  const x = Math.round((p.x + 1) / 2 * copy.width), y = Math.round((1 - p.y) / 2 * copy.height);
-  return { ...stats, at: Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3)), x, y };
+  // (the point through the main camera, or through the inset's camera into its rectangle)
+  const camera = inset ? lab.scene.insetCamera : lab.scene.camera;
+  const scale = copy.width / (lab.scene.container.clientWidth || copy.width);
+  const rect = inset ? lab.scene.insetRect() : { left: 0, top: 0, width: copy.width / scale, height: copy.height / scale };
+  const p = camera.position.clone().set(...point).project(camera);
+  const x = Math.round(scale * (rect.left + (p.x + 1) / 2 * rect.width));
+  const y = Math.round(scale * (rect.top + (1 - p.y) / 2 * rect.height));
+  const inside = Math.abs(p.x) <= 1 && Math.abs(p.y) <= 1 && p.z < 1;
+  return { ...stats, at: Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3)), x, y, inside };
 }
 
 // The page's uncaught errors and console errors, as they come.

@@ -128,6 +128,8 @@ async function interactive(page, spec) {
   check(gripped !== null, `grip force readout reaches the forcerange bound ${bound}: ${gripped?.['grip force (N)'].text} N`);
   const samples = await fingersStayEqual(page, 0.3);
   check(samples > 0, `finger readouts stayed equal while the gripper closed (${samples} samples)`);
+  await shoot(page, 'lab_gripped.png');
+  await checkInset(page, 'the closed grip', true);
   const before = (await readouts(page))['cube z (m)'].value;
   const clock0 = await page.evaluate(() => window.lab.clock());
 
@@ -148,6 +150,7 @@ async function interactive(page, spec) {
         `cube height readout rose from ${before.toFixed(4)} to ${after['cube z (m)'].text} m`);
   const cube = await page.evaluate(() => Array.from(window.lab.sim.data('qpos')).slice(5, 8));
   await checkPicture(page, cube, 'the lifted cube');
+  await checkInset(page, 'the lifted cube', false);
   const rtf = (clock1.time - clock0.time) / ((clock1.wall - clock0.wall) / 1000);
   const shown = await page.locator('.simlab-lab-stats').textContent();
   console.log(`page shows "${shown}"; real-time factor over the raise ${rtf.toFixed(4)} ` +
@@ -372,13 +375,36 @@ async function checkAgainstSpec(page, spec) {
         `${shown.cameraZ.toFixed(3)} m), distance ${v.distance}, target ${v.target}`);
 }
 
-// The picture is not blank, and the cube (yellow) is where the camera should see it.
-async function checkPicture(page, cubePosition, name) {
-  const stats = await page.evaluate(pictureStats, cubePosition);
+// The picture is not blank, and the cube (yellow) is where the camera should see it (the
+// main camera, or with `inset` the close-up's).
+async function checkPicture(page, cubePosition, name, inset = false) {
+  const stats = await page.evaluate(pictureStats, [cubePosition, inset]);
   const [r, g, b] = stats.at;
   check(stats.colours >= 16 && stats.unlike > 0.2 && r > b + 60 && g > b + 40,
         `${name}: ${stats.colours} colours, ${(100 * stats.unlike).toFixed(0)}% of it not sky, ` +
-        `the cube at pixel (${stats.x}, ${stats.y}) is yellow (rgb ${stats.at})`);
+        `the cube at pixel (${stats.x}, ${stats.y})${inset ? ' of the inset' : ''} is yellow (rgb ${stats.at})`);
+}
+
+// The lesson's lab shows the gantry's close-up camera in an inset, captioned: the cube
+// seen through it (yellow), the fingertip in it and, with `floor`, the floor beside the
+// cube too.
+async function checkInset(page, name, floor) {
+  const caption = await page.locator('.simlab-lab-inset').textContent();
+  const rect = await page.evaluate(() => window.lab.scene.insetRect());
+  check(caption === 'camera grip' && rect.width >= 200 && rect.height >= 200,
+        `the inset shows "${caption}" at ${rect.width} x ${rect.height} px`);
+  const qpos = await page.evaluate(() => Array.from(window.lab.sim.data('qpos')));
+  await checkPicture(page, qpos.slice(5, 8), `${name} (inset)`, true);
+  const fingertip = await page.evaluate(() => {
+    const sim = window.lab.sim, g = sim.nameToId('geom', 'gripper/finger_left');
+    const p = sim.data('geom_xpos'), size = sim.model('geom_size');
+    return [p[3 * g], p[3 * g + 1], p[3 * g + 2] - size[3 * g + 2]];
+  });
+  const tip = await page.evaluate(pictureStats, [fingertip, true]);
+  check(tip.inside, `${name}: the fingertip is in the inset, at pixel (${tip.x}, ${tip.y})`);
+  if (!floor) return;
+  const ground = await page.evaluate(pictureStats, [[qpos[5], qpos[6] - 0.05, 0], true]);
+  check(ground.inside, `${name}: the floor beside the cube is in the inset, at pixel (${ground.x}, ${ground.y})`);
 }
 
 // In the page: how many overlay objects the view shows (contact points, contact and

@@ -55,7 +55,7 @@ function inventory() {
     labs: [...document.querySelectorAll('section.lab-mount')].map((s) => ({
       model: s.dataset.model, mounted: s.dataset.mounted ?? '',
       canvases: s.querySelectorAll('canvas.simlab-lab-canvas').length,
-      sliders: s.querySelectorAll('input[type=range]').length,
+      sliders: s.querySelectorAll('.simlab-lab-control input[type=range]').length,
       readouts: s.querySelectorAll('.simlab-lab-readout').length,
     })),
     questions: document.querySelectorAll('.quiz .question').length,

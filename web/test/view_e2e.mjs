@@ -3,7 +3,9 @@
 // (meshes and textures found there), loads, shows a picture that is not blank and a
 // slider per control entry. On the humanoid: a slider moved with the mouse writes ctrl
 // and changes the actuator's force; simulate's keys pause (time stops), single-step (one
-// timestep), reset (time 0) and change the speed; the info panel shows time, contacts and
+// timestep), reset (time 0) and change the speed; the history goes back and forward
+// (Left and Right arrows, its slider) and playing on from the past drops the newer
+// states; body labels name the bodies; the info panel shows time, contacts and
 // solver iterations; a click on a readout plots it and the
 // CSV export holds the plotted series; the screenshot export is a PNG; the camera chooser
 // tracks a body and draws from a model camera. On the mug (a
@@ -103,6 +105,64 @@ async function checkKeys(page) {
   await page.waitForTimeout(1000);
   const rtf = await page.evaluate(() => window.lab.stats.realTimeFactor);
   check(rtf > 0.5, `'=' twice back to speed 1, Space plays again (real-time factor ${rtf.toFixed(2)})`);
+}
+
+// The history: paused, Left arrow goes back one state at a time (time by one timestep,
+// the recorded qpos exactly), Right arrow forward again; the slider goes back to the
+// oldest state kept; playing on from the past drops the states after it (the slider's
+// newest end is the state played from).
+async function checkHistory(page) {
+  const now = () => page.evaluate(() => ({ time: window.lab.sim.time, qpos: Array.from(window.lab.sim.data('qpos')),
+                                         history: window.lab.sim.history() }));
+  await page.locator('h1').click();
+  await page.waitForTimeout(1500);
+  await page.keyboard.press('Space');
+  const newest = await now();
+  const dt = await page.evaluate(() => window.lab.timestep);
+  await page.keyboard.press('ArrowLeft');
+  await page.keyboard.press('ArrowLeft');
+  const back2 = await now();
+  check(back2.history.back === 2 && Math.abs(newest.time - back2.time - 2 * dt) < 1e-9,
+        `Left arrow twice: 2 states back, t = ${back2.time.toFixed(4)} (was ${newest.time.toFixed(4)})`);
+  const text = await page.locator('.simlab-lab-history-text').textContent();
+  check(text === `-${(2 * dt).toFixed(3)} s`, `the history shows "${text}"`);
+  await page.keyboard.press('ArrowRight');
+  await page.keyboard.press('ArrowRight');
+  const again = await now();
+  check(again.history.back === 0 && again.time === newest.time && again.qpos.join() === newest.qpos.join(),
+        'Right arrow twice: the newest state again, qpos equal to the bit');
+  const slider = page.getByRole('slider', { name: 'history' });
+  await slider.focus();
+  await slider.press('Home');
+  const oldest = await now();
+  check(oldest.history.back === oldest.history.size - 1 && oldest.history.size > 100,
+        `the slider's left end is the oldest state kept: t = ${oldest.time.toFixed(3)}, ` +
+        `${oldest.history.size} states (${oldest.history.capacity} at most)`);
+  await page.evaluate(() => document.activeElement.blur());
+  await page.keyboard.press('ArrowRight');
+  await page.keyboard.press('Space');
+  await page.waitForTimeout(300);
+  await page.keyboard.press('Space');
+  const played = await now();
+  check(played.history.back === 0 && played.time > oldest.time && played.history.size < oldest.history.size,
+        `playing on from the past dropped the newer states: ${played.history.size} kept at t = ${played.time.toFixed(3)}`);
+  await page.keyboard.press('Space');
+}
+
+// Labels: the label chooser names every body over the view, at its position.
+async function checkLabels(page) {
+  await page.locator('select.simlab-lab-label-kind').selectOption('body');
+  await page.waitForTimeout(300);
+  const shown = await page.evaluate(() => Array.from(document.querySelectorAll('.simlab-lab-label'))
+    .filter((e) => e.style.display !== 'none').map((e) => e.textContent));
+  const nbody = await page.evaluate(() => window.lab.sim.sizes().nbody);
+  check(shown.includes('torso') && shown.length === nbody - 1, `body labels: ${shown.join(', ')}`);
+  await page.screenshot({ path: path.join(options.shots, 'view_labels.png') });
+  await page.locator('select.simlab-lab-label-kind').selectOption('');
+  await page.waitForTimeout(200);
+  const left = await page.evaluate(() => Array.from(document.querySelectorAll('.simlab-lab-label'))
+    .filter((e) => e.style.display !== 'none').length);
+  check(left === 0, 'no labels chosen: none shown');
 }
 
 // A click on a readout plots it; the CSV export holds its series; the screenshot export
@@ -205,6 +265,8 @@ async function testModel(file, interactive) {
     if (interactive) {
       await checkSlider(page);
       await checkKeys(page);
+      await checkHistory(page);
+      await checkLabels(page);
       await checkPlotAndExports(page);
       await checkCameras(page);
     }

@@ -1,11 +1,14 @@
 // Unit tests, in node, of the viewer's parts that need no browser: the panels generated
 // from a model (web/lab/panels.mjs), the pacer with a clock of the test's own
-// (web/lab/pacer.mjs), and the choice of the main model among files a user gives
+// (web/lab/pacer.mjs), the history slider (history.mjs), the labels (labels.mjs), and the choice of the main model among files a user gives
 // (web/view/files.mjs).
 //
 //   node web/test/view_units.mjs
 import assert from 'node:assert/strict';
+import { HistoryScrubber } from '../lab/history.mjs';
+import { actuatorPoint, kMaxLabels, labelPoint, labelTexts } from '../lab/labels.mjs';
 import { Pacer, kSpeeds, nextSpeed } from '../lab/pacer.mjs';
+import { tickTexts } from '../lab/plot.mjs';
 import { specFromModel } from '../lab/panels.mjs';
 import { draggedPoint, draggedQuat, toBodyFrame } from '../lab/perturb.mjs';
 import { pickMainModel, withPaths } from '../view/files.mjs';
@@ -117,6 +120,45 @@ const tests = {
     // A body at (1, 2, 3) turned 90 degrees about z: world (1, 3, 3) is its local (1, 0, 0).
     const local = toBodyFrame([1, 3, 3], [1, 2, 3], [0, -1, 0, 1, 0, 0, 0, 0, 1]);
     [1, 0, 0].forEach((v, k) => assert.ok(Math.abs(local[k] - v) < 1e-12, `${local}`));
+  },
+  'the history scrubs within the states kept and says how far back it is': () => {
+    // (a stand-in engine: 5 states kept, at times 0.00 .. 0.04)
+    const sim = { size: 5, backNow: 0, history() { return { size: this.size, back: this.backNow, newest: 0.04 }; },
+                  scrub(back) { this.backNow = back; } };
+    const history = new HistoryScrubber(sim);
+    assert.deepEqual(history.sliderState(0.04), { slider: { max: '4', value: '4' }, text: '0.000 s' });
+    assert.equal(history.scrubTo(2), true);
+    assert.equal(history.back(), 2);
+    assert.deepEqual(history.sliderState(0.02), { slider: { max: '4', value: '2' }, text: '-0.020 s' });
+    assert.equal(history.scrubTo(2), false, 'already there');
+    assert.equal(history.scrubTo(99), true);
+    assert.equal(history.back(), 4, 'clamped to the oldest state kept');
+    assert.equal(history.scrubTo(-3), true);
+    assert.equal(history.back(), 0, 'clamped to the newest');
+    sim.size = 0;
+    assert.equal(history.scrubTo(1), false, 'nothing kept');
+  },
+  'labels name each object, or number it; actuators sit at their transmission': () => {
+    const names = { body: ['world', 'torso', ''], joint: ['hip'] };
+    const nameOf = (kind, id) => names[kind]?.[id] ?? '';
+    assert.deepEqual(labelTexts('body', { nbody: 3 }, nameOf), [{ id: 1, text: 'torso' }, { id: 2, text: 'body 2' }]);
+    assert.deepEqual(labelTexts('joint', { njnt: 1 }, nameOf), [{ id: 0, text: 'hip' }]);
+    assert.equal(labelTexts('geom', { ngeom: 5000 }, nameOf).length, kMaxLabels);
+    // (trntype joint, tendon, site, body)
+    const model = { actuator_trntype: [0, 3, 4, 5], actuator_trnid: [2, -1, 0, -1, 1, -1, 3, -1] };
+    assert.deepEqual([0, 1, 2, 3].map((a) => actuatorPoint(model, a)),
+                     [['xanchor', 2], null, ['site_xpos', 1], ['xpos', 3]]);
+  },
+  'a label sits where its point projects, and not off the view or behind the camera': () => {
+    assert.deepEqual(labelPoint([0, 0, 0.5], 200, 100), [100, 50]);
+    assert.deepEqual(labelPoint([-1, 1, 0.5], 200, 100), [0, 0]);
+    assert.equal(labelPoint([0, 0, 1.2], 200, 100), null);
+    assert.equal(labelPoint([1.5, 0, 0.5], 200, 100), null);
+  },
+  'plot ticks have the decimals their spacing needs, and no "-0"': () => {
+    assert.deepEqual(tickTexts(null, [0, -0.01, -0.02]), ['0.00', '-0.01', '-0.02']);
+    assert.deepEqual(tickTexts(null, [-0, 5, 10]), ['0', '5', '10']);
+    assert.deepEqual(tickTexts(null, [-1e-9, 0.5, 1]), ['0.0', '0.5', '1.0']);
   },
   'the main model is the .xml no other names': async () => {
     const files = [fakeFile('arm.xml', '<mujoco/>', 'robot/parts/arm.xml'),
