@@ -584,5 +584,7 @@ export class LabScene {
     this.materials?.dispose();
     this.renderer.dispose();
     this.renderer.domElement.remove();
+    this.insetFrame.remove();
+    this.labels.layer.remove();
   }
 }

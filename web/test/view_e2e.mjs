@@ -65,19 +65,38 @@ async function checkLoads(page, name) {
         `${name}: the info panel shows ${info.split('\n').length} lines (${info.split('\n').slice(0, 4).join('; ')}; ncon now ${ncon})`);
 }
 
-// The first slider dragged with the mouse to near its top: ctrl follows, and so does the
-// actuator's force (the humanoid's motors: force = gear * ctrl).
-async function checkSlider(page) {
+// The first slider clicked with the mouse near its top: ctrl follows, and so does the
+// actuator's force (it changes from what it was; the humanoid's motors: gear * ctrl).
+async function checkSlider(page, name) {
   const slider = page.locator('.simlab-lab-control input[type=range]').first();
   const box = await slider.boundingBox();
+  const forceBefore = await page.evaluate(() => window.lab.sim.data('actuator_force')[0]);
   await page.mouse.click(box.x + box.width - 12, box.y + box.height / 2);
   await page.waitForTimeout(200);
-  const [value, ctrl, force] = await page.evaluate(() => {
-    const lab = window.lab;
-    return [Number(lab.controls[0].slider.value), lab.sim.data('ctrl')[0], lab.sim.data('actuator_force')[0]];
+  const [value, min, max, ctrl, force] = await page.evaluate(() => {
+    const lab = window.lab, s = lab.controls[0].slider;
+    return [Number(s.value), Number(s.min), Number(s.max), lab.sim.data('ctrl')[0], lab.sim.data('actuator_force')[0]];
   });
-  check(value > 0.5 && ctrl === value && force !== 0,
-        `the mouse set slider 0 to ${value.toFixed(3)}: ctrl[0] = ${ctrl.toFixed(3)}, actuator_force[0] = ${force.toFixed(3)}`);
+  check(value > min + 0.75 * (max - min) && ctrl === value && force !== forceBefore,
+        `${name}: the mouse set slider 0 to ${value.toFixed(3)} (of ${min}..${max}): ctrl[0] = ${ctrl.toFixed(3)}, ` +
+        `actuator_force[0] ${forceBefore.toFixed(3)} -> ${force.toFixed(3)}`);
+}
+
+// Playing, the page keeps real time (measured over 3 s of the lab's own clock): prints
+// the frame rate and the engine's share of the wall time (stepping, against drawing).
+async function checkRealTime(page, name) {
+  await page.waitForTimeout(1000);
+  const clock0 = await page.evaluate(() => window.lab.clock());
+  await page.waitForTimeout(3000);
+  const clock1 = await page.evaluate(() => window.lab.clock());
+  const stats = await page.evaluate(() => window.lab.stats);
+  const wall = (clock1.wall - clock0.wall) / 1000;
+  const rtf = (clock1.time - clock0.time) / wall;
+  const fps = (clock1.frames - clock0.frames) / wall;
+  const share = stats.engineFactor > 0 ? stats.realTimeFactor / stats.engineFactor : 0;
+  check(rtf >= 0.97 && rtf <= 1.03,
+        `${name} keeps real time: real-time factor ${rtf.toFixed(3)} over ${wall.toFixed(1)} s at ${fps.toFixed(1)} fps; ` +
+        `the engine takes ${(100 * share).toFixed(1)}% of the wall time (${stats.engineFactor.toFixed(0)}x real time)`);
 }
 
 // simulate's keys, pressed on the page (not in a form field).
@@ -262,8 +281,9 @@ async function testModel(file, interactive) {
   const { session, page, problems } = await openViewer(path.join(options.corpus, file));
   try {
     await checkLoads(page, name);
+    if (await page.evaluate(() => window.lab.sim.sizes().nu) > 0) await checkSlider(page, name);
     if (interactive) {
-      await checkSlider(page);
+      await checkRealTime(page, name);
       await checkKeys(page);
       await checkHistory(page);
       await checkLabels(page);
