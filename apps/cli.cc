@@ -10,6 +10,7 @@
 #include "bench.h"
 #include "explain.h"
 #include "lab.h"
+#include "lint.h"
 #include "rollout.h"
 
 namespace simlab::apps {
@@ -36,6 +37,7 @@ int ParseAndRun(int argc, const char* const* argv, std::ostream& out, std::ostre
   AddRolloutCommand(app, io);
   AddBenchCommand(app, io);
   AddExplainCommand(app, io);
+  AddLintCommand(app, io);
   AddLabCommand(app, io);
   AddViewCommand(app, io);
   try {

@@ -93,9 +93,24 @@ void CheckDataBudget(const mjcf::ModelSpec& spec, const Model& m) {
   if (!over.empty()) mjcf::ThrowAt({spec.file, 0, "", ""}, over);
 }
 
+// The sources of the tree's elements (in compiled order) and of the sections' (in the
+// spec's order, which the compiler keeps).
+void CollectSources(const mjcf::ModelSpec& spec, const CompileState& state, ElementSources* out) {
+  for (const BodyState& b : state.bodies) {
+    out->body.push_back(b.spec ? b.spec->src : mjcf::Source{spec.file, 0, "worldbody", "world"});
+  }
+  for (const JointState& j : state.joints) out->joint.push_back(j.spec->src);
+  for (const GeomState& g : state.geoms) out->geom.push_back(g.spec->src);
+  for (const SiteState& s : state.sites) out->site.push_back(s.spec->src);
+  for (const mjcf::TendonSpec& t : spec.tendons) out->tendon.push_back(t.src);
+  for (const mjcf::ActuatorSpec& a : spec.actuators) out->actuator.push_back(a.src);
+  for (const mjcf::EqualitySpec& e : spec.equalities) out->equality.push_back(e.src);
+  for (const mjcf::KeySpec& k : spec.keys) out->key.push_back(k.src);
+}
+
 }  // namespace
 
-Model Compile(const mjcf::ModelSpec& spec) {
+Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   // The tree: flatten, compile bodies and their elements, check masses.
   CompileState state;
   FlattenTree(spec, &state);
@@ -155,6 +170,7 @@ Model Compile(const mjcf::ModelSpec& spec) {
   if (!std::isnan(spec.extent)) m.stat.extent = spec.extent;
   if (!std::isnan(spec.center[0])) m.stat.center = spec.center;
   m.IndexNames();
+  if (sources) CollectSources(spec, state, sources);
   return m;
 }
 

@@ -113,8 +113,14 @@ struct CompileState {
   std::vector<HFieldState> hfields;
 };
 
-// The whole compilation.
-Model Compile(const mjcf::ModelSpec& spec);
+// Where each compiled element was written, by id (for messages about a compiled model
+// that point at its XML: simlab lint). The world body has the model's file.
+struct ElementSources {
+  std::vector<mjcf::Source> body, joint, geom, site, tendon, actuator, equality, key;
+};
+
+// The whole compilation; with `sources`, also where each element came from.
+Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources = nullptr);
 
 // Sections, in the order Compile runs them.
 void CompileOption(const mjcf::ModelSpec& spec, Model* m);

@@ -1,0 +1,401 @@
+// simlab lint (simlab/lint.h): each check is a function over the compiled model, the
+// state at the chosen keyframe after Forward, and where each element was written.
+#include "simlab/lint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compiler/compiler.h"
+#include "mjcf/assets.h"
+#include "mjcf/reader.h"
+#include "simlab/simlab.h"
+
+namespace simlab {
+
+namespace {
+
+// ---------------------------------------------------------------- text
+
+// A number in the shortest readable form ("10", "-0.5", "1e-05"), no "-0".
+std::string Num(double x) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.4g", x == 0 ? 0.0 : x);
+  return buffer;
+}
+
+// ---------------------------------------------------------------- what the checks share
+
+// The model, its state at the keyframe, and where its elements were written.
+struct Subject {
+  const Model& m;
+  const Data& d;  // at the keyframe (or the default state), after Forward
+  const compiler::ElementSources& src;
+  std::vector<LintFinding>* out;
+
+  // "actuator \"grip\"" or "actuator 3".
+  std::string Element(ObjType type, const char* kind, int id) const {
+    const std::vector<std::string>* names = m.Names(type);
+    const bool named = names && id < static_cast<int>(names->size()) && !(*names)[id].empty();
+    std::string text = kind;
+    text.append(named ? " \"" + (*names)[id] + "\"" : " " + std::to_string(id));
+    return text;
+  }
+
+  void Add(const std::vector<mjcf::Source>& sources, int id, LintFinding f) const {
+    if (id >= 0 && id < static_cast<int>(sources.size())) {
+      f.file = sources[id].file;
+      f.line = sources[id].line;
+    }
+    out->push_back(std::move(f));
+  }
+
+  void AddActuator(int i, LintFinding f) const {
+    f.element = Element(kObjActuator, "actuator", i);
+    Add(src.actuator, i, std::move(f));
+  }
+};
+
+// A finding of `check` (its element, file and line are filled in where it is added).
+LintFinding Finding(const char* check, LintSeverity severity, std::string numbers,
+                    std::string meaning, std::string advice) {
+  return {check, severity, "", "", 0, std::move(numbers), std::move(meaning), std::move(advice)};
+}
+
+// A one-input, one-output actuator (the lesson's kind), whose numbers are at i.
+bool IsSiso(const Model& m, int i) {
+  return m.actuator_ctrlnum[i] == 1 && m.actuator_outnum[i] == 1;
+}
+
+// A position servo's law: fixed gain kp, affine bias -kp l (and -kv l'), so that
+// p = kp (u - l) - kv l'.
+bool IsPositionServo(const Model& m, int i) {
+  const double* gain = &m.actuator_gainprm[kNGain * i];
+  const double* bias = &m.actuator_biasprm[kNBias * i];
+  return IsSiso(m, i) && m.actuator_gaintype[i] == kGainFixed &&
+         m.actuator_biastype[i] == kBiasAffine && gain[0] > 0 && bias[0] == 0 &&
+         bias[1] == -gain[0];
+}
+
+// The joint a SISO actuator drives (a hinge or slide through a joint transmission), or -1.
+int DrivenScalarJoint(const Model& m, int i) {
+  const int type = m.actuator_trntype[i];
+  if (type != kTrnJoint && type != kTrnJointInParent) return -1;
+  const int j = m.actuator_trnid[2 * i];
+  return (m.jnt_type[j] == kJointHinge || m.jnt_type[j] == kJointSlide) ? j : -1;
+}
+
+// What the servo is commanded: ctrl, or the activation when the actuator has dynamics.
+double ServoInput(const Model& m, const Data& d, int i) {
+  if (m.actuator_dyntype[i] == kDynNone) return d.ctrl[m.actuator_ctrladr[i]];
+  return d.act[m.actuator_actadr[i] + m.actuator_actnum[i] - 1];
+}
+
+// ---------------------------------------------------------------- the lesson's traps
+
+// A general actuator with biasprm but biastype "none": the bias is never applied.
+void CheckBiasIgnored(const Subject& s) {
+  const Model& m = s.m;
+  for (int i = 0; i < m.nactuator; i++) {
+    const double* bias = &m.actuator_biasprm[kNBias * i];
+    if (m.actuator_biastype[i] != kBiasNone) continue;
+    std::string written;
+    for (int k = 0; k < 3; k++) {
+      if (bias[k] != 0) written += " b" + std::to_string(k) + " = " + Num(bias[k]);
+    }
+    if (written.empty()) continue;
+    s.AddActuator(i, Finding("bias-ignored", LintSeverity::kWarning,
+                      "biastype none, biasprm" + written,
+                      "biasprm is ignored because biastype defaults to none: the actuator "
+                      "applies p = a u only, with no b0 + b1 l + b2 l' term.",
+                      "add biastype=\"affine\" (or use the position/velocity shortcut that "
+                      "sets it)."));
+  }
+}
+
+// The load a joint must hold at rest: gravity (qfrc_bias with zero velocity) less what
+// its springs give (qfrc_passive), at the joint's dof.
+double HoldingLoad(const Model& m, const Data& d, int j) {
+  const int dof = m.jnt_dofadr[j];
+  return d.qfrc_bias[dof] - d.qfrc_passive[dof];
+}
+
+// The span a servo's target covers, in joint units: ctrlrange / gear (actrange / gear
+// when the target is an activation, as an intvelocity's), else the joint's range, else
+// one radian or metre.
+double TargetSpan(const Model& m, int i, int j, double gear) {
+  const int c = m.actuator_ctrladr[i];
+  if (m.actuator_dyntype[i] != kDynNone) {
+    if (m.actuator_actlimited[i]) {
+      return std::abs(m.actuator_actrange[2 * i + 1] - m.actuator_actrange[2 * i]) / std::abs(gear);
+    }
+  } else if (m.actuator_ctrllimited[c]) {
+    return std::abs(m.actuator_ctrlrange[2 * c + 1] - m.actuator_ctrlrange[2 * c]) / std::abs(gear);
+  }
+  if (m.jnt_limited[j]) return m.jnt_range[2 * j + 1] - m.jnt_range[2 * j];
+  return 1.0;
+}
+
+// A position servo too weak for the load it holds: at rest it sags by load / (kp gear^2),
+// a large part of its range ("the servo does nothing"), or its forcerange cannot hold the
+// load at all.
+void CheckServoTooWeak(const Subject& s) {
+  const Model& m = s.m;
+  for (int i = 0; i < m.nactuator; i++) {
+    const int j = DrivenScalarJoint(m, i);
+    if (!IsPositionServo(m, i) || j < 0) continue;
+    const double gear = m.actuator_gear[6 * m.actuator_outadr[i]];
+    const double kp = m.actuator_gainprm[kNGain * i];
+    const double load = HoldingLoad(m, s.d, j);
+    if (gear == 0 || load == 0) continue;
+    const double force = std::abs(load / gear);  // actuator force that holds the load
+    const double sag = std::abs(load) / (kp * gear * gear);
+    const double span = TargetSpan(m, i, j, gear);
+    const double* range = &m.actuator_forcerange[2 * i];
+    const double most = std::max(std::abs(range[0]), std::abs(range[1]));
+    const char* unit = m.jnt_type[j] == kJointHinge ? "rad" : "m";
+    const std::string load_text = "the joint must hold " + Num(std::abs(load)) +
+                                  (m.jnt_type[j] == kJointHinge ? " N m" : " N") +
+                                  " against gravity at rest";
+    if (m.actuator_forcelimited[i] && force > most) {
+      s.AddActuator(i, Finding("servo-cannot-hold", LintSeverity::kWarning,
+                        load_text + "; with gear " + Num(gear) + " that is an actuator force of " +
+                            Num(force) + ", beyond forcerange [" + Num(range[0]) + ", " +
+                            Num(range[1]) + "]",
+                        "the force clamp stops the servo short of the force that holds the "
+                        "load: the link falls whatever ctrl says.",
+                        "widen forcerange, raise gear, or add gravity compensation."));
+    } else if (sag > 0.1 * span) {
+      s.AddActuator(i, Finding("servo-too-weak", LintSeverity::kWarning,
+                        load_text + "; kp " + Num(kp) + ", gear " + Num(gear) +
+                            ": at rest it sags " + Num(sag) + " " + unit + " from its target, " +
+                            Num(100 * sag / span) + "% of its range of " + Num(span) + " " + unit,
+                        "the servo does nothing: kp is too small for the load, so the joint "
+                        "settles far from the commanded position.",
+                        "raise kp (with kv, or dampratio, to keep it damped) until the sag "
+                        "kp would leave is small."));
+    }
+  }
+}
+
+// A position servo whose input is 0 at the start while its joint is elsewhere: ctrl = 0
+// commands position 0, and the robot moves although ctrl is zero.
+void CheckZeroTarget(const Subject& s) {
+  const Model& m = s.m;
+  for (int i = 0; i < m.nactuator; i++) {
+    if (!IsPositionServo(m, i)) continue;
+    const double u = ServoInput(m, s.d, i);
+    const double length = s.d.actuator_length[m.actuator_outadr[i]];
+    if (u != 0 || std::abs(length) < 1e-6) continue;
+    const std::string input = m.actuator_dyntype[i] == kDynNone ? "ctrl" : "its activation";
+    s.AddActuator(i, Finding("servo-targets-zero", LintSeverity::kWarning,
+                      input + " = 0 at the start, while the actuator length is " + Num(length),
+                      "a position servo's input is a target position: ctrl = 0 commands "
+                      "position 0, so the robot moves although ctrl is zero.",
+                      "start ctrl at the joint's position (a keyframe's ctrl), or use a "
+                      "motor if 0 should mean no force."));
+  }
+}
+
+// A filter integrated by Euler faster than the timestep: explicit Euler of
+// act' = (u - act) / tau overshoots for tau < timestep and diverges for tau < timestep / 2.
+void CheckEulerFilter(const Subject& s) {
+  const Model& m = s.m;
+  const double dt = m.opt.timestep;
+  for (int i = 0; i < m.nactuator; i++) {
+    if (m.actuator_dyntype[i] != kDynFilter) continue;
+    const double tau = m.actuator_dynprm[kNDyn * i];
+    if (tau <= 0 || tau >= dt) continue;
+    const bool diverges = tau < dt / 2;
+    s.AddActuator(i, Finding("filter-faster-than-timestep", LintSeverity::kWarning,
+                      "dyntype filter, time constant dynprm[0] = " + Num(tau) + " s, timestep " +
+                          Num(dt) + " s (ratio " + Num(dt / tau) + ")",
+                      std::string("the Euler-integrated filter ") +
+                          (diverges ? "diverges: each step multiplies the activation's error by "
+                                    : "overshoots: each step multiplies the activation's error by ") +
+                          Num(1 - dt / tau) + ".",
+                      "use dyntype=\"filterexact\" (exact for any timestep), or a time constant "
+                      "of several timesteps."));
+  }
+}
+
+// gear != 1: actuator_force is in actuator space; the joint or tendon gets gear times it.
+void CheckGear(const Subject& s) {
+  const Model& m = s.m;
+  for (int i = 0; i < m.nactuator; i++) {
+    const int type = m.actuator_trntype[i];
+    if (!IsSiso(m, i) || (type != kTrnJoint && type != kTrnJointInParent && type != kTrnTendon)) continue;
+    const double gear = m.actuator_gear[6 * m.actuator_outadr[i]];
+    if (gear == 1) continue;
+    s.AddActuator(i, Finding("gear-scales-force", LintSeverity::kNote, "gear " + Num(gear),
+                      "actuator_force is the force in actuator space; the " +
+                          std::string(type == kTrnTendon ? "tendon" : "joint") + " gets gear x "
+                          "actuator_force (" + Num(gear) + " x), which qfrc_actuator holds.",
+                      "log the joint torque from qfrc_actuator (or gear x actuator_force), not "
+                      "actuator_force."));
+  }
+}
+
+// A keyframe's ctrl outside ctrlrange: the engine clamps it, and ctrl keeps what was
+// written, so logging ctrl logs the wrong action.
+void CheckKeyCtrlRange(const Subject& s) {
+  const Model& m = s.m;
+  for (int k = 0; k < m.nkey; k++) {
+    for (int c = 0; c < m.nu; c++) {
+      if (!m.actuator_ctrllimited[c]) continue;
+      const double u = m.key_ctrl[k * m.nu + c];
+      const double lo = m.actuator_ctrlrange[2 * c], hi = m.actuator_ctrlrange[2 * c + 1];
+      if (u >= lo && u <= hi) continue;
+      LintFinding f{"key-ctrl-clamped", LintSeverity::kWarning, s.Element(kObjKey, "keyframe", k),
+                    "", 0,
+                    "ctrl[" + std::to_string(c) + "] = " + Num(u) + ", ctrlrange [" + Num(lo) +
+                        ", " + Num(hi) + "]",
+                    "the engine clamps ctrl to ctrlrange before using it, but data.ctrl keeps "
+                    "the value written: a log of ctrl shows an action that was not applied.",
+                    "keep keyframe controls inside ctrlrange (and log the clamped value)."};
+      s.Add(s.src.key, k, std::move(f));
+    }
+  }
+}
+
+// ---------------------------------------------------------------- what users check
+
+// A keyframe whose qpos puts a limited joint outside its range: the limit pushes it back
+// at the first step.
+void CheckKeyQposRange(const Subject& s) {
+  const Model& m = s.m;
+  for (int k = 0; k < m.nkey; k++) {
+    for (int j = 0; j < m.njnt; j++) {
+      if (!m.jnt_limited[j] || (m.jnt_type[j] != kJointHinge && m.jnt_type[j] != kJointSlide)) continue;
+      const double q = m.key_qpos[k * m.nq + m.jnt_qposadr[j]];
+      const double lo = m.jnt_range[2 * j], hi = m.jnt_range[2 * j + 1];
+      const double excess = std::max(lo - q, q - hi);
+      if (excess <= 1e-9) continue;
+      // (a little past the range, as a state saved from a simulation with soft limits
+      // often is: a note; further: a warning)
+      const bool slight = excess < 0.02 * (hi - lo);
+      LintFinding f{"key-outside-range", slight ? LintSeverity::kNote : LintSeverity::kWarning,
+                    s.Element(kObjKey, "keyframe", k), "", 0,
+                    s.Element(kObjJoint, "joint", j) + " at " + Num(q) + ", range [" + Num(lo) +
+                        ", " + Num(hi) + "], " + Num(excess) + " past it",
+                    std::string("the keyframe starts the joint outside its range") +
+                        (slight ? " (slightly, as a state saved from a simulation with soft "
+                                  "limits can be)" : "") +
+                        ": the limit constraint pushes it back at the first step.",
+                    "move the keyframe's qpos inside the range (or widen the range)."};
+      s.Add(s.src.key, k, std::move(f));
+    }
+  }
+}
+
+// ---------------------------------------------------------------- the spec's checks
+
+// limited="false" beside a range: the range is ignored (joints here, actuators below).
+void VisitJoints(const mjcf::BodySpec& body, std::vector<LintFinding>* out) {
+  for (const auto& j : body.joints) {
+    if (j.limited != mjcf::kFalse || !(j.range[0] < j.range[1])) continue;
+    out->push_back({"range-ignored", LintSeverity::kWarning,
+                    "joint" + (j.src.name.empty() ? std::string() : " \"" + j.src.name + "\""),
+                    j.src.file, j.src.line,
+                    "limited=\"false\", range [" + Num(j.range[0]) + ", " + Num(j.range[1]) + "]",
+                    "the range is ignored: the joint is not limited.",
+                    "remove limited=\"false\" (with autolimits the range then limits it)."});
+  }
+  for (const auto& child : body.bodies) VisitJoints(*child, out);
+}
+
+void CheckRangesSwitchedOff(const mjcf::ModelSpec& spec, std::vector<LintFinding>* out) {
+  VisitJoints(spec.world, out);
+  for (const mjcf::ActuatorSpec& a : spec.actuators) {
+    const std::string element = a.src.tag + (a.src.name.empty() ? "" : " \"" + a.src.name + "\"");
+    if (a.ctrllimited == mjcf::kFalse && a.ctrlrange[0] < a.ctrlrange[1]) {
+      out->push_back({"range-ignored", LintSeverity::kWarning, element, a.src.file, a.src.line,
+                      "ctrllimited=\"false\", ctrlrange [" + Num(a.ctrlrange[0]) + ", " +
+                          Num(a.ctrlrange[1]) + "]",
+                      "the ctrlrange is ignored: ctrl is not clamped.",
+                      "remove ctrllimited=\"false\"."});
+    }
+    if (a.forcelimited == mjcf::kFalse && a.forcerange[0] < a.forcerange[1]) {
+      out->push_back({"range-ignored", LintSeverity::kWarning, element, a.src.file, a.src.line,
+                      "forcelimited=\"false\", forcerange [" + Num(a.forcerange[0]) + ", " +
+                          Num(a.forcerange[1]) + "]",
+                      "the forcerange is ignored: the force is not clamped.",
+                      "remove forcelimited=\"false\"."});
+    }
+  }
+}
+
+// The model read and compiled, with its elements' sources.
+struct Loaded {
+  mjcf::ModelSpec spec;
+  compiler::ElementSources sources;
+  Model m;
+};
+
+Loaded Load(const std::string& path) {
+  std::string text, problem;
+  if (!mjcf::ReadFileOrAsset(path, nullptr, &text, &problem)) {
+    throw Error(path + ": " + (problem.empty() ? "cannot open file" : "cannot read file: " + problem));
+  }
+  Loaded loaded{mjcf::ReadMjcf(text, path), {}, {}};
+  loaded.m = compiler::Compile(loaded.spec, &loaded.sources);
+  return loaded;
+}
+
+}  // namespace
+
+int LintReport::Warnings() const {
+  int n = 0;
+  for (const LintFinding& f : findings) n += f.severity == LintSeverity::kWarning;
+  return n;
+}
+
+const char* LintSeverityName(LintSeverity severity) {
+  return severity == LintSeverity::kWarning ? "warning" : "note";
+}
+
+LintReport LintFile(const std::string& path, int key) {
+  Loaded loaded = Load(path);
+  const Model& m = loaded.m;
+  if (key < -1 || key >= m.nkey) {
+    throw Error(path + ": no keyframe " + std::to_string(key) + " (the model has " +
+                std::to_string(m.nkey) + ")");
+  }
+  // The state the load checks read: the keyframe, at rest (gravity only in qfrc_bias).
+  Data d = MakeData(m);
+  if (key >= 0) ResetDataKeyframe(m, d, key);
+  std::fill(d.qvel.begin(), d.qvel.end(), 0.0);
+  Forward(m, d);
+
+  LintReport report{path, key, {}};
+  const Subject subject{m, d, loaded.sources, &report.findings};
+  CheckBiasIgnored(subject);
+  CheckServoTooWeak(subject);
+  CheckZeroTarget(subject);
+  CheckEulerFilter(subject);
+  CheckKeyCtrlRange(subject);
+  CheckKeyQposRange(subject);
+  CheckRangesSwitchedOff(loaded.spec, &report.findings);
+  CheckGear(subject);
+  return report;
+}
+
+std::string LintText(const LintReport& report) {
+  std::string text;
+  for (const LintFinding& f : report.findings) {
+    text += f.file + ":" + std::to_string(f.line) + ": " + LintSeverityName(f.severity) + ": " +
+            f.element + " [" + f.check + "]\n";
+    text += "  " + f.numbers + "\n  " + f.meaning + "\n  fix: " + f.advice + "\n";
+  }
+  const int warnings = report.Warnings();
+  const int notes = static_cast<int>(report.findings.size()) - warnings;
+  text += report.file + (report.key >= 0 ? " (keyframe " + std::to_string(report.key) + ")" : "") +
+          ": " + std::to_string(warnings) + " warning" + (warnings == 1 ? "" : "s") + ", " +
+          std::to_string(notes) + " note" + (notes == 1 ? "" : "s") + "\n";
+  return text;
+}
+
+}  // namespace simlab
