@@ -12,7 +12,8 @@ std::string LintJson(const LintReport& report) {
   nlohmann::ordered_json findings = nlohmann::ordered_json::array();
   for (const LintFinding& f : report.findings) {
     findings.push_back({{"check", f.check}, {"severity", LintSeverityName(f.severity)},
-                        {"element", f.element}, {"file", f.file}, {"line", f.line},
+                        {"element", f.element}, {"kind", f.kind}, {"id", f.id},
+                        {"file", f.file}, {"line", f.line},
                         {"numbers", f.numbers}, {"meaning", f.meaning}, {"advice", f.advice}});
   }
   const int warnings = report.Warnings();

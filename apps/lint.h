@@ -19,7 +19,7 @@ namespace simlab::apps {
 void AddLintCommand(CLI::App& app, CommandIo& io);
 
 // The report as JSON: {file, key, warnings, notes, findings: [{check, severity, element,
-// file, line, numbers, meaning, advice}]}.
+// kind, id, file, line, numbers, meaning, advice}]}.
 std::string LintJson(const LintReport& report);
 
 // Lints `path` at keyframe `key` (-1: none) and writes text or JSON to `out`; returns

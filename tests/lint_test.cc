@@ -1,6 +1,6 @@
 // simlab lint (simlab/lint.h, apps/lint.h): each check fires on a small model that has
 // its trap (tests/lint_models/NAME.xml) and stays quiet on the same model without it
-// (NAME_ok.xml), with the element's line and the numbers that show the problem; the
+// (NAME_ok.xml, or another model without the trap), with the element's line and the numbers that show the problem; the
 // lesson's models lint clean (the actuator bench has one note: its motor's gear of 2);
 // the command's exit status and JSON.
 #include "lint.h"
@@ -32,27 +32,34 @@ std::vector<LintFinding> Found(const std::string& name, const std::string& check
 struct Case {
   std::string model, check;
   int key;
-  int line;                  // of the element
+  int line;                  // of the (first) element
   LintSeverity severity;
   std::vector<std::string> numbers;  // pieces of its numbers text
+  size_t count = 1;          // findings of the check
+  std::string twin = "";     // the model without the trap (default: model + "_ok")
 };
 
 const Case kCases[] = {
     {"bias_ignored", "bias-ignored", -1, 13, LintSeverity::kWarning, {"b1 = -500", "b2 = -20"}},
     {"weak_servo", "servo-too-weak", -1, 13, LintSeverity::kWarning, {"4.905 N m", "kp 1", "sags 4.905 rad"}},
-    {"cannot_hold", "servo-cannot-hold", -1, 13, LintSeverity::kWarning, {"4.905", "forcerange [-2, 2]"}},
     {"zero_target", "servo-targets-zero", 0, 13, LintSeverity::kWarning, {"ctrl = 0", "length is -0.8"}},
     {"euler_filter", "filter-faster-than-timestep", -1, 13, LintSeverity::kWarning, {"0.0005 s", "timestep 0.002 s"}},
     {"gear", "gear-scales-force", -1, 13, LintSeverity::kNote, {"gear 10"}},
     {"key_ctrl", "key-ctrl-clamped", 0, 15, LintSeverity::kWarning, {"ctrl[0] = 3", "[-1, 1]"}},
     {"key_range", "key-outside-range", 0, 15, LintSeverity::kWarning, {"\"shoulder\" at 2", "[-1.57, 1.57]"}},
-    {"range_ignored", "range-ignored", -1, 13, LintSeverity::kWarning, {"ctrllimited=\"false\"", "[-1, 1]"}},
+    {"range_ignored", "range-ignored", -1, 13, LintSeverity::kWarning, {"ctrllimited=\"false\"", "[-1, 1]"}, 1, "gear_ok"},
+    {"cannot_hold", "servo-cannot-hold", -1, 13, LintSeverity::kWarning, {"forcerange [-2, 2]"}, 1, "weak_servo_ok"},
+    {"finger_equality", "equality-stretches", -1, 25, LintSeverity::kWarning, {"\"grip\"", "2.5 N", "0.00955 m"}},
+    {"servo_unstable", "servo-unstable", -1, 12, LintSeverity::kWarning, {"joint inertia 0.02", "w dt = 1"}},
+    {"collides_nothing", "collides-with-nothing", -1, 4, LintSeverity::kWarning, {"contype 1, conaffinity 1"}, 2},
+    {"range_degrees", "range-in-degrees", -1, 7, LintSeverity::kNote, {"[-1.57, 1.57]", "[-0.0274, 0.0274] rad"}, 1, "weak_servo_ok"},
+    {"unused_class", "unused-class", -1, 7, LintSeverity::kNote, {"nor a class nested in it"}},
 };
 
 TEST(Lint, EachTrapIsCaughtWithItsNumbersAndLine) {
   for (const Case& c : kCases) {
     const std::vector<LintFinding> found = Found(c.model, c.check, c.key);
-    ASSERT_EQ(found.size(), 1u) << c.model;
+    ASSERT_EQ(found.size(), c.count) << c.model;
     EXPECT_EQ(found[0].line, c.line) << c.model;
     EXPECT_EQ(found[0].file, Trap(c.model)) << c.model;
     EXPECT_EQ(found[0].severity, c.severity) << c.model;
@@ -65,8 +72,10 @@ TEST(Lint, EachTrapIsCaughtWithItsNumbersAndLine) {
 
 TEST(Lint, WithoutTheTrapNothingIsFound) {
   for (const Case& c : kCases) {
-    if (c.model == "cannot_hold" || c.model == "range_ignored") continue;  // (no _ok twin)
-    EXPECT_TRUE(LintFile(Trap(c.model + "_ok"), c.key).findings.empty()) << c.model << "_ok";
+    const std::string twin = c.twin.empty() ? c.model + "_ok" : c.twin;
+    const LintReport report = LintFile(Trap(twin), c.twin.empty() ? c.key : -1);
+    for (const LintFinding& f : report.findings) EXPECT_NE(f.check, c.check) << twin;
+    if (c.twin.empty()) EXPECT_TRUE(report.findings.empty()) << twin;
   }
 }
 

@@ -29,6 +29,7 @@
 #include "core/field_view.h"
 #include "engine/engine.h"
 #include "simlab/perturb.h"
+#include "simlab/lint.h"
 #include "simlab/simlab.h"
 #include "simlab/state_history.h"
 
@@ -211,7 +212,14 @@ class Simulation {
   // compiled before the object exists, so a bad file leaves nothing half-built.
   static Simulation* Create(const std::string& filename, const std::string& xml,
                             const val& files) {
-    return Guarded([&] { return new Simulation(Load(filename, xml, files)); });
+    return Guarded([&] {
+      std::string folder;
+      simlab::Model model = Load(filename, xml, files, &folder);
+      auto* sim = new Simulation(std::move(model));
+      sim->folder_ = folder;
+      sim->filename_ = filename;
+      return sim;
+    });
   }
   static Simulation* CreateWithoutFiles(const std::string& filename, const std::string& xml) {
     return Create(filename, xml, val::object());
@@ -418,6 +426,31 @@ class Simulation {
     return out;
   }
 
+  // simlab lint's findings for the model's file at keyframe `key` (-1: none): [{check,
+  // severity, element, kind, id, file, line, numbers, meaning, advice}], file names as
+  // the caller gave them.
+  val Lint(int key) const {
+    return Guarded([&] {
+      const LintReport report = LintFile(folder_ + "/" + filename_, key);
+      val list = val::array();
+      for (const LintFinding& f : report.findings) {
+        val one = val::object();
+        one.set("check", f.check);
+        one.set("severity", std::string(LintSeverityName(f.severity)));
+        one.set("element", f.element);
+        one.set("kind", f.kind);
+        one.set("id", f.id);
+        one.set("file", WithoutFolder(f.file, folder_ + "/"));
+        one.set("line", f.line);
+        one.set("numbers", f.numbers);
+        one.set("meaning", f.meaning);
+        one.set("advice", f.advice);
+        list.call<void>("push", one);
+      }
+      return list;
+    });
+  }
+
   // force being the 6 numbers of MuJoCo's mj_contactForce (contact frame).
   val Contacts() const;
   // The same as one view of ncon x kContactStride numbers (a buffer kept by the
@@ -438,7 +471,7 @@ class Simulation {
     history_.Record(m_, d_);
   }
   static simlab::Model Load(const std::string& filename, const std::string& xml,
-                            const val& files);
+                            const val& files, std::string* folder);
   int KeyIndex(const val& key) const;
   void RefreshRowFields();
   const FieldView& DataField(const std::string& name) {
@@ -468,14 +501,16 @@ class Simulation {
   std::vector<FieldView> data_fields_;
   size_t first_row_field_;
   std::vector<double> contact_rows_;  // contactData()'s buffer (capacity only grows)
+  std::string folder_, filename_;     // where the model's files are in the in-memory files
 };
 
 simlab::Model Simulation::Load(const std::string& filename, const std::string& xml,
-                              const val& files) {
+                              const val& files, std::string* folder_out) {
   // Every file goes below one fresh folder; the main file is loaded from there, so
-  // relative file= attributes resolve as on disk.
+  // relative file= attributes resolve as on disk (and stay there, for lint).
   if (!IsSafeRelativePath(filename)) throw Error(filename + ": the model needs a relative name");
   const std::string folder = NextModelFolder();
+  *folder_out = folder;
   val paths = val::global("Object").call<val>("keys", files);
   const int n = paths["length"].as<int>();
   for (int i = 0; i < n; i++) {
@@ -631,6 +666,7 @@ EMSCRIPTEN_BINDINGS(simlab) {
       .function("step", &Simulation::Step)
       .function("step", &Simulation::StepOnce)
       .function("history", &Simulation::History)
+      .function("lint", &Simulation::Lint)
       .function("scrub", &Simulation::Scrub)
       .function("perturbSelect", &Simulation::PerturbSelect)
       .function("perturbStart", &Simulation::PerturbStart)

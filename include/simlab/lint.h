@@ -29,6 +29,8 @@ struct LintFinding {
   std::string numbers;    // the numbers that show the problem
   std::string meaning;    // what it means
   std::string advice;     // what to do
+  std::string kind;       // the element's kind in the compiled model ("actuator", "geom",
+  int id = -1;            // "equality", "keyframe") and id; "" and -1 when it has none there
 };
 
 struct LintReport {

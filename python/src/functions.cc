@@ -5,6 +5,7 @@
 #include <string>
 
 #include "engine/engine.h"
+#include "simlab/lint.h"
 #include "simlab/simlab.h"
 #include "simlab/support.h"
 #include "wrappers.h"
@@ -283,6 +284,42 @@ void DefineHistory(py::module_& m) {
 }
 
 void DefineState(py::module_& m) {
+  // simlab.lint(model or path, key=-1): the findings of simlab lint (simlab/lint.h) as a
+  // list of dicts {check, severity, element, kind, id, file, line, numbers, meaning, advice}.
+  m.def("lint", [](const py::object& model, int key) {
+    std::string path;
+    if (py::isinstance<PyModel>(model)) {
+      path = model.cast<const PyModel&>().path;
+      if (path.empty()) {
+        throw py::value_error("lint reads the model's file: load it with MjModel.from_xml_path "
+                              "(without assets), or pass the file's path");
+      }
+    } else {
+      path = py::str(model).cast<std::string>();
+    }
+    LintReport report;
+    {
+      py::gil_scoped_release release;
+      report = LintFile(path, key);
+    }
+    py::list findings;
+    for (const LintFinding& f : report.findings) {
+      py::dict one;
+      one["check"] = f.check;
+      one["severity"] = LintSeverityName(f.severity);
+      one["element"] = f.element;
+      one["kind"] = f.kind;
+      one["id"] = f.id;
+      one["file"] = f.file;
+      one["line"] = f.line;
+      one["numbers"] = f.numbers;
+      one["meaning"] = f.meaning;
+      one["advice"] = f.advice;
+      findings.append(one);
+    }
+    return findings;
+  }, py::arg("model"), py::arg("key") = -1);
+
   m.def("mj_stateSize", [](const PyModel& mw, int spec) {
     return OrFatal("mj_stateSize", [&] { return StateSize(*mw.model, spec); });
   }, py::arg("m"), py::arg("spec"));

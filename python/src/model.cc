@@ -38,7 +38,11 @@ PyModel FromXmlString(const std::string& xml, const std::optional<py::dict>& ass
 PyModel FromXmlPath(const std::string& path, const std::optional<py::dict>& assets) {
   Assets files = AssetsFrom(assets);
   py::gil_scoped_release release;
-  if (files.empty()) return PyModel(LoadXml(path));
+  if (files.empty()) {
+    PyModel loaded(LoadXml(path));
+    loaded.path = path;
+    return loaded;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open file");
   std::ostringstream text;

@@ -57,6 +57,7 @@ struct PyModel {
   std::vector<FieldView> fields;  // every array, in table order (views stay valid: the
                                   // arrays of a compiled Model are never resized)
   ViewCache views;
+  std::string path;  // the file it was loaded from (from_xml_path), for simlab.lint
 
   explicit PyModel(Model m)
       : model(std::make_shared<Model>(std::move(m))), keeper(Keeper(model)),

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "compiler/compiler.h"
+#include "engine/engine.h"
 #include "mjcf/assets.h"
 #include "mjcf/reader.h"
 #include "simlab/simlab.h"
@@ -46,6 +47,7 @@ struct Subject {
   }
 
   void Add(const std::vector<mjcf::Source>& sources, int id, LintFinding f) const {
+    f.id = id;
     if (id >= 0 && id < static_cast<int>(sources.size())) {
       f.file = sources[id].file;
       f.line = sources[id].line;
@@ -53,9 +55,16 @@ struct Subject {
     out->push_back(std::move(f));
   }
 
+  // Adds f on element `id` of `kind`: its name, kind, file and line filled in.
+  void AddOn(ObjType type, const char* kind, const std::vector<mjcf::Source>& sources, int id,
+             LintFinding f) const {
+    f.element = Element(type, kind, id);
+    f.kind = kind;
+    Add(sources, id, std::move(f));
+  }
+
   void AddActuator(int i, LintFinding f) const {
-    f.element = Element(kObjActuator, "actuator", i);
-    Add(src.actuator, i, std::move(f));
+    AddOn(kObjActuator, "actuator", src.actuator, i, std::move(f));
   }
 };
 
@@ -249,19 +258,155 @@ void CheckKeyCtrlRange(const Subject& s) {
       const double u = m.key_ctrl[k * m.nu + c];
       const double lo = m.actuator_ctrlrange[2 * c], hi = m.actuator_ctrlrange[2 * c + 1];
       if (u >= lo && u <= hi) continue;
-      LintFinding f{"key-ctrl-clamped", LintSeverity::kWarning, s.Element(kObjKey, "keyframe", k),
-                    "", 0,
+      s.AddOn(kObjKey, "keyframe", s.src.key, k, Finding("key-ctrl-clamped", LintSeverity::kWarning,
                     "ctrl[" + std::to_string(c) + "] = " + Num(u) + ", ctrlrange [" + Num(lo) +
                         ", " + Num(hi) + "]",
                     "the engine clamps ctrl to ctrlrange before using it, but data.ctrl keeps "
                     "the value written: a log of ctrl shows an action that was not applied.",
-                    "keep keyframe controls inside ctrlrange (and log the clamped value)."};
-      s.Add(s.src.key, k, std::move(f));
+                    "keep keyframe controls inside ctrlrange (and log the clamped value)."));
     }
   }
 }
 
+// The largest force actuator i can apply (in actuator space), or 0 when nothing bounds
+// it: its forcerange, else a servo's kp times its ctrl span, else a fixed gain times its
+// largest ctrl.
+double LargestForce(const Model& m, int i) {
+  if (m.actuator_forcelimited[i]) {
+    return std::max(std::abs(m.actuator_forcerange[2 * i]), std::abs(m.actuator_forcerange[2 * i + 1]));
+  }
+  const int c = m.actuator_ctrladr[i];
+  if (m.actuator_gaintype[i] != kGainFixed || !m.actuator_ctrllimited[c]) return 0;
+  const double gain = std::abs(m.actuator_gainprm[kNGain * i]);
+  const double lo = m.actuator_ctrlrange[2 * c], hi = m.actuator_ctrlrange[2 * c + 1];
+  if (IsPositionServo(m, i)) return gain * (hi - lo);
+  return m.actuator_biastype[i] == kBiasNone ? gain * std::max(std::abs(lo), std::abs(hi)) : 0;
+}
+
+// A joint equality that has to transmit an actuator's force stretches ("the fingers drift
+// apart under load"). The force it carries when actuator i pushes with p: the part of
+// the actuator's generalized force tau = moment p that the constraint must hold back,
+// f = (J M^-1 tau) / A with A = J M^-1 J' (J: the equality's row, q1 - c q2). At rest a
+// soft constraint carrying f sits r = f R / k from its target: MuJoCo's regularizer
+// R = (1 - d) / d A at impedance d = solimp[0], stiffness k = 1 / (dmax^2 tc^2 dr^2)
+// from solref (tc at least two timesteps).
+void CheckEqualityStretch(const Subject& s) {
+  const Model& m = s.m;
+  const Data& d = s.d;
+  std::vector<double> row(m.nv), solved(m.nv);
+  for (int e = 0; e < m.neq; e++) {
+    const int j1 = m.eq_obj1id[e], j2 = m.eq_obj2id[e];
+    if (m.eq_type[e] != kEqJoint || j2 < 0) continue;
+    const double* solref = &m.eq_solref[kNRef * e];
+    const double* solimp = &m.eq_solimp[kNImp * e];
+    if (solref[0] <= 0) continue;  // (stiffness given directly)
+    // The equality's row and A = J M^-1 J'.
+    std::fill(row.begin(), row.end(), 0.0);
+    row[m.jnt_dofadr[j1]] = 1;
+    row[m.jnt_dofadr[j2]] -= m.eq_data[kNEqData * e + 1];  // (polycoef[1])
+    solved = row;
+    SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), solved.data());
+    double a = 0;
+    for (int k = 0; k < m.nv; k++) a += row[k] * solved[k];
+    if (a <= 0) continue;
+    // The actuator that drives one of the coupled joints and loads the equality most
+    // (actuators elsewhere reach it only through inertia).
+    double load = 0;
+    int by = -1;
+    const int dof1 = m.jnt_dofadr[j1], dof2 = m.jnt_dofadr[j2];
+    for (int i = 0; i < m.nactuator; i++) {
+      if (!IsSiso(m, i)) continue;
+      const double* moment = &d.actuator_moment[static_cast<size_t>(m.actuator_outadr[i]) * m.nv];
+      if (moment[dof1] == 0 && moment[dof2] == 0) continue;
+      double carried = 0;
+      for (int k = 0; k < m.nv; k++) carried += solved[k] * moment[k];
+      carried = std::abs(carried * LargestForce(m, i)) / a;
+      if (carried > load) load = carried, by = i;
+    }
+    if (by < 0 || load < 1e-9) continue;
+    const double tc = std::max(solref[0], 2 * m.opt.timestep), dr = solref[1];
+    const double dmin = solimp[0], dmax = solimp[1];
+    const double stiffness = 1 / (dmax * dmax * tc * tc * dr * dr);
+    const double stretch = load * (1 - dmin) / dmin * a / stiffness;
+    const bool hinge = m.jnt_type[j1] == kJointHinge;
+    const double span = m.jnt_limited[j1] ? m.jnt_range[2 * j1 + 1] - m.jnt_range[2 * j1] : 0;
+    const double allowed = span > 0 ? 0.05 * span : 1e-3;
+    if (stretch <= allowed) continue;
+    s.AddOn(kObjEquality, "equality", s.src.equality, e, Finding(
+        "equality-stretches", LintSeverity::kWarning,
+        s.Element(kObjActuator, "actuator", by) + " can load it with " + Num(load) +
+            (hinge ? " N m" : " N") + "; solref " + Num(solref[0]) + " " + Num(dr) + ", solimp " +
+            Num(dmin) + " " + Num(dmax) + ": at rest it stretches " + Num(stretch) +
+            (hinge ? " rad" : " m") + (span > 0 ? " (" + Num(100 * stretch / span) + "% of the joint's range)" : ""),
+        "the equality has to transmit the actuator's force, and a soft constraint "
+        "transmitting large forces stretches visibly: the joints it couples drift apart "
+        "under load.",
+        "drive the average and constrain the difference (one actuator on a tendon over both "
+        "joints), or stiffen the equality's solref (a smaller time constant)."));
+  }
+}
+
 // ---------------------------------------------------------------- what users check
+
+// A position servo stiffer than the timestep allows: on a joint of inertia I (M's
+// diagonal, armature included) its spring has frequency w = sqrt(kp gear^2 / I), and the
+// explicit step is unstable from w dt = 2 on (damping other than the joint's own does not
+// help: kv is explicit too). Warned from w dt = 1, when the servo already rings.
+void CheckServoStability(const Subject& s) {
+  const Model& m = s.m;
+  if (m.opt.integrator != kIntegratorEuler) return;  // (implicit integrators take kv in)
+  const double dt = m.opt.timestep;
+  for (int i = 0; i < m.nactuator; i++) {
+    const int j = DrivenScalarJoint(m, i);
+    if (!IsPositionServo(m, i) || j < 0) continue;
+    const int dof = m.jnt_dofadr[j];
+    const double inertia = s.d.qM[m.dof_Madr[dof]];
+    const double gear = m.actuator_gear[6 * m.actuator_outadr[i]];
+    const double kp = m.actuator_gainprm[kNGain * i];
+    if (inertia <= 0) continue;
+    const double w = std::sqrt(kp * gear * gear / inertia);
+    if (w * dt < 1) continue;
+    s.AddActuator(i, Finding("servo-unstable", LintSeverity::kWarning,
+                             "kp " + Num(kp) + ", gear " + Num(gear) + ", joint inertia " + Num(inertia) +
+                                 " (armature " + Num(m.dof_armature[dof]) + ", damping " +
+                                 Num(m.dof_damping[dof]) + "): w dt = " + Num(w * dt) +
+                                 " (w = " + Num(w) + " rad/s, timestep " + Num(dt) + " s)",
+                             std::string(w * dt >= 2 ? "the servo is beyond the stability bound "
+                                                       "w dt < 2 of the explicit step: it diverges."
+                                                     : "the servo is near the stability bound w dt < 2 "
+                                                       "of the explicit step: it rings and nearly diverges."),
+                             "add armature (or joint damping), lower kp, shorten the timestep, or "
+                             "use the implicitfast integrator."));
+  }
+}
+
+// A geom set up to collide (nonzero contype or conaffinity), in a model whose other
+// bodies have colliding geoms, whose bits match none of theirs, and that no <pair> names:
+// it collides with nothing.
+void CheckGeomsCollideWithNothing(const Subject& s) {
+  const Model& m = s.m;
+  std::vector<bool> paired(m.ngeom, false);
+  for (int p = 0; p < m.npair; p++) paired[m.pair_geom1[p]] = paired[m.pair_geom2[p]] = true;
+  for (int g = 0; g < m.ngeom; g++) {
+    const int type = m.geom_contype[g], affinity = m.geom_conaffinity[g];
+    if ((type == 0 && affinity == 0) || paired[g]) continue;
+    // (only where other bodies have geoms that collide: a lone body has nothing to meet)
+    bool others = false, match = false;
+    for (int h = 0; h < m.ngeom && !match; h++) {
+      if (h == g || m.geom_bodyid[h] == m.geom_bodyid[g]) continue;
+      others = others || m.geom_contype[h] || m.geom_conaffinity[h];
+      match = (type & m.geom_conaffinity[h]) || (affinity & m.geom_contype[h]);
+    }
+    if (match || !others) continue;
+    s.AddOn(kObjGeom, "geom", s.src.geom, g, Finding("collides-with-nothing", LintSeverity::kWarning,
+                            "contype " + std::to_string(type) + ", conaffinity " + std::to_string(affinity) +
+                                ": no geom of another body has a matching bit",
+                            "contacts need contype of one geom to share a bit with conaffinity of "
+                            "the other: this geom never touches anything.",
+                            "give it a contype/conaffinity bit the other geoms share, or set both "
+                            "to 0 if it is only visual."));
+  }
+}
 
 // A keyframe whose qpos puts a limited joint outside its range: the limit pushes it back
 // at the first step.
@@ -277,16 +422,15 @@ void CheckKeyQposRange(const Subject& s) {
       // (a little past the range, as a state saved from a simulation with soft limits
       // often is: a note; further: a warning)
       const bool slight = excess < 0.02 * (hi - lo);
-      LintFinding f{"key-outside-range", slight ? LintSeverity::kNote : LintSeverity::kWarning,
-                    s.Element(kObjKey, "keyframe", k), "", 0,
+      s.AddOn(kObjKey, "keyframe", s.src.key, k, Finding("key-outside-range",
+                    slight ? LintSeverity::kNote : LintSeverity::kWarning,
                     s.Element(kObjJoint, "joint", j) + " at " + Num(q) + ", range [" + Num(lo) +
                         ", " + Num(hi) + "], " + Num(excess) + " past it",
                     std::string("the keyframe starts the joint outside its range") +
                         (slight ? " (slightly, as a state saved from a simulation with soft "
                                   "limits can be)" : "") +
                         ": the limit constraint pushes it back at the first step.",
-                    "move the keyframe's qpos inside the range (or widen the range)."};
-      s.Add(s.src.key, k, std::move(f));
+                    "move the keyframe's qpos inside the range (or widen the range)."));
     }
   }
 }
@@ -326,6 +470,45 @@ void CheckRangesSwitchedOff(const mjcf::ModelSpec& spec, std::vector<LintFinding
                       "remove forcelimited=\"false\"."});
     }
   }
+}
+
+// Default classes that no element uses.
+void CheckUnusedClasses(const mjcf::ModelSpec& spec, std::vector<LintFinding>* out) {
+  std::vector<mjcf::Source> unused = spec.unused_classes;
+  std::sort(unused.begin(), unused.end(),
+            [](const mjcf::Source& a, const mjcf::Source& b) { return a.line < b.line; });
+  for (const mjcf::Source& c : unused) {
+    out->push_back({"unused-class", LintSeverity::kNote, "default class \"" + c.name + "\"", c.file,
+                    c.line, "no element names it (class= or childclass=), nor a class nested in it",
+                    "its values reach no element: a misspelt class name elsewhere, or a class "
+                    "left over.",
+                    "name it where it was meant to apply, or remove it."});
+  }
+}
+
+// A hinge range that reads like radians (within 2 pi, not in whole degrees) while the
+// compiler reads degrees (the default): range="-1.57 1.57" is then +-1.57 degrees.
+void VisitHingeRanges(const mjcf::BodySpec& body, std::vector<LintFinding>* out) {
+  for (const auto& j : body.joints) {
+    const double most = std::max(std::abs(j.range[0]), std::abs(j.range[1]));
+    const bool whole = j.range[0] == std::round(j.range[0]) && j.range[1] == std::round(j.range[1]);
+    if (j.type != kJointHinge || !(j.range[0] < j.range[1]) || most > 2 * M_PI + 1e-9 || whole) continue;
+    const double rad = M_PI / 180;
+    out->push_back({"range-in-degrees", LintSeverity::kNote,
+                    "joint" + (j.src.name.empty() ? std::string() : " \"" + j.src.name + "\""),
+                    j.src.file, j.src.line,
+                    "range [" + Num(j.range[0]) + ", " + Num(j.range[1]) + "] with <compiler "
+                    "angle=\"degree\"> (the default): [" + Num(j.range[0] * rad) + ", " +
+                    Num(j.range[1] * rad) + "] rad",
+                    "the range is read in degrees: if it was meant in radians, the joint can "
+                    "barely move.",
+                    "if so, write it in degrees, or set <compiler angle=\"radian\">."});
+  }
+  for (const auto& child : body.bodies) VisitHingeRanges(*child, out);
+}
+
+void CheckRangesInDegrees(const mjcf::ModelSpec& spec, std::vector<LintFinding>* out) {
+  if (spec.compiler.degree) VisitHingeRanges(spec.world, out);
 }
 
 // The model read and compiled, with its elements' sources.
@@ -376,9 +559,14 @@ LintReport LintFile(const std::string& path, int key) {
   CheckServoTooWeak(subject);
   CheckZeroTarget(subject);
   CheckEulerFilter(subject);
+  CheckEqualityStretch(subject);
   CheckKeyCtrlRange(subject);
   CheckKeyQposRange(subject);
+  CheckServoStability(subject);
+  CheckGeomsCollideWithNothing(subject);
   CheckRangesSwitchedOff(loaded.spec, &report.findings);
+  CheckRangesInDegrees(loaded.spec, &report.findings);
+  CheckUnusedClasses(loaded.spec, &report.findings);
   CheckGear(subject);
   return report;
 }

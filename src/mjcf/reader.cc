@@ -128,6 +128,7 @@ void Reader::Root(pugi::xml_node root) {
   });
 
   FinishKeys();
+  NoteUnusedClasses();
 }
 
 // ---------------------------------------------------------------- default classes
@@ -148,6 +149,9 @@ void Reader::Default(const XmlElement& e, const DefaultClass* parent) {
     auto made = std::make_unique<DefaultClass>(*parent);
     made->name = name;
     made->parent = parent->name;
+    made->src = e.src();
+    made->src.name = name;
+    own_classes_.insert(name);
     def = made.get();
     classes_[name] = std::move(made);
   }
@@ -194,7 +198,22 @@ const DefaultClass* Reader::FindClass(const XmlElement& e, const char* attr) con
   if (!e.Text(attr, &name)) return nullptr;
   auto it = classes_.find(name);
   if (it == classes_.end()) e.Fail("unknown default class '" + name + "'");
+  used_classes_.insert(name);
   return it->second.get();
+}
+
+void Reader::NoteUnusedClasses() {
+  // A class is used when it, or a class nested in it, is named by an element.
+  std::set<std::string> used;
+  for (const std::string& name : used_classes_) {
+    for (auto it = classes_.find(name); it != classes_.end(); it = classes_.find(it->second->parent)) {
+      if (!used.insert(it->first).second) break;
+    }
+  }
+  // (classes an attached model brought along are its own document's business)
+  for (const std::string& name : own_classes_) {
+    if (!used.count(name)) spec_->unused_classes.push_back(classes_.at(name)->src);
+  }
 }
 
 // ---------------------------------------------------------------- the body tree

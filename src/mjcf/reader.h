@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <memory>
 #include <string>
 
@@ -87,6 +88,8 @@ class Reader {
   // defaults and the body tree (reader.cc)
   void Default(const XmlElement& e, const DefaultClass* parent);
   const DefaultClass* FindClass(const XmlElement& e, const char* attr) const;
+  // The classes no element used (after the document is read): spec_->unused_classes.
+  void NoteUnusedClasses();
   void Body(const XmlElement& e, BodySpec* body, const FramePtr& frame,
             const DefaultClass* def);
   void BodyChild(const XmlElement& e, BodySpec* body, const FramePtr& frame,
@@ -139,6 +142,8 @@ class Reader {
   const LineIndex& lines_;
   ModelSpec* spec_;
   std::map<std::string, std::unique_ptr<DefaultClass>> classes_;
+  std::set<std::string> own_classes_;           // defined by this document's <default>s
+  mutable std::set<std::string> used_classes_;  // named by class= or childclass=
   const NodeOrigins* origins_ = nullptr;
   std::map<std::string, std::shared_ptr<const ParsedModel>> models_;
   std::vector<KeySpec> attached_keys_;

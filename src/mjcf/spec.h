@@ -460,6 +460,7 @@ struct KeySpec {
 struct DefaultClass {
   std::string name;
   std::string parent;
+  Source src;  // the <default> element
   JointSpec joint;
   GeomSpec geom;
   SiteSpec site;
@@ -537,6 +538,9 @@ struct ModelSpec {
   std::array<double, 3> center = {kUndefined, kUndefined, kUndefined};
   double znear = 0.01;  // <visual><map znear>: default focal length of cameras
   Visual vis;           // the rest of <visual> that simlab keeps
+  // <default> classes of the main document (and its includes) that no element uses, by
+  // class= or childclass=, itself or through a class nested in it (for simlab lint).
+  std::vector<Source> unused_classes;
 };
 
 }  // namespace simlab::mjcf

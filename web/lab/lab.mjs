@@ -7,6 +7,7 @@
 import { arrayReader, arraysOf, evaluateExpr, parseExpr, parseTarget } from './expr.mjs';
 import { HistoryScrubber } from './history.mjs';
 import { actuatorPoint, kLabelKinds, labelTexts } from './labels.mjs';
+import { buildLintPanel, lintBody } from './lint_panel.mjs';
 import { gatherModelFiles } from './model_files.mjs';
 import { modelInfo, specFromModel } from './panels.mjs';
 import { Perturber } from './perturb.mjs';
@@ -133,6 +134,14 @@ const kStyle = `
 .simlab-lab-labels { position: absolute; left: 0; top: 0; pointer-events: none; }
 .simlab-lab-label { position: absolute; left: 0; top: 0; font: 11px system-ui, sans-serif; color: #fff;
   white-space: nowrap; text-shadow: 0 0 2px #000, 0 0 2px #000; }
+.simlab-lab-lint { margin: 6px 0; font-size: 13px; }
+.simlab-lab-lint summary { cursor: pointer; color: #333; }
+.simlab-lab-lint-finding { margin: 4px 0 4px 1em; padding: 3px 6px; border-left: 3px solid #c8ccd4; cursor: pointer; }
+.simlab-lab-lint-warning { border-left-color: #d08a00; }
+.simlab-lab-lint-finding .head { font-weight: 600; }
+.simlab-lab-lint-finding .numbers { font-variant-numeric: tabular-nums; }
+.simlab-lab-lint-finding .advice { color: #444; }
+.simlab-lab-lint-picked { background: #fff4d6; }
 .simlab-lab-pickable { cursor: pointer; border-radius: 3px; padding: 0 3px; }
 .simlab-lab-pickable:hover { background: #eef2f8; }
 .simlab-lab-picked { background: #dde8f7; }
@@ -245,6 +254,7 @@ class Lab {
     this.view = root.appendChild(make('div', 'simlab-lab-view'));
     this.scene = new LabScene(this.view, Number(spec.height) > 0 ? Number(spec.height) : 300, spec.camera);
     this.buildToolbar();
+    this.buildLint();
     this.controls = (spec.controls ?? []).map((c) => this.buildControl(c));
     this.readouts = this.buildReadouts(spec.readouts ?? []);
     this.plots = (spec.plots ?? []).map((p) => this.buildPlot(p));
@@ -466,15 +476,43 @@ class Lab {
     this.draw();
   }
 
-  // The labels at their objects' positions now.
+  // The labels at their objects' positions now (and the picked lint finding's mark).
   drawLabels() {
-    if (!this.labelItems.length && !this.labelsShown) return;
-    for (const item of this.labelItems) {
+    const items = this.lintMark ? [...this.labelItems, this.lintMark] : this.labelItems;
+    if (!items.length && !this.labelsShown) return;
+    for (const item of items) {
       const view = this.dataViews.get(item.array);
       for (let k = 0; k < 3; k++) item.position[k] = view[3 * item.index + k];
     }
-    this.scene.drawLabels(this.labelItems);
-    this.labelsShown = this.labelItems.length > 0;
+    this.scene.drawLabels(items);
+    this.labelsShown = items.length > 0;
+  }
+
+  // simlab lint's findings for the model at the lab's keyframe, in a panel under the
+  // toolbar; a picked finding's body glows in the view and carries the check's name.
+  buildLint() {
+    let findings;
+    try {
+      findings = this.sim.lint(this.key ?? -1);
+    } catch (error) {
+      findings = [];
+    }
+    this.lintFindings = findings;
+    this.lintPanel = this.root.appendChild(buildLintPanel(findings, (finding, row) => this.guarded(() => {
+      this.pickLint(finding, row);
+    })));
+  }
+
+  pickLint(finding, row) {
+    for (const other of this.lintPanel.querySelectorAll('.simlab-lab-lint-picked')) other.classList.remove('simlab-lab-lint-picked');
+    row.classList.add('simlab-lab-lint-picked');
+    const names = ['geom_bodyid', 'eq_type', 'eq_obj1id', 'jnt_bodyid', 'actuator_trntype', 'actuator_trnid', 'site_bodyid'];
+    const model = Object.fromEntries(names.map((name) => [name, this.array('model', name)]));
+    const body = lintBody(model, finding);
+    this.scene.highlightBody(body, model.geom_bodyid);
+    this.lintMark = body > 0 ? { text: `${finding.check}: ${finding.element}`, array: 'xpos', index: body, position: [0, 0, 0] } : null;
+    this.sceneStale = true;
+    this.drawScene();
   }
 
   // A close-up in the view's corner through the model's first camera (a lesson's model

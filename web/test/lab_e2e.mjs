@@ -461,6 +461,9 @@ async function testLessonLab(session) {
   await page.evaluate(() => { window.lab = document.querySelector('section.lab-mount').simlabLab; });
   await page.locator('section.lab-mount').scrollIntoViewIfNeeded();
   await checkAgainstSpec(page, spec);
+  // (the lesson's gantry lints clean at its keyframe: simlab lint finds none of the traps)
+  const lint = await page.locator('.simlab-lab-lint summary').textContent();
+  check(lint === 'lint: no findings', `the lint panel says "${lint}"`);
   await page.waitForTimeout(500);
   await checkPicture(page, [0.12, 0, 0.02], 'the first picture');
   await checkToggles(page);

@@ -5,7 +5,8 @@
 // and changes the actuator's force; simulate's keys pause (time stops), single-step (one
 // timestep), reset (time 0) and change the speed; the history goes back and forward
 // (Left and Right arrows, its slider) and playing on from the past drops the newer
-// states; body labels name the bodies; the info panel shows time, contacts and
+// states; body labels name the bodies; the lint panel lists its findings and marks a
+// picked one's body; the info panel shows time, contacts and
 // solver iterations; a click on a readout plots it and the
 // CSV export holds the plotted series; the screenshot export is a PNG; the camera chooser
 // tracks a body and draws from a model camera. On the mug (a
@@ -184,6 +185,30 @@ async function checkLabels(page) {
   check(left === 0, 'no labels chosen: none shown');
 }
 
+// The lint panel: the humanoid's findings at its default state (a note for each of its
+// 21 geared motors, and for the 4 joints its keyframes put slightly past their ranges), and
+// a picked finding marks its body in the view (it glows and carries
+// the check's name).
+async function checkLint(page) {
+  const summary = await page.locator('.simlab-lab-lint summary').textContent();
+  check(summary === 'lint: 0 warnings, 25 notes', `the lint panel says "${summary}"`);
+  await page.locator('.simlab-lab-lint summary').click();
+  const row = page.locator('.simlab-lab-lint-finding', { hasText: '"abdomen_z" [gear-scales-force]' }).first();
+  const head = await row.locator('.head').textContent();
+  await row.click();
+  await page.waitForTimeout(200);
+  const marked = await page.evaluate(() => {
+    const labels = Array.from(document.querySelectorAll('.simlab-lab-label')).filter((e) => e.style.display !== 'none');
+    const glowing = window.lab.scene.geoms.filter(({ mesh }) => mesh.material.emissive.getHex() === 0x404000).length;
+    return { labels: labels.map((e) => e.textContent), glowing };
+  });
+  check(/^note: actuator "abdomen_z" \[gear-scales-force\] \(humanoid.xml:\d+\)$/.test(head) && marked.glowing > 0 &&
+        marked.labels.includes('gear-scales-force: actuator "abdomen_z"'),
+        `picking "${head}" marks its body: ${marked.glowing} geoms glow, label "${marked.labels.at(-1)}"`);
+  await page.screenshot({ path: path.join(options.shots, 'view_lint.png') });
+  await page.locator('.simlab-lab-lint summary').click();
+}
+
 // A click on a readout plots it; the CSV export holds its series; the screenshot export
 // is a PNG.
 async function checkPlotAndExports(page) {
@@ -287,6 +312,7 @@ async function testModel(file, interactive) {
       await checkKeys(page);
       await checkHistory(page);
       await checkLabels(page);
+      await checkLint(page);
       await checkPlotAndExports(page);
       await checkCameras(page);
     }

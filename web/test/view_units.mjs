@@ -7,6 +7,7 @@
 import assert from 'node:assert/strict';
 import { HistoryScrubber } from '../lab/history.mjs';
 import { actuatorPoint, kMaxLabels, labelPoint, labelTexts } from '../lab/labels.mjs';
+import { lintBody, lintSummary } from '../lab/lint_panel.mjs';
 import { Pacer, kSpeeds, nextSpeed } from '../lab/pacer.mjs';
 import { tickTexts } from '../lab/plot.mjs';
 import { specFromModel } from '../lab/panels.mjs';
@@ -154,6 +155,17 @@ const tests = {
     assert.deepEqual(labelPoint([-1, 1, 0.5], 200, 100), [0, 0]);
     assert.equal(labelPoint([0, 0, 1.2], 200, 100), null);
     assert.equal(labelPoint([1.5, 0, 0.5], 200, 100), null);
+  },
+  'a lint finding marks the body its element acts on; the summary counts': () => {
+    // (geom 0 on body 2; equality 0 couples joint 1 (body 3); actuators on joint 1, site 0
+    // (body 4), a tendon)
+    const model = { geom_bodyid: [2], eq_type: [2], eq_obj1id: [1], jnt_bodyid: [1, 3], site_bodyid: [4],
+                    actuator_trntype: [0, 4, 3], actuator_trnid: [1, -1, 0, -1, 0, -1] };
+    const body = (kind, id) => lintBody(model, { kind, id });
+    assert.deepEqual([body('geom', 0), body('equality', 0), body('actuator', 0), body('actuator', 1),
+                      body('actuator', 2), body('keyframe', 0), body('', -1)], [2, 3, 3, 4, -1, -1, -1]);
+    assert.equal(lintSummary([]), 'no findings');
+    assert.equal(lintSummary([{ severity: 'warning' }, { severity: 'note' }, { severity: 'note' }]), '1 warning, 2 notes');
   },
   'plot ticks have the decimals their spacing needs, and no "-0"': () => {
     assert.deepEqual(tickTexts(null, [0, -0.01, -0.02]), ['0.00', '-0.01', '-0.02']);
