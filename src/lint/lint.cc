@@ -380,6 +380,50 @@ void CheckServoStability(const Subject& s) {
   }
 }
 
+// A moving body (and everything it carries) nearly massless against the model's mean
+// body mass, with no armature on its dofs: a small force gives it a huge acceleration,
+// so it jitters or blows up at ordinary timesteps.
+void CheckNearlyMassless(const Subject& s) {
+  const Model& m = s.m;
+  const double light = 1e-3 * m.stat.meanmass;
+  for (int b = 1; b < m.nbody; b++) {
+    if (m.body_dofnum[b] == 0 || m.body_subtreemass[b] >= light) continue;
+    double armature = 0;
+    for (int k = 0; k < m.body_dofnum[b]; k++) armature += m.dof_armature[m.body_dofadr[b] + k];
+    if (armature > 0) continue;
+    s.AddOn(kObjBody, "body", s.src.body, b,
+            Finding("nearly-massless", LintSeverity::kWarning,
+                    "it moves, with " + Num(m.body_subtreemass[b]) + " kg in all (itself and what it "
+                    "carries), against a mean body mass of " + Num(m.stat.meanmass) + " kg, and no armature",
+                    "a nearly massless moving body gets huge accelerations from small forces: it "
+                    "jitters, or the simulation diverges.",
+                    "give it a realistic mass (inertial or geom mass), or armature on its joints."));
+  }
+}
+
+// A joint whose actuatorfrcrange (limited with autolimits as soon as it is given) clamps
+// the actuators' total force below what they can apply: qfrc_actuator stops at the clamp
+// while actuator_force shows the unclamped force.
+void CheckJointForceClamp(const Subject& s) {
+  const Model& m = s.m;
+  for (int i = 0; i < m.nactuator; i++) {
+    const int j = DrivenScalarJoint(m, i);
+    if (j < 0 || !m.jnt_actfrclimited[j]) continue;
+    const double gear = m.actuator_gear[6 * m.actuator_outadr[i]];
+    const double most = std::abs(gear) * LargestForce(m, i);
+    const double lo = m.jnt_actfrcrange[2 * j], hi = m.jnt_actfrcrange[2 * j + 1];
+    if (most <= std::max(std::abs(lo), std::abs(hi))) continue;
+    s.AddActuator(i, Finding("joint-clamps-force", LintSeverity::kWarning,
+                             "it can apply " + Num(most) + " at " + s.Element(kObjJoint, "joint", j) +
+                                 ", whose actuatorfrcrange is [" + Num(lo) + ", " + Num(hi) + "]",
+                             "the joint clamps the total actuator force (a fourth clamp, after "
+                             "ctrlrange, actrange and forcerange): qfrc_actuator stops at the joint's "
+                             "range while actuator_force shows the unclamped force.",
+                             "read the joint's force from qfrc_actuator, or widen actuatorfrcrange "
+                             "if the clamp was not meant."));
+  }
+}
+
 // A geom set up to collide (nonzero contype or conaffinity), in a model whose other
 // bodies have colliding geoms, whose bits match none of theirs, and that no <pair> names:
 // it collides with nothing.
@@ -563,6 +607,8 @@ LintReport LintFile(const std::string& path, int key) {
   CheckKeyCtrlRange(subject);
   CheckKeyQposRange(subject);
   CheckServoStability(subject);
+  CheckNearlyMassless(subject);
+  CheckJointForceClamp(subject);
   CheckGeomsCollideWithNothing(subject);
   CheckRangesSwitchedOff(loaded.spec, &report.findings);
   CheckRangesInDegrees(loaded.spec, &report.findings);
