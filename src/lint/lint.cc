@@ -288,8 +288,8 @@ double LargestForce(const Model& m, int i) {
 // the actuator's generalized force tau = moment p that the constraint must hold back,
 // f = (J M^-1 tau) / A with A = J M^-1 J' (J: the equality's row, q1 - c q2). At rest a
 // soft constraint carrying f sits r = f R / k from its target: MuJoCo's regularizer
-// R = (1 - d) / d A at impedance d = solimp[0], stiffness k = 1 / (dmax^2 tc^2 dr^2)
-// from solref (tc at least two timesteps).
+// R = (1 - d) / d A at impedance d (solimp's dmin, or dmax past its width), stiffness
+// k = 1 / (dmax^2 tc^2 dr^2) from solref (tc at least two timesteps).
 void CheckEqualityStretch(const Subject& s) {
   const Model& m = s.m;
   const Data& d = s.d;
@@ -327,10 +327,13 @@ void CheckEqualityStretch(const Subject& s) {
     const double tc = std::max(solref[0], 2 * m.opt.timestep), dr = solref[1];
     const double dmin = solimp[0], dmax = solimp[1];
     const double stiffness = 1 / (dmax * dmax * tc * tc * dr * dr);
-    const double stretch = load * (1 - dmin) / dmin * a / stiffness;
+    // (the impedance is dmin at no violation and dmax from solimp's width on)
+    const auto stretch_at = [&](double d) { return load * (1 - d) / d * a / stiffness; };
+    const double stretch = stretch_at(dmin) > solimp[2] ? std::max(solimp[2], stretch_at(dmax)) : stretch_at(dmin);
     const bool hinge = m.jnt_type[j1] == kJointHinge;
     const double span = m.jnt_limited[j1] ? m.jnt_range[2 * j1 + 1] - m.jnt_range[2 * j1] : 0;
-    const double allowed = span > 0 ? 0.05 * span : 1e-3;
+    // (visible: 5% of the joint's range, else 0.01 rad or 5 mm)
+    const double allowed = span > 0 ? 0.05 * span : (hinge ? 0.01 : 0.005);
     if (stretch <= allowed) continue;
     s.AddOn(kObjEquality, "equality", s.src.equality, e, Finding(
         "equality-stretches", LintSeverity::kWarning,
