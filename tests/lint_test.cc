@@ -55,6 +55,7 @@ const Case kCases[] = {
     {"collides_nothing", "collides-with-nothing", -1, 4, LintSeverity::kWarning, {"contype 1, conaffinity 1"}, 2},
     {"range_degrees", "range-in-degrees", -1, 7, LintSeverity::kNote, {"[-1.57, 1.57]", "[-0.0274, 0.0274] rad"}, 1, "weak_servo_ok"},
     {"unused_class", "unused-class", -1, 7, LintSeverity::kNote, {"nor a class nested in it"}},
+    {"key_equality", "key-breaks-equality", 0, 20, LintSeverity::kWarning, {"\"mirror\"", "violated by 0.03"}},
     {"massless", "nearly-massless", -1, 8, LintSeverity::kWarning, {"0.0001 kg", "0.5 kg"}},
     {"joint_clamp", "joint-clamps-force", -1, 13, LintSeverity::kWarning, {"1570", "[-2, 2]"}, 1, "weak_servo_ok"},
 };

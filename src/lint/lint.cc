@@ -482,6 +482,43 @@ void CheckKeyQposRange(const Subject& s) {
   }
 }
 
+// The unit of an equality's violation: a joint equality's joint's, metres for connect and
+// tendon, both for weld.
+std::string EqualityUnit(const Model& m, int e) {
+  if (m.eq_type[e] == kEqWeld) return "(m, rad)";
+  if (m.eq_type[e] == kEqJoint && m.jnt_type[m.eq_obj1id[e]] == kJointHinge) return "rad";
+  return "m";
+}
+
+// A keyframe whose qpos breaks an equality constraint (by more than 1 mm or 1 mrad, more
+// than a state saved from a simulation holds): the constraint snaps it back at the first
+// step. Each keyframe's rows are made by the engine (Forward at the keyframe).
+void CheckKeyEqualities(const Subject& s) {
+  const Model& m = s.m;
+  if (m.neq == 0) return;
+  Data d = MakeData(m);
+  for (int k = 0; k < m.nkey; k++) {
+    ResetDataKeyframe(m, d, k);
+    Forward(m, d);
+    std::vector<double> worst(m.neq, 0.0);
+    for (int r = 0; r < d.nefc; r++) {
+      if (d.efc_type[r] != kCnstrEquality) continue;
+      worst[d.efc_id[r]] = std::max(worst[d.efc_id[r]], std::abs(d.efc_pos[r]));
+    }
+    for (int e = 0; e < m.neq; e++) {
+      if (worst[e] <= 1e-3) continue;
+      s.AddOn(kObjKey, "keyframe", s.src.key, k,
+              Finding("key-breaks-equality", LintSeverity::kWarning,
+                      s.Element(kObjEquality, "equality", e) + " is violated by " + Num(worst[e]) +
+                          " " + EqualityUnit(m, e) + " at the keyframe",
+                      "the keyframe's qpos does not satisfy the equality: the constraint snaps "
+                      "the joints together at the first step, with a jolt.",
+                      "set the keyframe's qpos so that the equality holds (for a joint "
+                      "equality: q1 = polycoef(q2))."));
+    }
+  }
+}
+
 // ---------------------------------------------------------------- the spec's checks
 
 // limited="false" beside a range: the range is ignored (joints here, actuators below).
@@ -609,6 +646,7 @@ LintReport LintFile(const std::string& path, int key) {
   CheckEqualityStretch(subject);
   CheckKeyCtrlRange(subject);
   CheckKeyQposRange(subject);
+  CheckKeyEqualities(subject);
   CheckServoStability(subject);
   CheckNearlyMassless(subject);
   CheckJointForceClamp(subject);
