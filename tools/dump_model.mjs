@@ -18,7 +18,8 @@ import { loadOracleModel } from './oracle_model.mjs';
 // Fields compared by the test; sizes first.
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
-  'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat', 'nmeshtexcoord'];
+  'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat', 'nmeshtexcoord',
+  'npair', 'nexclude'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -68,6 +69,8 @@ const ARRAYS = [
   'key_time', 'key_qpos', 'key_qvel', 'key_act', 'key_mpos', 'key_mquat', 'key_ctrl',
   'eq_type', 'eq_obj1id', 'eq_obj2id', 'eq_objtype', 'eq_active0', 'eq_solref', 'eq_solimp',
   'eq_data',
+  'pair_dim', 'pair_geom1', 'pair_geom2', 'pair_signature', 'pair_solref', 'pair_solimp',
+  'pair_margin', 'pair_gap', 'pair_friction', 'exclude_signature',
 ];
 const OPTIONS = ['timestep', 'impratio', 'tolerance', 'ls_tolerance', 'gravity', 'wind',
   'magnetic', 'density', 'viscosity', 'o_margin', 'o_solref', 'o_solimp', 'o_friction',

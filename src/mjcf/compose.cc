@@ -4,9 +4,9 @@
 // file replace the <include> element, and remember their own file and line for error
 // messages. <attach> is a copy: the named body subtree of a model declared with
 // <asset><model> (read on its own, with its own defaults) is copied into this body
-// with every name prefixed; the child's tendons, equalities, actuators and sensors follow when
-// everything they reference came along, and its keyframes become keyframes of this
-// model, completed by the compiler (see AttachedKey).
+// with every name prefixed; the child's contact pairs, excludes, tendons, equalities,
+// actuators and sensors follow when everything they reference came along, and its
+// keyframes become keyframes of this model, completed by the compiler (see AttachedKey).
 #include "mjcf/compose.h"
 
 #include <algorithm>
@@ -335,6 +335,20 @@ bool AttachTendon(TendonSpec* t, Attachment* att) {
   return found;
 }
 
+// A contact pair follows when both its geoms came along; an exclude when both its bodies
+// did (MuJoCo copies the child's pairs and excludes and drops those that name others).
+bool AttachPair(PairSpec* pair, Attachment* att) {
+  att->Rename(&pair->geom1);
+  att->Rename(&pair->geom2);
+  return att->Has(kObjGeom, pair->geom1) && att->Has(kObjGeom, pair->geom2);
+}
+
+bool AttachExclude(ExcludeSpec* exclude, Attachment* att) {
+  att->Rename(&exclude->body1);
+  att->Rename(&exclude->body2);
+  return att->Has(kObjBody, exclude->body1) && att->Has(kObjBody, exclude->body2);
+}
+
 // An equality follows when its objects came along (no second body: the world).
 bool AttachEquality(EqualitySpec* eq, Attachment* att) {
   att->Rename(&eq->name1);
@@ -492,6 +506,16 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
   }
 
   // Elements outside the tree that reference only what was copied, in MuJoCo's order.
+  for (PairSpec pair : cs.pairs) {
+    if (!AttachPair(&pair, &att)) continue;
+    att.Rename(&pair.src.name, kObjPair);
+    spec_->pairs.push_back(std::move(pair));
+  }
+  for (ExcludeSpec exclude : cs.excludes) {
+    if (!AttachExclude(&exclude, &att)) continue;
+    att.Rename(&exclude.src.name, kObjExclude);
+    spec_->excludes.push_back(std::move(exclude));
+  }
   for (TendonSpec t : cs.tendons) {
     if (!AttachTendon(&t, &att)) continue;
     att.Rename(&t.src.name, kObjTendon);
