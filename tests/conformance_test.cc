@@ -42,10 +42,12 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 // (tests/conformance/adhesion/make_goldens.sh); contact scenes and the gantry lab
 // scenario (tools/make_contact_goldens.sh); height-field collisions
 // (tools/make_hfield_goldens.sh); actuators newer than 3.5.1, from native MuJoCo
-// (tests/conformance/actuators312/make_goldens.sh).
+// (tests/conformance/actuators312/make_goldens.sh); MuJoCo's corpus models as they are
+// (tests/conformance/corpus/make_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
   for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
+                           "tests/conformance/corpus_cases.txt",
                            "tests/conformance/tendon_cases.txt",
                            "tests/conformance/constraint_cases.txt",
                            "tests/conformance/fluid_cases.txt",

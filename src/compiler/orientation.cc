@@ -76,6 +76,7 @@ const char* FromEuler(double* quat, bool degree, const std::string& seq,
     } else {
       math::MulQuat(tmp, rot, quat);
     }
+    NormalizeVec(tmp, 4);  // (each product normalized, as MuJoCo's compiler does)
     math::CopyQuat(quat, tmp);
   }
   NormalizeVec(quat, 4);
@@ -98,10 +99,16 @@ const char* ResolveOrientation(double* quat, bool degree, const std::string& eul
 
 // ---------------------------------------------------------------- frames
 
+// As MuJoCo's compiler accumulates frames (its user-side mjuu_frameaccum), to the bit:
+// the position rotated through the frame's rotation matrix, the product of quaternions
+// normalized.
 void AccumulateChild(const double fpos[3], const double fquat[4], double pos[3], double quat[4]) {
-  double p[3], q[4];
-  math::MulPose(p, q, fpos, fquat, pos, quat);
-  math::Copy3(pos, p);
+  double mat[9], rotated[3], q[4];
+  math::QuatToMat(mat, fquat);
+  math::MulMatVec3(rotated, mat, pos);
+  for (int k = 0; k < 3; k++) pos[k] = fpos[k] + rotated[k];
+  math::MulQuat(q, fquat, quat);
+  NormalizeVec(q, 4);
   math::CopyQuat(quat, q);
 }
 

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# make_goldens.sh — MuJoCo's own models from ../shared/corpus, rolled out as they are by
+# the oracle (MuJoCo 3.5.1, ../shared/oracle) under ctrlgen.mjs's controls: the standing
+# conformance of the models issue 19 names that the corpus holds (composition to the
+# bit, attached contact sections...). The models stay in ../shared/corpus (CI has it
+# beside the repository); only controls and goldens are written here.
+#
+# Usage:  tests/conformance/corpus/make_goldens.sh      (from any working directory)
+#
+#   Each line of MODELS below: a corpus path, the steps, how often to record, the
+#   tolerance. ctrl/<name>.csv = ctrlgen.mjs MODEL --steps N; goldens/<name>.jsonl =
+#   rollout.mjs MODEL --steps N --every E --ctrl CTRL. Writes
+#   tests/conformance/corpus_cases.txt.
+# Requirements: bash, node, and `npm ci` done in ../shared/oracle.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
+ORACLE="$(cd "$ROOT/../shared/oracle" && pwd)"
+[ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
+cd "$ROOT"
+OUT=tests/conformance/corpus
+CASES=tests/conformance/corpus_cases.txt
+MODELS=(
+  # 22 humanoids attached in a <replicate>, each with the child's excludes; poses
+  # composed through replicate, frame and attach. (Under these controls the falling
+  # humanoids amplify rounding: 1e-12 apart at step 65, 3e-3 at step 200.)
+  "../shared/corpus/mujoco/model/humanoid/22_humanoids.xml 100 25 1e-6"
+)
+rm -rf "$OUT/goldens" "$OUT/ctrl"
+mkdir -p "$OUT/goldens" "$OUT/ctrl"
+: > "$CASES"
+for line in "${MODELS[@]}"; do
+  read -r model steps every tol <<< "$line"
+  name=$(basename "$model" .xml)
+  node "$ORACLE/ctrlgen.mjs" "$model" --steps "$steps" --out "$OUT/ctrl/$name.csv"
+  node "$ORACLE/rollout.mjs" "$model" --steps "$steps" --every "$every" \
+    --ctrl "$OUT/ctrl/$name.csv" --out "$OUT/goldens/$name.jsonl"
+  echo "$model $OUT/goldens/$name.jsonl $steps - $OUT/ctrl/$name.csv $tol" >> "$CASES"
+  echo "$name: $(wc -c < "$OUT/goldens/$name.jsonl") bytes"
+done
