@@ -129,3 +129,29 @@ TEST(Replicate, BadInput) {
 
 }  // namespace
 }  // namespace simlab
+
+namespace simlab {
+namespace {
+
+// MuJoCo's 22_humanoids attaches its humanoid inside a <replicate>: the humanoid's
+// keyframes come along, their values on the first replica only (MuJoCo's first copy
+// takes them, the template forgets them), every other replica at qpos0; and each
+// replica brings the humanoid's two excludes (checked against MuJoCo 3.5.1: equal
+// key_qpos within 1e-15, equal exclude signatures).
+TEST(Replicate, AttachedKeyframesGoToTheFirstReplica) {
+  const std::string folder = std::string(SIMLAB_SOURCE_DIR) + "/../shared/corpus/mujoco/model/humanoid/";
+  const Model one = LoadXml(folder + "humanoid.xml");
+  const Model many = LoadXml(folder + "22_humanoids.xml");
+  ASSERT_EQ(many.nkey, one.nkey);
+  ASSERT_EQ(many.nq, 22 * one.nq);
+  EXPECT_EQ(many.nexclude, 22 * one.nexclude);
+  for (int k = 0; k < many.nkey; k++) {
+    const double* row = &many.key_qpos[static_cast<size_t>(k) * many.nq];
+    // (the first copy's joints after its free joint: the humanoid's own key values)
+    for (int i = 7; i < one.nq; i++) EXPECT_EQ(row[i], one.key_qpos[k * one.nq + i]) << k << " " << i;
+    for (int i = one.nq; i < many.nq; i++) EXPECT_NEAR(row[i], many.qpos0[i], 1e-15) << k << " " << i;
+  }
+}
+
+}  // namespace
+}  // namespace simlab

@@ -104,6 +104,9 @@ class Reader {
   bool IsWorld(const BodySpec* body) const;
 
   // <replicate> (reader_replicate.cc)
+  // Keyframe values that elements of a replicate's template carry (an attached model's
+  // keyframes) go to the first replica's copies, as MuJoCo's first copy takes them.
+  void MoveCarriedKeys(const struct ReplicaMap& first);
   void Replicate(const XmlElement& e, BodySpec* body, const FramePtr& frame,
                  const DefaultClass* def);
 

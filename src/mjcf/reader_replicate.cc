@@ -249,14 +249,25 @@ bool NameTakesTwoSuffixes(const NameTable& names, const std::string& sep, int co
 
 // Drops the elements that named something that is gone (they resolved before).
 template <typename T>
+bool IsDangling(const NameTable& before, const NameTable& after, const T& element) {
+  T probe = element;
+  if (!Resolve(before, &probe, "")) return false;  // a user error: kept for the compiler
+  probe = element;
+  return !Resolve(after, &probe, "");
+}
+
+template <typename T>
 void DropDangling(const NameTable& before, const NameTable& after, std::vector<T>* list) {
-  auto dangling = [&](const T& element) {
-    T probe = element;
-    if (!Resolve(before, &probe, "")) return false;  // a user error: kept for the compiler
-    probe = element;
-    return !Resolve(after, &probe, "");
-  };
+  auto dangling = [&](const T& element) { return IsDangling(before, after, element); };
   list->erase(std::remove_if(list->begin(), list->end(), dangling), list->end());
+}
+
+// Which elements of `list` DropDangling would drop.
+template <typename T>
+std::vector<bool> DanglingMask(const NameTable& before, const NameTable& after, const std::vector<T>& list) {
+  std::vector<bool> mask(list.size());
+  for (size_t i = 0; i < list.size(); i++) mask[i] = IsDangling(before, after, list[i]);
+  return mask;
 }
 
 // ---------------------------------------------------------------- tree copies
@@ -440,6 +451,101 @@ void CheckReplicateBudget(const XmlElement& e, int count, uint64_t outer,
 
 }  // namespace
 
+// The template's elements and the first replica's copies of them (those in child bodies,
+// which do not move), and the template's actuators' new places (-1: gone).
+struct ReplicaMap {
+  std::set<const void*> templ;                       // every joint and body of the template
+  std::map<const void*, const void*> copies;         // template element -> first copy
+  std::map<int, int> actuators;                      // index before -> index after
+};
+
+namespace {
+
+void CollectTemplate(const BodySpec& b, std::set<const void*>* out) {
+  out->insert(&b);
+  for (const JointSpec& j : b.joints) out->insert(&j);
+  for (const auto& child : b.bodies) CollectTemplate(*child, out);
+}
+
+// Pairs a template subtree with its copy (same shape), element by element.
+void MapCopies(const BodySpec& from, const BodySpec& to, std::map<const void*, const void*>* out) {
+  (*out)[&from] = &to;
+  for (size_t k = 0; k < from.joints.size() && k < to.joints.size(); k++) (*out)[&from.joints[k]] = &to.joints[k];
+  for (size_t k = 0; k < from.bodies.size() && k < to.bodies.size(); k++) {
+    MapCopies(*from.bodies[k], *to.bodies[k], out);
+  }
+}
+
+// Where each actuator goes when the template's are dropped: the k-th dropped one (in
+// order) to the first replica's k-th copy (copies start at `first_copy`, `copied` of
+// them); the others keep their order. Counts that do not pair up map nothing.
+std::map<int, int> ActuatorMoves(const std::vector<bool>& dropped, size_t first_copy, size_t copied) {
+  std::vector<int> after(dropped.size(), -1);
+  int next = 0;
+  for (size_t i = 0; i < dropped.size(); i++) {
+    if (!dropped[i]) after[i] = next++;
+  }
+  std::map<int, int> moves;
+  size_t k = 0;
+  for (size_t i = 0; i < dropped.size(); i++) {
+    if (i >= first_copy) break;
+    if (!dropped[i]) {
+      moves[static_cast<int>(i)] = after[i];
+    } else {
+      moves[static_cast<int>(i)] = k < copied ? after[first_copy + k] : -1;
+      k++;
+    }
+  }
+  if (k != copied) {
+    for (auto& [before, now] : moves) {
+      if (dropped[before]) now = -1;
+    }
+  }
+  return moves;
+}
+
+}  // namespace
+
+void Reader::MoveCarriedKeys(const ReplicaMap& first) {
+  // (an element of the template that has no copy loses its values: nothing points at a
+  // removed element)
+  auto move = [&](auto& list) {
+    auto out = list.begin();
+    for (auto& entry : list) {
+      const void* element = entry.first;
+      if (first.templ.count(element)) {
+        auto it = first.copies.find(element);
+        if (it == first.copies.end()) continue;
+        entry.first = static_cast<decltype(entry.first)>(it->second);
+      }
+      if (&*out != &entry) *out = std::move(entry);  // (no self-move: it would empty it)
+      ++out;
+    }
+    list.erase(out, list.end());
+  };
+  auto move_index = [&](auto& list) {
+    auto out = list.begin();
+    for (auto& entry : list) {
+      auto it = first.actuators.find(entry.first);
+      if (it != first.actuators.end()) {
+        if (it->second < 0) continue;
+        entry.first = it->second;
+      }
+      if (&*out != &entry) *out = std::move(entry);
+      ++out;
+    }
+    list.erase(out, list.end());
+  };
+  for (auto& [name, key] : carried_) {
+    move(key.qpos);
+    move(key.qvel);
+    move(key.mpos);
+    move(key.mquat);
+    move_index(key.act);
+    move_index(key.ctrl);
+  }
+}
+
 // ---------------------------------------------------------------- <replicate>
 
 void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& frame,
@@ -487,13 +593,23 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
                                spec_->actuators.size(), spec_->sensors.size()};
   bool retry_copies = NameTakesTwoSuffixes(names, sep, count);
   UnnamedCopies unnamed;
+  ReplicaMap first;
+  CollectTemplate(*scratch, &first.templ);
+  size_t first_copies = 0;
   double pos[3] = {0, 0, 0};
   for (int i = 0; i < count; i++) {
     FramePtr replica = ReplicaFrame(*templ, i, euler, offset, spec_->compiler, pos);
     std::string suffix = ReplicaSuffix(sep, count, i);
     FrameRebase rebase(templ.get(), replica);
+    const size_t child_at = body->bodies.size();
     CopyReplica(*scratch, rebase, suffix, body, &names);
     ReplicateReferences(suffix, originals, retry_copies, &names, spec_, &unnamed);
+    if (i == 0) {
+      for (size_t k = 0; k < scratch->bodies.size(); k++) {
+        MapCopies(*scratch->bodies[k], *body->bodies[child_at + k], &first.copies);
+      }
+      first_copies = spec_->actuators.size() - originals.actuators;
+    }
     CheckPluginCopies(e, originals, *spec_);
     CheckSensorCopies(e, count, unnamed.sensors.size());
   }
@@ -510,6 +626,9 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
   DropDangling(before, CollectNames(*spec_), &spec_->excludes);
   DropDangling(before, CollectNames(*spec_), &spec_->tendons);
   DropDangling(before, CollectNames(*spec_), &spec_->equalities);
+  std::vector<bool> dropped = DanglingMask(before, CollectNames(*spec_), spec_->actuators);
+  first.actuators = ActuatorMoves(dropped, originals.actuators, first_copies);
+  MoveCarriedKeys(first);
   DropDangling(before, CollectNames(*spec_), &spec_->actuators);
   DropDangling(before, CollectNames(*spec_), &spec_->sensors);
 }
