@@ -227,6 +227,8 @@ TEST(CompilerConformance, Fluid) { CheckModel("fluid", Local("fluid.xml")); }
 TEST(CompilerConformance, Cameras) { CheckModel("cameras", Local("cameras.xml")); }
 // Textures (builtin patterns and PNG files), materials and lights.
 TEST(CompilerConformance, Visual) { CheckModel("visual", Local("visual.xml")); }
+
+TEST(CompilerConformance, FreeJointAlignment) { CheckModel("align_free", Local("align_free.xml")); }
 // Muscle lengthranges MuJoCo finds by simulation: a limited hinge, and arm26's tendons.
 TEST(CompilerConformance, LengthRangeBySimulation) {
   CheckModel("lengthrange_sim", Local("lengthrange_sim.xml"));

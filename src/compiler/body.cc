@@ -290,6 +290,43 @@ void BodyFrame(const mjcf::CompilerSpec& c, BodyState* b) {
   }
 }
 
+// Free-joint alignment applies to a body whose one joint is free and that has no child
+// bodies, when the joint says align="true", or "auto" under <compiler alignfree="true">.
+bool AlignsFree(const mjcf::CompilerSpec& c, const mjcf::BodySpec& s) {
+  if (s.joints.size() != 1 || s.joints[0].type != kJointFree || !s.bodies.empty()) return false;
+  return s.joints[0].align == kTrue || (s.joints[0].align == kAuto && c.alignfree);
+}
+
+// The body frame moves onto the inertial frame (as MuJoCo's compiler does it: the frame
+// accumulated, the inverse kept for the body's elements), its geoms by the inverse.
+void AlignToInertia(BodyState* b, const std::vector<GeomState*>& geoms) {
+  double ipos[3], iquat[4];
+  math::Copy3(ipos, b->ipos);
+  math::CopyQuat(iquat, b->iquat);
+  AccumulateChild(b->pos, b->quat, ipos, iquat);
+  // (the inverse: the inertial position seen from the rotated-back frame, negated)
+  const double conj[4] = {b->iquat[0], -b->iquat[1], -b->iquat[2], -b->iquat[3]};
+  double mat[9];
+  math::QuatToMat(mat, conj);
+  math::MulMatVec3(b->align_pos, mat, b->ipos);
+  for (int k = 0; k < 3; k++) b->align_pos[k] = -b->align_pos[k];
+  math::CopyQuat(b->align_quat, conj);
+  math::Copy3(b->pos, ipos);
+  math::CopyQuat(b->quat, iquat);
+  math::Zero3(b->ipos);
+  math::SetIdentityQuat(b->iquat);
+  b->aligned = true;
+  for (GeomState* g : geoms) AccumulateChild(b->align_pos, b->align_quat, g->pos, g->quat);
+}
+
+}  // namespace
+
+void AlignedPose(const BodyState& b, double pos[3], double quat[4]) {
+  if (b.aligned) AccumulateChild(b.align_pos, b.align_quat, pos, quat);
+}
+
+namespace {
+
 void CompileBody(CompileState* state, int id) {
   const mjcf::CompilerSpec& c = state->spec->compiler;
   BodyState& b = state->bodies[id];
@@ -323,6 +360,7 @@ void CompileBody(CompileState* state, int id) {
     FramePose(*s.frame, c.degree, c.eulerseq, fpos, fquat);
     AccumulateChild(fpos, fquat, b.pos, b.quat);
   }
+  if (id > 0 && AlignsFree(c, s)) AlignToInertia(&b, geoms);
 
   // Joints: at most 6 dofs, no rotation after a ball joint.
   bool ball = false;
@@ -339,7 +377,11 @@ void CompileBody(CompileState* state, int id) {
   if (s.mocap && (b.dofnum > 0 || b.parent != 0)) {
     ThrowAt(s.src, "a mocap body must be a fixed child of the world body");
   }
-  for (size_t k = 0; k < s.sites.size(); k++) CompileSite(c, &state->sites[b.site_begin + k]);
+  for (size_t k = 0; k < s.sites.size(); k++) {
+    SiteState& site = state->sites[b.site_begin + k];
+    CompileSite(c, &site);
+    AlignedPose(b, site.pos, site.quat);
+  }
 }
 
 }  // namespace

@@ -122,6 +122,7 @@ void CompileCameras(const mjcf::ModelSpec& spec, const CompileState& state, Mode
       ThrowAt(src, "repeated camera name '" + src.name + "'");
     }
     LayoutCamera(spec, cams[i], bodies, static_cast<int>(i), m);
+    AlignedPose(state.bodies[cams[i].body], &m->cam_pos[3 * i], &m->cam_quat[4 * i]);
   }
 }
 

@@ -43,7 +43,17 @@ struct BodyState {
   // Its joints, geoms and sites: spec->joints.size() (...) entries of the state's lists
   // from these, which list each body's elements together.
   int joint_begin = 0, geom_begin = 0, site_begin = 0;
+  // A free body aligned with its inertial frame (joint align, compiler alignfree): the
+  // transformation its geoms, sites, cameras and lights take (the inverse of the
+  // inertial frame it moved onto).
+  bool aligned = false;
+  double align_pos[3] = {0, 0, 0};
+  double align_quat[4] = {1, 0, 0, 0};
 };
+
+// Moves an element's pose (pos, quat in its body's frame) as an aligned body's elements
+// move; nothing for other bodies.
+void AlignedPose(const BodyState& b, double pos[3], double quat[4]);
 
 // A compiled mesh (mesh.cc): vertices in its inertial frame, triangles, the convex
 // hull graph (empty if none is needed), and the pose of that frame in the mesh file's.

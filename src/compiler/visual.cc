@@ -349,6 +349,14 @@ void LayoutVisual(const mjcf::ModelSpec& spec, const CompileState& state,
   NameIndex bodies(m->body_names), textures(m->tex_names);
   for (size_t i = 0; i < lights.size(); i++) {
     LayoutLight(spec, lights[i], bodies, textures, static_cast<int>(i), m);
+    // (an aligned body's lights: the position moved, the direction turned)
+    const BodyState& b = state.bodies[lights[i].body];
+    double unit[4] = {1, 0, 0, 0}, turned[3];
+    AlignedPose(b, &m->light_pos[3 * i], unit);
+    if (b.aligned) {
+      math::RotVecQuat(turned, &m->light_dir[3 * i], b.align_quat);
+      math::Copy3(&m->light_dir[3 * i], turned);
+    }
   }
 }
 

@@ -357,7 +357,6 @@ void Reader::FreeJoint(const XmlElement& e, BodySpec* body, const FramePtr& fram
   joint.frame = frame;
   e.Int("group", &joint.group);
   e.Tri("align", &joint.align);
-  if (joint.align == kTrue) NotSupported(e, "freejoint align=\"true\"");
   body->joints.push_back(std::move(joint));
 }
 

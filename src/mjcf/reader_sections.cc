@@ -52,7 +52,6 @@ void Reader::Compiler(const XmlElement& e) {
   e.Ints("inertiagrouprange", c.inertiagrouprange.data(), 2);
   e.Bool("saveinertial", &flag);
   e.Bool("alignfree", &c.alignfree);
-  if (c.alignfree) NotSupported(e, "alignfree=\"true\"");
 
   // <lengthrange>: options of the actuator lengthrange computation.
   for (pugi::xml_node n : e.node().children()) {
