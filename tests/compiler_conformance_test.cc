@@ -229,6 +229,8 @@ TEST(CompilerConformance, Cameras) { CheckModel("cameras", Local("cameras.xml"))
 TEST(CompilerConformance, Visual) { CheckModel("visual", Local("visual.xml")); }
 
 TEST(CompilerConformance, FreeJointAlignment) { CheckModel("align_free", Local("align_free.xml")); }
+
+TEST(CompilerConformance, HFieldFiles) { CheckModel("hfield_files", Local("hfield_files.xml")); }
 // Muscle lengthranges MuJoCo finds by simulation: a limited hinge, and arm26's tendons.
 TEST(CompilerConformance, LengthRangeBySimulation) {
   CheckModel("lengthrange_sim", Local("lengthrange_sim.xml"));

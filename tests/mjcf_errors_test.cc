@@ -1,10 +1,11 @@
 // Bad input: each kind of malformed or unsupported MJCF gets a clear error that names
 // the file, the line, the element and the problem; nothing crashes.
-#include <string>
-#include <vector>
-
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -110,8 +111,6 @@ TEST(MjcfErrors, NotSupportedYet) {
               {"bad.xml:4:", "a geom's <plugin>", "not supported yet"});
   ExpectError("<mujoco>\n<equality>\n<flex flex=\"f\"/>\n</equality>\n</mujoco>",
               {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
-  ExpectError("<mujoco>\n<asset>\n<hfield name=\"h\" file=\"h.png\"/>\n</asset>\n</mujoco>",
-              {"bad.xml:3:", "<hfield name=\"h\">", "not supported yet"});
   ExpectError("<mujoco>\n<option><flag nativeccd=\"disable\"/></option>\n<asset>\n"
               "<hfield name=\"h\" nrow=\"2\" ncol=\"2\" size=\"1 1 .1 .1\"/>\n</asset>\n<worldbody>\n"
               "<geom name=\"ground\" type=\"hfield\" hfield=\"h\"/>\n"
@@ -243,6 +242,30 @@ TEST(MjcfErrors, TextureFiles) {
   std::string grid = TextureModel("<texture type=\"cube\" file=\"a.png\" gridsize=\"3 3\"/>");
   test_util::ExpectMessageParts(LoadWithAssets(grid, {{"a.png", png}}),
                                 {"bad.xml:3:", "integer multiple of gridsize"}, grid);
+}
+
+// Height-field files: missing, not PNG, a binary file of the wrong size, an unknown
+// content type, a size given beside the file.
+TEST(MjcfErrors, HFieldFiles) {
+  const std::string png = TextureModel("<hfield name=\"h\" file=\"h.png\" size=\"1 1 .1 .1\"/>");
+  test_util::ExpectMessageParts(LoadWithAssets(png, {{"other.png", "x"}}),
+                                {"bad.xml:3:", "<hfield name=\"h\">", "could not read hfield file", "h.png"}, png);
+  test_util::ExpectMessageParts(LoadWithAssets(png, {{"h.png", "not a png"}}),
+                                {"bad.xml:3:", "cannot read PNG file", "h.png"}, png);
+  const std::string bin = TextureModel("<hfield name=\"h\" file=\"h.bin\" size=\"1 1 .1 .1\"/>");
+  std::string header(8, '\0');
+  const int32_t size[2] = {2, 3};
+  std::memcpy(header.data(), size, sizeof(size));
+  test_util::ExpectMessageParts(LoadWithAssets(bin, {{"h.bin", header + std::string(20, '\0')}}),
+                                {"bad.xml:3:", "unexpected file size", "h.bin"}, bin);
+  test_util::ExpectMessageParts(LoadWithAssets(bin, {{"h.bin", "abc"}}), {"bad.xml:3:", "hfield missing header"}, bin);
+  const int32_t huge[2] = {1 << 20, 1 << 20};
+  std::memcpy(header.data(), huge, sizeof(huge));
+  test_util::ExpectMessageParts(LoadWithAssets(bin, {{"h.bin", header}}), {"bad.xml:3:", "over simlab's limit"}, bin);
+  ExpectError(TextureModel("<hfield name=\"h\" file=\"h.bin\" content_type=\"image/jpeg\" size=\"1 1 .1 .1\"/>"),
+              {"bad.xml:3:", "unsupported content type: 'image/jpeg'"});
+  ExpectError(TextureModel("<hfield name=\"h\" file=\"h.png\" nrow=\"2\" ncol=\"2\" size=\"1 1 .1 .1\"/>"),
+              {"bad.xml:3:", "hfield specified from file and manually"});
 }
 
 TEST(MjcfErrors, TextureSizesAndReferences) {

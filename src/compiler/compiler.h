@@ -75,6 +75,7 @@ struct MeshState {
 // A compiled height field (hfield.cc): elevations normalized to [0, 1].
 struct HFieldState {
   const mjcf::HFieldSpec* spec = nullptr;
+  int nrow = 0, ncol = 0;
   std::vector<float> data;
 };
 

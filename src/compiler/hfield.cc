@@ -5,6 +5,7 @@
 
 #include "compiler/compiler.h"
 #include "compiler/orientation.h"
+#include "compiler/texture_png.h"
 #include "mjcf/error.h"
 
 namespace simlab::compiler {
@@ -13,8 +14,7 @@ namespace {
 
 // Elevations shifted and scaled to [0, 1] (a flat field becomes all zero), in single
 // precision as MuJoCo's compiler computes them.
-std::vector<float> NormalizedElevation(const mjcf::HFieldSpec& s) {
-  std::vector<float> data = s.elevation;
+std::vector<float> NormalizedElevation(const mjcf::HFieldSpec& s, std::vector<float> data) {
   float lo = 1e10f, hi = -1e10f;
   for (float v : data) {
     lo = std::min(lo, v);
@@ -71,8 +71,17 @@ void CompileHFields(const mjcf::ModelSpec& spec, CompileState* state) {
     CheckHFieldSpec(s);
     if (FindName(names, s.src.name) >= 0) ThrowAt(s.src, "repeated hfield name '" + s.src.name + "'");
     names.push_back(s.src.name);
-    state->hfields[i].spec = &s;
-    state->hfields[i].data = NormalizedElevation(s);
+    HFieldState& h = state->hfields[i];
+    h.spec = &s;
+    std::vector<float> elevation;
+    if (s.file.empty()) {
+      h.nrow = s.nrow;
+      h.ncol = s.ncol;
+      elevation = s.elevation;
+    } else {
+      LoadHFieldFile(spec, s, &h.nrow, &h.ncol, &elevation);
+    }
+    h.data = NormalizedElevation(s, std::move(elevation));
   }
 
   // Geoms: geom_dataid is the hfield's id.
@@ -129,8 +138,8 @@ void LayoutHFields(const CompileState& state, Model* m) {
   for (int i = 0; i < m->nhfield; i++) {
     const HFieldState& h = state.hfields[i];
     std::copy(h.spec->size.begin(), h.spec->size.end(), &m->hfield_size[4 * i]);
-    m->hfield_nrow[i] = h.spec->nrow;
-    m->hfield_ncol[i] = h.spec->ncol;
+    m->hfield_nrow[i] = h.nrow;
+    m->hfield_ncol[i] = h.ncol;
     m->hfield_adr[i] = adr;
     std::copy(h.data.begin(), h.data.end(), m->hfield_data.begin() + adr);
     adr += static_cast<int>(h.data.size());

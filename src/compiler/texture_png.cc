@@ -1,4 +1,5 @@
-// Texture files: PNG decoding through libpng, flips, and cube faces (see texture_png.h).
+// Texture and height-field files: PNG decoding through libpng, flips, cube faces, and
+// MuJoCo's binary height fields (see texture_png.h).
 #include "compiler/texture_png.h"
 
 #include <png.h>
@@ -254,6 +255,75 @@ void LoadCubeSeparate(const mjcf::ModelSpec& spec, const mjcf::TextureSpec& s, T
 }
 
 }  // namespace
+
+namespace {
+
+// The grid size a height-field file gives, checked against the model's budget (its
+// hfield_data holds a double per sample) before anything that size is made.
+void CheckHFieldGrid(const mjcf::HFieldSpec& s, int64_t nrow, int64_t ncol) {
+  if (nrow < 1 || ncol < 1) {
+    ThrowAt(s.src, "non-positive hfield dimensions in file '" + s.path + "'");
+  }
+  if (static_cast<uint64_t>(nrow) * static_cast<uint64_t>(ncol) * sizeof(double) > mjcf::kMaxArrayBytes) {
+    ThrowAt(s.src, "hfield file '" + s.path + "' is " + std::to_string(nrow) + " x " +
+                       std::to_string(ncol) + ", over simlab's limit for height field data");
+  }
+}
+
+// A PNG as grey samples: decoded to RGB and the red sample kept, which is lodepng's grey
+// of any pixel (a grey image's own samples; the high byte of 16-bit ones).
+void LoadHFieldPng(const mjcf::HFieldSpec& s, const std::string& bytes, int* nrow, int* ncol,
+                   std::vector<float>* data) {
+  PngJob job;
+  job.bytes = &bytes;
+  job.nchannel = 3;
+  if (!DecodePng(&job)) ThrowAt(s.src, "cannot read PNG file '" + s.path + "': " + job.message);
+  CheckHFieldGrid(s, job.height, job.width);
+  *nrow = static_cast<int>(job.height);
+  *ncol = static_cast<int>(job.width);
+  data->resize(static_cast<size_t>(*nrow) * *ncol);
+  for (int r = 0; r < *nrow; r++) {
+    const uint8_t* row = job.pixels.data() + static_cast<size_t>(*nrow - 1 - r) * *ncol * 3;
+    for (int c = 0; c < *ncol; c++) (*data)[static_cast<size_t>(r) * *ncol + c] = row[3 * c];
+  }
+}
+
+// MuJoCo's binary height field: two int32 sizes, then the samples; the file's size must
+// be exactly that.
+void LoadHFieldBinary(const mjcf::HFieldSpec& s, const std::string& bytes, int* nrow, int* ncol,
+                      std::vector<float>* data) {
+  if (bytes.size() < 2 * sizeof(int32_t)) ThrowAt(s.src, "hfield missing header '" + s.path + "'");
+  int32_t size[2];
+  std::memcpy(size, bytes.data(), sizeof(size));
+  CheckHFieldGrid(s, size[0], size[1]);
+  const size_t n = static_cast<size_t>(size[0]) * static_cast<size_t>(size[1]);
+  if (bytes.size() != n * sizeof(float) + sizeof(size)) {
+    ThrowAt(s.src, "unexpected file size in file '" + s.path + "'");
+  }
+  *nrow = size[0];
+  *ncol = size[1];
+  data->resize(n);
+  std::memcpy(data->data(), bytes.data() + sizeof(size), n * sizeof(float));
+}
+
+}  // namespace
+
+void LoadHFieldFile(const mjcf::ModelSpec& spec, const mjcf::HFieldSpec& s, int* nrow, int* ncol,
+                    std::vector<float>* data) {
+  const bool png = s.content_type.empty() ? IsPng(s.path) : s.content_type == "image/png";
+  if (!s.content_type.empty() && !png && s.content_type != "image/vnd.mujoco.hfield") {
+    ThrowAt(s.src, "unsupported content type: '" + s.content_type + "'");
+  }
+  std::string bytes;
+  if (!mjcf::ReadFileOrAsset(s.path, spec.assets.get(), &bytes)) {
+    ThrowAt(s.src, "could not read hfield file '" + s.path + "'" + mjcf::NotAmongAssets(spec.assets.get()));
+  }
+  if (png) {
+    LoadHFieldPng(s, bytes, nrow, ncol, data);
+  } else {
+    LoadHFieldBinary(s, bytes, nrow, ncol, data);
+  }
+}
 
 void LoadTextureFiles(const mjcf::ModelSpec& spec, const mjcf::TextureSpec& s, TextureImage* t) {
   bool faces = false;

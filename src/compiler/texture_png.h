@@ -20,6 +20,13 @@ inline constexpr uint64_t kMaxTextureBytes = mjcf::kMaxArrayBytes / 4;
 // texture's file or files.
 void LoadTextureFiles(const mjcf::ModelSpec& spec, const mjcf::TextureSpec& s, TextureImage* t);
 
+// A height field's file (MuJoCo's mjCHField::LoadPNG and LoadCustom): a PNG read as
+// grey, rows reversed (the image's top row is the field's +y edge), or MuJoCo's binary
+// format (int32 nrow, int32 ncol, then nrow x ncol float32, native byte order); the
+// content type from content_type, else from the extension (.png), else binary.
+void LoadHFieldFile(const mjcf::ModelSpec& spec, const mjcf::HFieldSpec& s, int* nrow, int* ncol,
+                    std::vector<float>* data);
+
 }  // namespace simlab::compiler
 
 #endif  // SIMLAB_COMPILER_TEXTURE_PNG_H_

@@ -137,7 +137,18 @@ std::string Reader::AssetPath(const std::string& written, const std::string& dir
 void Reader::ReadHField(const XmlElement& e, HFieldSpec* hfield) const {
   e.CheckAttributes({"name", "content_type", "file", "nrow", "ncol", "size", "elevation"});
   hfield->src = e.src();
-  if (e.Has("file")) NotSupported(e, "loading hfield files");
+  // From a file (PNG, or MuJoCo's binary format), read by the compiler: the grid's size
+  // comes from there, so none may be given here.
+  if (e.Text("file", &hfield->file)) {
+    if (e.Has("nrow") || e.Has("ncol") || e.Has("elevation")) {
+      e.Fail("hfield specified from file and manually");
+    }
+    e.Text("content_type", &hfield->content_type);
+    if (e.Numbers("size", hfield->size) != 4) e.Fail("'size' needs 4 numbers");
+    hfield->path = AssetPath(hfield->file, spec_->compiler.meshdir);
+    if (hfield->src.name.empty()) hfield->src.name = StemOf(hfield->file);
+    return;
+  }
   e.Int("nrow", &hfield->nrow);
   e.Int("ncol", &hfield->ncol);
   if (e.Numbers("size", hfield->size) != 4) e.Fail("'size' needs 4 numbers");

@@ -403,6 +403,9 @@ struct MeshSpec {
 // A height field asset: a grid of elevations (rows from -y to +y, as MuJoCo stores them).
 struct HFieldSpec {
   Source src;
+  std::string file;          // as written (empty: the grid is given inline)
+  std::string path;          // where it is read from (model folder, meshdir)
+  std::string content_type;  // as written
   int nrow = 0, ncol = 0;
   std::array<double, 4> size = {0, 0, 0, 0};  // x, y half-sizes, top height, base depth
   std::vector<float> elevation;               // nrow * ncol, or empty (all zero)
