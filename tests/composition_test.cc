@@ -4,6 +4,8 @@
 // are compared with goldens written by MuJoCo 3.5.1 (tests/models/compose/dump_names.mjs,
 // tools/dump_model.mjs, the oracle's rollout.mjs).
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -85,6 +87,30 @@ TEST(Include, ErrorsNameTheIncludedFileAndLine) {
                                  "<mujoco>\n  <worldbody>\n    <include file=\"parts/arm.xml\"/>\n"
                                  "  </worldbody>\n</mujoco>\n");
   ExpectError(main, {"parts/arm.xml:4:", "<geom>", "unknown attribute 'colour'"});
+}
+
+// An asset written in an included file of another folder is found in the model's
+// folder first, else beside the included file (as MuJoCo 3.5 finds it).
+TEST(Include, AssetFilesAreFoundBesideTheIncludedFile) {
+  Files files("include_assets");
+  auto hfield = [](int nrow, int ncol) {
+    std::string bytes(8 + 4 * nrow * ncol, '\0');
+    const int32_t size[2] = {nrow, ncol};
+    std::memcpy(bytes.data(), size, sizeof(size));
+    return bytes;
+  };
+  files.Write("parts/only_here.bin", hfield(2, 3));
+  files.Write("parts/both.bin", hfield(2, 3));
+  files.Write("both.bin", hfield(4, 5));
+  files.Write("parts/assets.xml",
+              "<mujoco>\n  <asset>\n"
+              "    <hfield name=\"here\" file=\"only_here.bin\" size=\"1 1 .1 .1\"/>\n"
+              "    <hfield name=\"both\" file=\"both.bin\" size=\"1 1 .1 .1\"/>\n"
+              "  </asset>\n</mujoco>\n");
+  Model m = LoadXml(files.Write("main.xml", "<mujoco>\n  <include file=\"parts/assets.xml\"/>\n</mujoco>\n"));
+  ASSERT_EQ(m.nhfield, 2);
+  EXPECT_EQ(m.hfield_nrow[0], 2);  // (only beside the included file)
+  EXPECT_EQ(m.hfield_nrow[1], 4);  // (the model's folder first)
 }
 
 TEST(Include, MalformedIncludedFileNamesItsLine) {

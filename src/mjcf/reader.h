@@ -77,7 +77,8 @@ class Reader {
   // mesh assets (reader_mesh.cc)
   void ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) const;
   void ReadBuiltin(const XmlElement& e, MeshSpec* mesh) const;
-  std::string AssetPath(const std::string& written, const std::string& dir) const;
+  std::string AssetPath(const std::string& written, const std::string& dir,
+                        const XmlElement& e) const;
   void ReadHField(const XmlElement& e, HFieldSpec* hfield) const;
   void ReadCamera(const XmlElement& e, CameraSpec* cam, bool in_default) const;
   // textures, materials and lights (reader_visual.cc)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <algorithm>
+#include <filesystem>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -82,7 +83,7 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
   // Geometry: a file or inline data (and normals, texture coordinates).
   if (e.Has("file")) {
     e.RequiredText("file", &mesh->file);
-    mesh->path = AssetPath(mesh->file, spec_->compiler.meshdir);
+    mesh->path = AssetPath(mesh->file, spec_->compiler.meshdir, e);
   }
   e.Text("content_type", &mesh->content_type);
   mesh->vertex = ReadList(e, "vertex", ParseFloat);
@@ -124,12 +125,20 @@ std::string StemOf(const std::string& path) {
 }
 
 // A file an asset names, found against the model's folder and `dir` (the asset kind's
-// folder, else assetdir), without its folders under strippath.
-std::string Reader::AssetPath(const std::string& written, const std::string& dir) const {
+// folder, else assetdir), without its folders under strippath. An asset written in an
+// included file from another folder is looked for there too when the model's folder
+// has no such file (as MuJoCo 3.5 finds it: the model's folder first).
+std::string Reader::AssetPath(const std::string& written, const std::string& dir,
+                              const XmlElement& e) const {
   const std::string& folder = dir.empty() ? spec_->compiler.assetdir : dir;
   std::string file = spec_->compiler.strippath ? written.substr(written.find_last_of('/') + 1)
                                                : written;
-  return JoinPath(JoinPath(FolderOf(file_), folder), file);
+  std::string path = JoinPath(JoinPath(FolderOf(file_), folder), file);
+  if (e.src().file == file_ || FolderOf(e.src().file) == FolderOf(file_)) return path;
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) return path;
+  std::string beside = JoinPath(JoinPath(FolderOf(e.src().file), folder), file);
+  return std::filesystem::exists(beside, ec) ? beside : path;
 }
 
 // ---------------------------------------------------------------- <hfield>
@@ -145,7 +154,7 @@ void Reader::ReadHField(const XmlElement& e, HFieldSpec* hfield) const {
     }
     e.Text("content_type", &hfield->content_type);
     if (e.Numbers("size", hfield->size) != 4) e.Fail("'size' needs 4 numbers");
-    hfield->path = AssetPath(hfield->file, spec_->compiler.meshdir);
+    hfield->path = AssetPath(hfield->file, spec_->compiler.meshdir, e);
     if (hfield->src.name.empty()) hfield->src.name = StemOf(hfield->file);
     return;
   }

@@ -53,11 +53,11 @@ void Reader::ReadTexture(const XmlElement& e, TextureSpec* tex) const {
   if (tex->nchannel != 1 && tex->nchannel != 3 && tex->nchannel != 4) {
     e.Fail("nchannel must be 1, 3 or 4");
   }
-  if (e.Text("file", &tex->file)) tex->path = AssetPath(tex->file, spec_->compiler.texturedir);
+  if (e.Text("file", &tex->file)) tex->path = AssetPath(tex->file, spec_->compiler.texturedir, e);
   for (int k = 0; k < 6; k++) {
     std::string face;
     if (e.Text(kCubeFileAttrs[k], &face)) {
-      tex->cubefiles[k] = AssetPath(face, spec_->compiler.texturedir);
+      tex->cubefiles[k] = AssetPath(face, spec_->compiler.texturedir, e);
     }
   }
   // An unnamed texture is named by its file, as MuJoCo does.
