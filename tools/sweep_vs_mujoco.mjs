@@ -49,9 +49,11 @@ function run(command, args, timeout) {
            timedOut: done.error?.code === 'ETIMEDOUT' };
 }
 
-// The first line of a message, shortened.
+// The line of a message that says what went wrong (the first naming an error, else the
+// first), shortened.
 function firstLine(text) {
-  const line = (text.split('\n').find((l) => l.trim()) ?? '').trim();
+  const lines = text.split('\n').map((l) => l.trim()).filter(Boolean);
+  const line = lines.find((l) => /error/i.test(l) && !/^at /.test(l)) ?? lines[0] ?? '';
   return line.length > 140 ? `${line.slice(0, 137)}...` : line;
 }
 
