@@ -155,3 +155,27 @@ TEST(Replicate, AttachedKeyframesGoToTheFirstReplica) {
 
 }  // namespace
 }  // namespace simlab
+
+namespace simlab {
+namespace {
+
+// MuJoCo 3.5.1 accepts <replicate prefix> and leaves the names as they are (its names
+// for this model, from the oracle: b0 b1 c-0 c-1, geoms g0 g1).
+TEST(Replicate, PrefixIsAcceptedAndLeavesNames) {
+  const Model m = LoadXmlString(
+      "<mujoco><worldbody>\n"
+      "<replicate count=\"2\" offset=\".2 0 0\" prefix=\"A\">\n"
+      "  <body name=\"b\" pos=\"0 0 1\"><freejoint/><geom name=\"g\" size=\".1\"/></body>\n"
+      "</replicate>\n"
+      "<replicate count=\"2\" offset=\".2 0 0\" sep=\"-\" prefix=\"P\">\n"
+      "  <body name=\"c\" pos=\"0 1 1\"><freejoint/><geom size=\".1\"/></body>\n"
+      "</replicate>\n"
+      "</worldbody></mujoco>\n",
+      "prefix.xml");
+  EXPECT_EQ(m.body_names, (std::vector<std::string>{"world", "b0", "b1", "c-0", "c-1"}));
+  EXPECT_EQ(m.geom_names[0], "g0");
+  EXPECT_EQ(m.geom_names[1], "g1");
+}
+
+}  // namespace
+}  // namespace simlab

@@ -550,7 +550,8 @@ void Reader::MoveCarriedKeys(const ReplicaMap& first) {
 
 void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& frame,
                        const DefaultClass* def) {
-  e.CheckAttributes({"count", "offset", "euler", "sep", "childclass"});
+  // (MuJoCo 3.5 accepts a prefix attribute and leaves the replicas' names as they are)
+  e.CheckAttributes({"count", "offset", "euler", "sep", "childclass", "prefix"});
   int count = 0;
   if (!e.Int("count", &count)) e.Fail("required attribute missing: 'count'");
   if (count < 1) e.Fail("replicate count must be positive");
