@@ -188,14 +188,6 @@ Model LoadXmlString(const std::string& xml, const std::string& filename, const A
   return compiler::Compile(spec);
 }
 
-Model LoadXml(const std::string& path) {
-  // Read through the loader's one reader of files (a regular file within the budget).
-  std::string text, problem;
-  if (!mjcf::ReadFileOrAsset(path, nullptr, &text, &problem)) {
-    throw Error(path + ": " +
-                (problem.empty() ? "cannot open file" : "cannot read file: " + problem));
-  }
-  return LoadXmlString(text, path);
-}
+Model LoadXml(const std::string& path) { return compiler::Compile(mjcf::ReadMjcfFile(path)); }
 
 }  // namespace simlab

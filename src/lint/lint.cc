@@ -11,7 +11,6 @@
 
 #include "compiler/compiler.h"
 #include "engine/engine.h"
-#include "mjcf/assets.h"
 #include "mjcf/reader.h"
 #include "simlab/simlab.h"
 
@@ -71,7 +70,7 @@ struct Subject {
 // A finding of `check` (its element, file and line are filled in where it is added).
 LintFinding Finding(const char* check, LintSeverity severity, std::string numbers,
                     std::string meaning, std::string advice) {
-  return {check, severity, "", "", 0, std::move(numbers), std::move(meaning), std::move(advice)};
+  return {check, severity, "", "", 0, std::move(numbers), std::move(meaning), std::move(advice), "", -1};
 }
 
 // A one-input, one-output actuator (the lesson's kind), whose numbers are at i.
@@ -530,7 +529,7 @@ void VisitJoints(const mjcf::BodySpec& body, std::vector<LintFinding>* out) {
                     j.src.file, j.src.line,
                     "limited=\"false\", range [" + Num(j.range[0]) + ", " + Num(j.range[1]) + "]",
                     "the range is ignored: the joint is not limited.",
-                    "remove limited=\"false\" (with autolimits the range then limits it)."});
+                    "remove limited=\"false\" (with autolimits the range then limits it).", "", -1});
   }
   for (const auto& child : body.bodies) VisitJoints(*child, out);
 }
@@ -544,14 +543,14 @@ void CheckRangesSwitchedOff(const mjcf::ModelSpec& spec, std::vector<LintFinding
                       "ctrllimited=\"false\", ctrlrange [" + Num(a.ctrlrange[0]) + ", " +
                           Num(a.ctrlrange[1]) + "]",
                       "the ctrlrange is ignored: ctrl is not clamped.",
-                      "remove ctrllimited=\"false\"."});
+                      "remove ctrllimited=\"false\".", "", -1});
     }
     if (a.forcelimited == mjcf::kFalse && a.forcerange[0] < a.forcerange[1]) {
       out->push_back({"range-ignored", LintSeverity::kWarning, element, a.src.file, a.src.line,
                       "forcelimited=\"false\", forcerange [" + Num(a.forcerange[0]) + ", " +
                           Num(a.forcerange[1]) + "]",
                       "the forcerange is ignored: the force is not clamped.",
-                      "remove forcelimited=\"false\"."});
+                      "remove forcelimited=\"false\".", "", -1});
     }
   }
 }
@@ -566,7 +565,7 @@ void CheckUnusedClasses(const mjcf::ModelSpec& spec, std::vector<LintFinding>* o
                     c.line, "no element names it (class= or childclass=), nor a class nested in it",
                     "its values reach no element: a misspelt class name elsewhere, or a class "
                     "left over.",
-                    "name it where it was meant to apply, or remove it."});
+                    "name it where it was meant to apply, or remove it.", "", -1});
   }
 }
 
@@ -586,7 +585,7 @@ void VisitHingeRanges(const mjcf::BodySpec& body, std::vector<LintFinding>* out)
                     Num(j.range[1] * rad) + "] rad",
                     "the range is read in degrees: if it was meant in radians, the joint can "
                     "barely move.",
-                    "if so, write it in degrees, or set <compiler angle=\"radian\">."});
+                    "if so, write it in degrees, or set <compiler angle=\"radian\">.", "", -1});
   }
   for (const auto& child : body.bodies) VisitHingeRanges(*child, out);
 }
@@ -603,11 +602,7 @@ struct Loaded {
 };
 
 Loaded Load(const std::string& path) {
-  std::string text, problem;
-  if (!mjcf::ReadFileOrAsset(path, nullptr, &text, &problem)) {
-    throw Error(path + ": " + (problem.empty() ? "cannot open file" : "cannot read file: " + problem));
-  }
-  Loaded loaded{mjcf::ReadMjcf(text, path), {}, {}};
+  Loaded loaded{mjcf::ReadMjcfFile(path), {}, {}};
   loaded.m = compiler::Compile(loaded.spec, &loaded.sources);
   return loaded;
 }

@@ -29,6 +29,15 @@ ModelSpec ReadMjcf(const std::string& text, const std::string& file,
   return std::move(model.spec);
 }
 
+ModelSpec ReadMjcfFile(const std::string& path) {
+  std::string text, problem;
+  if (!ReadFileOrAsset(path, nullptr, &text, &problem)) {
+    throw Error(path + ": " +
+                (problem.empty() ? "cannot open file" : "cannot read file: " + problem));
+  }
+  return ReadMjcf(text, path);
+}
+
 void ReadModel(const std::string& text, const std::string& file, ParsedModel* out,
                const AssetFilesPtr& assets) {
   // Parse the XML (its syntax and depth checked).

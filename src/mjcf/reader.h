@@ -27,6 +27,10 @@ namespace simlab::mjcf {
 ModelSpec ReadMjcf(const std::string& text, const std::string& file,
                    const AssetFilesPtr& assets = nullptr);
 
+// The same for the file at `path`, read through the loader's one reader of files (a
+// regular file within the budget); an unreadable file throws Error ("path: why").
+ModelSpec ReadMjcfFile(const std::string& path);
+
 // The same, keeping the default classes (for models that get attached).
 void ReadModel(const std::string& text, const std::string& file, ParsedModel* out,
                const AssetFilesPtr& assets = nullptr);

@@ -262,6 +262,16 @@ void DropDangling(const NameTable& before, const NameTable& after, std::vector<T
   list->erase(std::remove_if(list->begin(), list->end(), dangling), list->end());
 }
 
+// Erases the elements of `list` whose mask entry is set.
+template <typename T>
+void EraseMasked(const std::vector<bool>& mask, std::vector<T>* list) {
+  size_t kept = 0;
+  for (size_t i = 0; i < list->size(); i++) {
+    if (!mask[i] && kept++ != i) (*list)[kept - 1] = std::move((*list)[i]);
+  }
+  list->resize(kept);
+}
+
 // Which elements of `list` DropDangling would drop.
 template <typename T>
 std::vector<bool> DanglingMask(const NameTable& before, const NameTable& after, const std::vector<T>& list) {
@@ -507,42 +517,29 @@ std::map<int, int> ActuatorMoves(const std::vector<bool>& dropped, size_t first_
 }  // namespace
 
 void Reader::MoveCarriedKeys(const ReplicaMap& first) {
-  // (an element of the template that has no copy loses its values: nothing points at a
-  // removed element)
-  auto move = [&](auto& list) {
-    auto out = list.begin();
-    for (auto& entry : list) {
-      const void* element = entry.first;
-      if (first.templ.count(element)) {
-        auto it = first.copies.find(element);
-        if (it == first.copies.end()) continue;
-        entry.first = static_cast<decltype(entry.first)>(it->second);
-      }
-      if (&*out != &entry) *out = std::move(entry);  // (no self-move: it would empty it)
-      ++out;
-    }
-    list.erase(out, list.end());
+  // Each entry's element becomes its first copy; one of the template's without a copy
+  // is dropped (nullptr, or -1 for an actuator), as nothing may point at a removed one.
+  auto to_copy = [&](const void* element) -> const void* {
+    if (!first.templ.count(element)) return element;
+    auto it = first.copies.find(element);
+    return it == first.copies.end() ? nullptr : it->second;
   };
-  auto move_index = [&](auto& list) {
-    auto out = list.begin();
-    for (auto& entry : list) {
-      auto it = first.actuators.find(entry.first);
-      if (it != first.actuators.end()) {
-        if (it->second < 0) continue;
-        entry.first = it->second;
-      }
-      if (&*out != &entry) *out = std::move(entry);
-      ++out;
-    }
-    list.erase(out, list.end());
+  auto to_index = [&](int a) {
+    auto it = first.actuators.find(a);
+    return it == first.actuators.end() ? a : it->second;
+  };
+  auto retarget = [](auto& list, auto where, auto gone) {
+    for (auto& entry : list) entry.first = static_cast<decltype(gone)>(where(entry.first));
+    list.erase(std::remove_if(list.begin(), list.end(), [&](const auto& e) { return e.first == gone; }),
+               list.end());
   };
   for (auto& [name, key] : carried_) {
-    move(key.qpos);
-    move(key.qvel);
-    move(key.mpos);
-    move(key.mquat);
-    move_index(key.act);
-    move_index(key.ctrl);
+    retarget(key.qpos, to_copy, static_cast<const JointSpec*>(nullptr));
+    retarget(key.qvel, to_copy, static_cast<const JointSpec*>(nullptr));
+    retarget(key.mpos, to_copy, static_cast<const BodySpec*>(nullptr));
+    retarget(key.mquat, to_copy, static_cast<const BodySpec*>(nullptr));
+    retarget(key.act, to_index, -1);
+    retarget(key.ctrl, to_index, -1);
   }
 }
 
@@ -627,10 +624,11 @@ void Reader::Replicate(const XmlElement& e, BodySpec* body, const FramePtr& fram
   DropDangling(before, CollectNames(*spec_), &spec_->excludes);
   DropDangling(before, CollectNames(*spec_), &spec_->tendons);
   DropDangling(before, CollectNames(*spec_), &spec_->equalities);
+  // (the actuators dropped decide where the carried keyframes' actuators go)
   std::vector<bool> dropped = DanglingMask(before, CollectNames(*spec_), spec_->actuators);
   first.actuators = ActuatorMoves(dropped, originals.actuators, first_copies);
   MoveCarriedKeys(first);
-  DropDangling(before, CollectNames(*spec_), &spec_->actuators);
+  EraseMasked(dropped, &spec_->actuators);
   DropDangling(before, CollectNames(*spec_), &spec_->sensors);
 }
 

@@ -3,8 +3,8 @@
 // the 3D view (the body it acts on glows and is labelled with the check). lintBody is
 // apart from the DOM so that node can test it.
 
-// mjtTrn numbers.
-const kTrnJoint = 0, kTrnJointInParent = 1, kTrnSite = 4, kTrnBody = 5;
+import { actuatorPoint } from './labels.mjs';
+
 // mjtEq: a joint equality.
 const kEqJoint = 2;
 
@@ -18,11 +18,10 @@ export function lintBody(model, finding) {
     case 'equality':
       return model.eq_type[id] === kEqJoint ? model.jnt_bodyid[model.eq_obj1id[id]] : -1;
     case 'actuator': {
-      const type = model.actuator_trntype[id], target = model.actuator_trnid[2 * id];
-      if (type === kTrnJoint || type === kTrnJointInParent) return model.jnt_bodyid[target];
-      if (type === kTrnSite) return model.site_bodyid[target];
-      if (type === kTrnBody) return target;
-      return -1;
+      // (the body of the point the actuator is labelled at: its joint's, site's or own)
+      const [array, index] = actuatorPoint(model, id) ?? [];
+      const bodyOf = { xanchor: model.jnt_bodyid, site_xpos: model.site_bodyid };
+      return array === undefined ? -1 : array === 'xpos' ? index : bodyOf[array][index];
     }
     default: return -1;
   }

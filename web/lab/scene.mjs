@@ -496,11 +496,9 @@ export class LabScene {
     this.lights?.attachHeadlight(this.camera);
   }
 
-  // Labels (see labels.mjs) at the items' positions as the camera sees them now, or none
-  // (an empty list).
+  // Labels (see labels.mjs) at the items' positions as the camera placed by the last
+  // render sees them, or none (an empty list).
   drawLabels(items) {
-    this.placeCamera();
-    this.camera.updateMatrixWorld();
     const v = this.projected, ndc = [0, 0, 0];
     const project = (p) => {
       v.set(p[0], p[1], p[2]).project(this.camera);
