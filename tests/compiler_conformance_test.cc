@@ -137,6 +137,8 @@ void CheckModel(const std::string& name, const std::string& path) {
     EXPECT_EQ(m.ntexdata, sizes["ntexdata"].get<int>());
     EXPECT_EQ(m.nmat, sizes["nmat"].get<int>());
   }
+  if (sizes.contains("ntree")) EXPECT_EQ(m.ntree, sizes["ntree"].get<int>());
+  if (sizes.contains("nB")) EXPECT_EQ(m.nB, sizes["nB"].get<int>());
   if (sizes.contains("nmeshtexcoord")) EXPECT_EQ(m.nmeshtexcoord, sizes["nmeshtexcoord"].get<int>());
   if (::testing::Test::HasFailure()) return;
 
@@ -228,6 +230,8 @@ TEST(CompilerConformance, Cameras) { CheckModel("cameras", Local("cameras.xml"))
 // Textures (builtin patterns and PNG files), materials and lights.
 TEST(CompilerConformance, Visual) { CheckModel("visual", Local("visual.xml")); }
 
+// Trees, dof length scales and sleep policies (explicit, and the compiler's choices).
+TEST(CompilerConformance, SleepTrees) { CheckModel("sleep_trees", Local("sleep_trees.xml")); }
 TEST(CompilerConformance, FreeJointAlignment) { CheckModel("align_free", Local("align_free.xml")); }
 
 TEST(CompilerConformance, HFieldFiles) { CheckModel("hfield_files", Local("hfield_files.xml")); }

@@ -284,5 +284,30 @@ TEST(MjcfErrors, TextureSizesAndReferences) {
               {"bad.xml:3:", "unknown body 'nobody'"});
 }
 
+// Sleep policies: only on a moving root body; not on trees a springy or 3-tree tendon
+// couples; and trees marked init must be able to start asleep (MuJoCo's own test model,
+// where the init trees are welded to one that may not sleep).
+TEST(MjcfErrors, SleepPolicies) {
+  ExpectError("<mujoco>\n<worldbody>\n<body sleep=\"never\"><geom size=\".1\"/></body>\n</worldbody>\n</mujoco>",
+              {"bad.xml:3:", "sleep policy only allowed for movable root bodies"});
+  ExpectError(
+      "<mujoco>\n<worldbody>\n<body><freejoint/><geom size=\".1\"/>\n"
+      "<body sleep=\"allowed\"><joint/><geom size=\".1\"/></body></body>\n</worldbody>\n</mujoco>",
+      {"bad.xml:4:", "sleep policy only allowed for movable root bodies"});
+  const std::string springy =
+      "<mujoco>\n<worldbody>\n"
+      "<body sleep=\"allowed\"><freejoint/><geom size=\".1\"/><site name=\"a\"/></body>\n"
+      "<body pos=\"1 0 0\"><freejoint/><geom size=\".1\"/><site name=\"b\"/></body>\n"
+      "</worldbody>\n<tendon>\n<spatial stiffness=\"1\"><site site=\"a\"/><site site=\"b\"/></spatial>\n"
+      "</tendon>\n</mujoco>";
+  ExpectError(springy, {"bad.xml:7:", "tree 0 connected to tendon 0 with non-zero stiffness or damping"});
+  test_util::ExpectMessageParts(
+      test_util::FileLoadError(std::string(SIMLAB_SOURCE_DIR) +
+                               "/tests/conformance/corpus/mujoco/sleep/sleep_init_island_fail.xml"),
+      {"sleep_init_island_fail.xml:16:", "<body name=\"asleep_init0\">",
+       "3 trees were marked as sleep='init' but only 0 could be slept"},
+      "sleep_init_island_fail.xml");
+}
+
 }  // namespace
 }  // namespace simlab

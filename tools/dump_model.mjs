@@ -19,7 +19,7 @@ import { loadOracleModel } from './oracle_model.mjs';
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
   'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat', 'nmeshtexcoord',
-  'npair', 'nexclude'];
+  'npair', 'nexclude', 'ntree', 'nB'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -32,7 +32,9 @@ const ARRAYS = [
   'jnt_stiffness', 'jnt_range', 'jnt_actfrcrange', 'jnt_margin',
   'dof_bodyid', 'dof_jntid', 'dof_parentid', 'dof_treeid', 'dof_Madr', 'dof_solref',
   'dof_solimp', 'dof_frictionloss', 'dof_armature', 'dof_damping', 'dof_invweight0',
+  'dof_length', 'tree_bodyadr', 'tree_bodynum', 'tree_dofadr', 'tree_dofnum', 'tree_sleep_policy',
   'M_rownnz', 'M_rowadr', 'M_colind', 'D_rownnz', 'D_rowadr', 'D_diag', 'D_colind',
+  'B_rownnz', 'B_rowadr', 'B_colind',
   'geom_type', 'geom_contype', 'geom_conaffinity', 'geom_condim', 'geom_bodyid', 'geom_group',
   'geom_priority', 'geom_sameframe', 'geom_solmix', 'geom_solref', 'geom_solimp', 'geom_size',
   'geom_rbound', 'geom_aabb', 'geom_pos', 'geom_quat', 'geom_friction', 'geom_margin', 'geom_gap',
@@ -58,7 +60,7 @@ const ARRAYS = [
   'tendon_solimp_lim', 'tendon_solref_fri', 'tendon_solimp_fri', 'tendon_range',
   'tendon_actfrcrange', 'tendon_margin', 'tendon_stiffness', 'tendon_damping',
   'tendon_armature', 'tendon_frictionloss', 'tendon_lengthspring', 'tendon_length0',
-  'tendon_invweight0',
+  'tendon_invweight0', 'tendon_treenum', 'tendon_treeid',
   'wrap_type', 'wrap_objid', 'wrap_prm',
   'actuator_trntype', 'actuator_dyntype', 'actuator_gaintype', 'actuator_biastype',
   'actuator_trnid', 'actuator_actadr', 'actuator_actnum', 'actuator_group',

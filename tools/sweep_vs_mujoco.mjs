@@ -16,7 +16,9 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const oracle = path.resolve(root, '../shared/oracle');
+// (the oracle's scripts with its node_modules: $SIMLAB_ORACLE, else ../shared/oracle)
+const oracle = process.env.SIMLAB_ORACLE ? path.resolve(process.env.SIMLAB_ORACLE)
+                                         : path.resolve(root, '../shared/oracle');
 
 // --name value options, with defaults.
 function parseArgs(argv) {

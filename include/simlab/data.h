@@ -114,6 +114,13 @@ struct TimerStat {
   X(double, mocap_pos, nmocap, 3)               \
   X(double, mocap_quat, nmocap, 4)              \
   X(int, eq_active, neq, 1)                     \
+  X(int, tree_asleep, ntree, 1)  /* < 0 awake (-1: ready to sleep); >= 0 asleep, the next tree of its cycle */ \
+  /* sleep (sleep.cc UpdateSleep, from tree_asleep) */ \
+  X(int, tree_awake, ntree, 1)                  \
+  X(int, body_awake, nbody, 1)  /* SleepState */ \
+  X(int, body_awake_ind, nbody, 1)  /* awake and static bodies */ \
+  X(int, parent_awake_ind, nbody, 1)  /* bodies whose parent is awake or static */ \
+  X(int, dof_awake_ind, nv, 1)                  \
   /* accelerations */                           \
   X(double, qacc, nv, 1)                        \
   X(double, act_dot, na, 1)                     \
@@ -169,6 +176,10 @@ struct TimerStat {
   X(double, qacc_smooth, nv, 1)                 \
   X(double, qfrc_constraint, nv, 1)             \
   X(int, dof_island, nv, 1)     /* island of each dof, -1 outside every island */ \
+  X(int, tree_island, ntree, 1)  /* island of each tree, -1 outside every island */ \
+  X(int, island_ntree, ntree, 1)  /* trees of each island (nisland used) */ \
+  X(int, island_itreeadr, ntree, 1)  /* its first entry in map_itree2tree */ \
+  X(int, map_itree2tree, ntree, 1)  /* trees by island; trees in none last */ \
   X(double, qfrc_inverse, nv, 1)                \
   X(double, cacc, nbody, 6)                     \
   X(double, cfrc_int, nbody, 6)                 \
@@ -233,6 +244,11 @@ struct Data {
   int nf = 0;                 // friction rows (after the equalities)
   int nl = 0;                 // limit rows (after the friction rows; contacts follow)
   int nisland = 0;            // constraint islands of the last solve
+  // Sleep (sleep.cc): counts of the *_awake_ind lists, from tree_asleep.
+  int ntree_awake = 0;
+  int nbody_awake = 0;
+  int nparent_awake = 0;
+  int nv_awake = 0;
   WarningStat warning[kNumWarnings];
   // The profiler (MuJoCo's d->timer with mjcb_time, here per Data): when timer_clock is
   // set, each timed part of the pipeline adds its time to timer[kind]; ResetData clears

@@ -55,6 +55,15 @@ enum EnableBit : int {
   kEnableInvdiscrete = 1 << 3, kEnableMulticcd = 1 << 4, kEnableSleep = 1 << 5
 };
 
+// A tree's sleep policy (MuJoCo's mjtSleepPolicy): the compiler turns kSleepAuto into
+// kSleepAutoNever (actuated, or coupled by a springy tendon) or kSleepAutoAllowed; the
+// others come from the root body's sleep attribute.
+enum SleepPolicy : int {
+  kSleepAuto = 0, kSleepAutoNever, kSleepAutoAllowed, kSleepNever, kSleepAllowed, kSleepInit
+};
+// Steps a tree must stay below the sleep tolerance before it may sleep (mjMINAWAKE).
+inline constexpr int kMinAwake = 10;
+
 // Actuator transmission, dynamics, gain and bias types (mjtTrn, mjtDyn, mjtGain, mjtBias),
 // numbered as MuJoCo 3.12 (which inserted dcmotor, so3 and pid before the user types).
 enum TrnType : int {
@@ -160,6 +169,7 @@ struct Option {
   double ls_tolerance = 0.01;
   double noslip_tolerance = 1e-6;
   double ccd_tolerance = 1e-6;
+  double sleep_tolerance = 1e-4;  // velocity below which a tree may sleep
   std::array<double, 3> gravity = {0, 0, -9.81};
   std::array<double, 3> wind = {0, 0, 0};
   std::array<double, 3> magnetic = {0, -0.5, 0};
@@ -296,6 +306,13 @@ struct Visual {
   X(double, dof_invweight0, nv, 1)                 \
   X(int, dof_simplenum, nv, 1)                     \
   X(double, dof_M0, nv, 1)                         \
+  X(double, dof_length, nv, 1) /* 1 for sliding dofs; rotating: the body's size */ \
+  /* kinematic trees (ntree: roots of the dof forest) */ \
+  X(int, tree_bodyadr, ntree, 1)                   \
+  X(int, tree_bodynum, ntree, 1)                   \
+  X(int, tree_dofadr, ntree, 1)                    \
+  X(int, tree_dofnum, ntree, 1)                    \
+  X(int, tree_sleep_policy, ntree, 1) /* SleepPolicy */ \
   /* inertia matrix sparsity: row i of the lower     \
      triangle holds i's ancestor dofs, then i */     \
   X(int, M_rownnz, nv, 1)                          \
@@ -307,6 +324,11 @@ struct Visual {
   X(int, D_rowadr, nv, 1)                          \
   X(int, D_diag, nv, 1) /* diagonal's place in the row */ \
   X(int, D_colind, nD, 1)                          \
+  /* the body-dof pattern B: row b holds the dofs of \
+     b's ancestors, then of its subtree (ascending) */ \
+  X(int, B_rownnz, nbody, 1)                       \
+  X(int, B_rowadr, nbody, 1)                       \
+  X(int, B_colind, nB, 1)                          \
   /* geoms */                                      \
   X(int, geom_type, ngeom, 1)                      \
   X(int, geom_contype, ngeom, 1)                   \
@@ -468,6 +490,8 @@ struct Visual {
   X(double, tendon_length0, ntendon, 1)            \
   X(double, tendon_invweight0, ntendon, 1)         \
   X(int, tendon_actuatorid, ntendon, 1)            \
+  X(int, tendon_treenum, ntendon, 1) /* trees along the path */ \
+  X(int, tendon_treeid, ntendon, 2) /* its first two trees, -1: none */ \
   X(int, wrap_type, nwrap, 1)                      \
   X(int, wrap_objid, nwrap, 1)                     \
   X(double, wrap_prm, nwrap, 1)                    \
@@ -569,6 +593,7 @@ struct Visual {
   X(nout)        /* actuator force outputs (actuator_force rows) */        \
   X(na)          /* activation states */                                   \
   X(nbody)       /* bodies, including the world body 0 */                  \
+  X(ntree)       /* kinematic trees: roots of the dof forest */            \
   X(njnt)        /* joints */                                              \
   X(ngeom)       /* geoms */                                               \
   X(nsite)       /* sites */                                               \
@@ -600,6 +625,7 @@ struct Visual {
   X(nmocap4)     /* 4 * nmocap (row width of key_mquat) */                 \
   X(nbvh)        /* bounding volumes of the bodies' geom trees */         \
   X(nD)          /* nonzeros of the dof-dof pattern D, 2 nM - nv */        \
+  X(nB)          /* nonzeros of the body-dof pattern B */                  \
   X(nM)          /* nonzeros of the inertia matrix in tree layout */       \
   X(ngravcomp)   /* bodies with positive gravcomp */                       \
   X(nplugin)     /* plugin instances (<extension>, or implicit ones) */    \

@@ -570,6 +570,28 @@ void LayoutDofDofMatrix(Model* m) {
   }
 }
 
+// The CSR rows of the body-dof pattern B (MuJoCo's B_rownnz, B_rowadr, B_colind): row b
+// holds the dofs of b's ancestors, then those of its subtree, which follow b's first
+// dof contiguously (bodies and dofs are numbered parents first).
+void LayoutBodyDofMatrix(Model* m) {
+  std::vector<int> first(m->nbody, 0), subtree(m->body_dofnum.begin(), m->body_dofnum.end());
+  for (int b = 1; b < m->nbody; b++) first[b] = first[b - 1] + m->body_dofnum[b - 1];
+  for (int b = m->nbody - 1; b > 0; b--) subtree[m->body_parentid[b]] += subtree[b];
+  int adr = 0;
+  for (int b = 0; b < m->nbody; b++) {
+    m->B_rowadr[b] = adr;
+    int* row = &m->B_colind[adr];
+    int n = 0;
+    for (int a = m->body_parentid[b]; b > 0 && a > 0; a = m->body_parentid[a]) {
+      for (int k = m->body_dofnum[a] - 1; k >= 0; k--) row[n++] = m->body_dofadr[a] + k;
+    }
+    std::reverse(row, row + n);
+    for (int k = 0; k < subtree[b]; k++) row[n++] = first[b] + k;
+    m->B_rownnz[b] = n;
+    adr += n;
+  }
+}
+
 // dof_Madr and the CSR rows of M: each row holds the dof's ancestors, then itself.
 void LayoutInertiaMatrix(Model* m) {
   int adr = 0;
@@ -584,6 +606,7 @@ void LayoutInertiaMatrix(Model* m) {
     adr += count;
   }
   LayoutDofDofMatrix(m);
+  LayoutBodyDofMatrix(m);
 }
 
 // Trees: dof_treeid counts the roots of the dof forest; bodies take their weld's.
@@ -657,12 +680,27 @@ void TreeSizes(const CompileState& state, Model* m) {
       }
     }
   }
+  m->ntree = static_cast<int>(std::count(parent.begin(), parent.end(), -1));
   m->nM = 0;
   for (size_t i = 0; i < parent.size(); i++) {
     for (int j = static_cast<int>(i); j >= 0; j = parent[j]) m->nM++;
   }
   // D holds both triangles: every nonzero of M below the diagonal twice, the diagonal once.
   m->nD = 2 * m->nM - static_cast<int>(parent.size());
+
+  // nB: each body's ancestors' dofs and its subtree's (bodies come parents first).
+  size_t nbody = state.bodies.size();
+  std::vector<int> dofnum(nbody, 0), above(nbody, 0), subtree(nbody, 0);
+  for (const BodyState& b : state.bodies) {
+    for (size_t n = 0; n < b.spec->joints.size(); n++) dofnum[b.id] += JointNv(state.joints[b.joint_begin + n].spec->type);
+    if (b.parent >= 0) above[b.id] = above[b.parent] + dofnum[b.parent];
+  }
+  for (size_t i = nbody; i-- > 0;) {
+    subtree[i] += dofnum[i];
+    if (state.bodies[i].parent >= 0) subtree[state.bodies[i].parent] += subtree[i];
+  }
+  m->nB = 0;
+  for (size_t i = 0; i < nbody; i++) m->nB += above[i] + subtree[i];
 }
 
 }  // namespace simlab::compiler

@@ -1,4 +1,5 @@
 // The compiler's driver, and the public loading functions.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -108,6 +109,21 @@ void CollectSources(const mjcf::ModelSpec& spec, const CompileState& state, Elem
   for (const mjcf::KeySpec& k : spec.keys) out->key.push_back(k.src);
 }
 
+// Trees marked sleep="init" must be able to start asleep (with their whole island): a
+// reset tells, as MuJoCo's compiler does.
+// (the error points at the first body marked init)
+void CheckInitialSleep(const CompileState& state, const Model& m) {
+  if (!(m.opt.enableflags & kEnableSleep)) return;
+  auto first = std::find(m.tree_sleep_policy.begin(), m.tree_sleep_policy.end(), kSleepInit);
+  if (first == m.tree_sleep_policy.end()) return;
+  try {
+    Data d = MakeData(m);
+  } catch (const Error& e) {
+    int body = m.tree_bodyadr[first - m.tree_sleep_policy.begin()];
+    mjcf::ThrowAt(state.bodies[body].spec->src, e.what());
+  }
+}
+
 }  // namespace
 
 Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
@@ -144,12 +160,15 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   CompileContacts(spec, &m);
   CompileBodyBvh(&m);
   CompileActuators(spec, state, &m);
+  CompileTrees(state, &m);
   CompilePlugins(spec, state, &m);
   CompileKeyframes(spec, state, &m);
   CompileSensors(spec, &m);
   CheckDataBudget(spec, m);
 
-  // Whole-model adjustments and constants at qpos0.
+  // Whole-model adjustments and constants at qpos0, computed with nothing asleep.
+  int enableflags = m.opt.enableflags;
+  m.opt.enableflags &= ~kEnableSleep;
   if (spec.compiler.settotalmass > 0) SetTotalMass(spec.compiler.settotalmass, &m);
   // (the first Data made runs the plugins' init: a bad configuration fails here)
   try {
@@ -161,6 +180,8 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   EqualityConstants(&m);
   AutoSpringDamper(state, &m);
   ComputeLengthRanges(spec, &m);
+  m.opt.enableflags = enableflags;
+  CheckInitialSleep(state, m);
 
   // Statistics the model gives replace the computed ones (after the length ranges,
   // which MuJoCo simulates with the computed meaninertia).

@@ -136,6 +136,9 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources = nullptr);
 // Sections, in the order Compile runs them.
 void CompileOption(const mjcf::ModelSpec& spec, Model* m);
 void TreeSizes(const CompileState& state, Model* m);
+// Trees' body and dof ranges, the trees along each tendon and the trees' sleep
+// policies (trees.cc): after the tendons and actuators.
+void CompileTrees(const CompileState& state, Model* m);
 void FlattenTree(const mjcf::ModelSpec& spec, CompileState* state);
 // Meshes and the geoms that use them (mesh.cc): before the bodies, which need them.
 void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state);

@@ -143,6 +143,14 @@ void ComputeStatistics(Model* m, const Data& d) {
     m->stat.meanmass /= m->nbody - 1;
   }
   m->stat.extent = std::max(m->stat.extent, 2 * m->stat.meansize);
+
+  // Each dof's length scale: 1 for sliding dofs, the body's size for rotating ones.
+  for (int v = 0; v < m->nv; v++) {
+    int j = m->dof_jntid[v];
+    bool rotates = m->jnt_type[j] == kJointBall || m->jnt_type[j] == kJointHinge ||
+                   (m->jnt_type[j] == kJointFree && v - m->jnt_dofadr[j] >= 3);
+    m->dof_length[v] = rotates ? std::max(size[m->dof_bodyid[v]], 1e-5) : 1;
+  }
 }
 
 }  // namespace

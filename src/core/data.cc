@@ -18,10 +18,11 @@ uint64_t StackDoubles(const Model& m) {
   uint64_t states = static_cast<uint64_t>(m.nq) + m.nv + m.na + m.nbody + m.nu;
   uint64_t rest = AddBytes(MulBytes(16, states), 64);
   if (m.opt.integrator != kIntegratorImplicit) return rest;
-  // ...and for the implicit integrator the RNE derivative (engine/derivative.cc): 6 x nv
-  // blocks for each body's velocity, acceleration and force and each dof's cdof_dot.
-  uint64_t nv = m.nv, nbody = m.nbody, block = MulBytes(6, nv);
-  uint64_t derivative = MulBytes(AddBytes(AddBytes(MulBytes(3, nbody), nv), 1), block);
+  // ...and for the implicit integrator the RNE derivative (engine/derivative.cc): 6-row
+  // blocks over the body-dof pattern B for each body's velocity, acceleration and force,
+  // over its body's row of B for each dof's cdof_dot, and one of 6 nv.
+  uint64_t bodies = MulBytes(18, static_cast<uint64_t>(m.nB));
+  uint64_t derivative = AddBytes(AddBytes(bodies, DofBlockOffsets(m, nullptr)), MulBytes(6, m.nv));
   return AddBytes(derivative, rest);
 }
 

@@ -1,6 +1,7 @@
 // The smooth acceleration (MuJoCo mj_fwdAcceleration): every force but the constraints',
 // and the acceleration it gives, M^-1 qfrc_smooth.
 #include "engine/engine.h"
+#include "engine/sleep.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -20,12 +21,16 @@ void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
 }  // namespace
 
 void SmoothAcceleration(const Model& m, Data& d) {
+  // (a sleeping tree's smooth force and acceleration stay as they were)
+  StackFrame frame(d);
+  SleepingDofValues kept(m, d, frame, {d.qfrc_smooth.data(), d.qacc_smooth.data(), nullptr, nullptr});
   for (int v = 0; v < m.nv; v++) {
     d.qfrc_smooth[v] = d.qfrc_passive[v] - d.qfrc_bias[v] + d.qfrc_applied[v] + d.qfrc_actuator[v];
   }
   XfrcAccumulate(m, d, d.qfrc_smooth.data());
   d.qacc_smooth = d.qfrc_smooth;
   SolveSparse(m, d.qLD.data(), d.qLDiagInv.data(), d.qacc_smooth.data());
+  kept.Restore();
 }
 
 }  // namespace simlab

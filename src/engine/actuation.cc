@@ -17,6 +17,7 @@
 #include "engine/rows.h"
 #include "engine/servo.h"
 #include "engine/stack.h"
+#include "engine/sleep.h"
 
 namespace simlab {
 
@@ -228,9 +229,12 @@ void Actuation(const Model& m, Data& d) {
   double* ctrl = frame.Alloc(m.nu);
   EffectiveControls(m, d, ctrl);
 
-  // Activation dynamics, then forces (disabled actuators stay at zero).
+  // Activation dynamics, then forces (disabled actuators stay at zero; sleeping ones
+  // too, and keep their act_dot).
+  bool any_asleep = AnyAsleep(m, d);
+  auto asleep = [&](int i) { return any_asleep && ElementSleepState(m, d, kObjActuator, i) == kAsleep; };
   for (int i = 0; i < m.nactuator; i++) {
-    if (m.actuator_actadr[i] < 0) continue;
+    if (m.actuator_actadr[i] < 0 || asleep(i)) continue;
     // (a plugin's own states wait for its act_dot; the built-in dynamics has the last)
     if (m.actuator_plugin[i] >= 0) {
       std::fill_n(&d.act_dot[m.actuator_actadr[i]], m.actuator_actnum[i], 0.0);
@@ -246,7 +250,7 @@ void Actuation(const Model& m, Data& d) {
   }
   PluginActDot(m, d);
   for (int i = 0; i < m.nactuator; i++) {
-    if (ActuatorDisabled(m, i) || m.actuator_plugin[i] >= 0) continue;
+    if (ActuatorDisabled(m, i) || m.actuator_plugin[i] >= 0 || asleep(i)) continue;
     if (m.actuator_gaintype[i] == kGainSo3) {
       So3Force(m, d, i, ctrl, d.actuator_force.data());
       continue;
@@ -277,7 +281,10 @@ void Actuation(const Model& m, Data& d) {
   }
   // A DC motor's cogging and friction are mechanical: past the electrical clamp.
   for (int i = 0; i < m.nactuator; i++) {
-    if (m.actuator_biastype[i] != kBiasDcmotor || ActuatorDisabled(m, i) || m.actuator_plugin[i] >= 0) continue;
+    if (m.actuator_biastype[i] != kBiasDcmotor || ActuatorDisabled(m, i) || m.actuator_plugin[i] >= 0 ||
+        asleep(i)) {
+      continue;
+    }
     DcmotorMechanics(m, d, i);
   }
 

@@ -17,6 +17,7 @@
 #include "engine/collision.h"
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/sleep.h"
 #include "engine/stack.h"
 #include "engine/timer.h"
 #include "math/math.h"
@@ -279,6 +280,11 @@ void CollideGeoms(const Model& m, Data& d, int g1, int g2, int ipair) {
   if (ipair >= 0) {
     g1 = m.pair_geom1[ipair];
     g2 = m.pair_geom2[ipair];
+    // (with sleep enabled, a pair of which neither body is awake is skipped)
+    if ((m.opt.enableflags & kEnableSleep) && d.body_awake[m.geom_bodyid[g1]] != kAwake &&
+        d.body_awake[m.geom_bodyid[g2]] != kAwake) {
+      return;
+    }
   }
   if (m.geom_type[g1] > m.geom_type[g2]) std::swap(g1, g2);
   CollideFn collide = CollisionFunction(m.geom_type[g1], m.geom_type[g2]);
@@ -341,14 +347,19 @@ bool HasPlane(const Model& m, int b) {
 }
 
 // True when MuJoCo never collides these bodies: welded together, or (unless the
-// filterparent flag is disabled) one welded to the other's parent (filterBodyPair).
-// `always1` marks the world side of the always-colliding pairs.
-bool BodyPairFiltered(const Model& m, int b1, int b2, bool always1) {
+// filterparent flag is disabled) one welded to the other's parent (filterBodyPair); or,
+// while trees sleep, both asleep, or one asleep and the other welded to the world.
+// `always1` marks the world side of the always-colliding pairs (which counts as asleep).
+bool BodyPairFiltered(const Model& m, const Data& d, int b1, int b2, bool always1) {
   int weld1 = always1 ? 0 : m.body_weldid[b1];
   int weld2 = m.body_weldid[b2];
   int parent1 = always1 ? 0 : m.body_weldid[m.body_parentid[weld1]];
   int parent2 = m.body_weldid[m.body_parentid[weld2]];
   if (weld1 == weld2) return true;
+  if (AnyAsleep(m, d)) {
+    bool asleep1 = always1 || d.body_awake[b1] == kAsleep, asleep2 = d.body_awake[b2] == kAsleep;
+    if ((asleep1 && asleep2) || (asleep1 && weld2 == 0) || (asleep2 && weld1 == 0)) return true;
+  }
   if (always1 && weld2 == 0) return true;
   bool filterparent = !Disabled(m, kDisableFilterparent);
   return filterparent && weld1 != 0 && weld2 != 0 && (weld1 == parent2 || weld2 == parent1);
@@ -454,7 +465,7 @@ void BroadPhase(const Model& m, Data& d) {
       continue;
     }
     for (int b2 = 0; b2 < m.nbody; b2++) {
-      if (CanCollide(m, b2) && !BodyPairFiltered(m, b1, b2, true)) add(b1, b2);
+      if (CanCollide(m, b2) && !BodyPairFiltered(m, d, b1, b2, true)) add(b1, b2);
     }
   }
   // Other bodies meet when their boxes overlap in the principal frame of the moving
@@ -472,7 +483,7 @@ void BroadPhase(const Model& m, Data& d) {
       BodyBox(m, d, b, frame, &boxes[6 * b], &boxes[6 * b + 3]);
     }
     SweepAndPrune(d.broadphase, boxes, [&](int b1, int b2) {
-      if (!BodyPairFiltered(m, b1, b2, false)) add(b1, b2);
+      if (!BodyPairFiltered(m, d, b1, b2, false)) add(b1, b2);
     });
   }
   std::sort(pairs.begin(), pairs.end());

@@ -12,6 +12,7 @@
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/rows.h"
+#include "engine/sleep.h"
 #include "engine/stack.h"
 #include "math/dot.h"
 #include "math/math.h"
@@ -227,8 +228,11 @@ void EqualityRows(const Model& m, Data& d) {
   double* jac1 = frame.Alloc(6 * m.nv);
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
+  bool any_asleep = AnyAsleep(m, d);
   for (int eq = 0; eq < m.neq; eq++) {
     if (!d.eq_active[eq]) continue;
+    // (an equality neither of whose sides is awake makes no row)
+    if (any_asleep && ElementSleepState(m, d, kObjEquality, eq) == kAsleep) continue;
     switch (m.eq_type[eq]) {
       case kEqConnect: ConnectRows(m, d, eq, jac, jac1, index); break;
       case kEqWeld: WeldRows(m, d, eq, jac, jac1, index); break;
@@ -260,8 +264,10 @@ void FrictionRows(const Model& m, Data& d) {
   double* jac = frame.Alloc(m.nv);
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
+  bool any_asleep = AnyAsleep(m, d);
   for (int v = 0; v < m.nv; v++) {
     if (m.dof_frictionloss[v] == 0) continue;
+    if (any_asleep && !d.tree_awake[m.dof_treeid[v]]) continue;  // (asleep: no row)
     const double one = 1;
     AddRows(m, d, &one, Columns{&v, 1}, nullptr, 0, m.dof_frictionloss[v], 1,
             kCnstrFrictionDof, v);
@@ -311,8 +317,10 @@ void LimitRows(const Model& m, Data& d) {
   double* grad = frame.Alloc(m.nv);
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
+  bool any_asleep = AnyAsleep(m, d);
   for (int j = 0; j < m.njnt; j++) {
     if (!m.jnt_limited[j]) continue;
+    if (any_asleep && !d.tree_awake[m.dof_treeid[m.jnt_dofadr[j]]]) continue;  // (asleep: no row)
     int type = m.jnt_type[j];
     if (type == kJointBall) BallLimitRow(m, d, j);
     if (type != kJointSlide && type != kJointHinge) continue;

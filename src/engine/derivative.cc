@@ -11,9 +11,10 @@
 // -diag(dof damping) - J^T b J for tendon damping, actuator damping included (the slope
 // of the polynomial damping force at the current velocity). Bias: the
 // velocity derivative of RNE, propagated body by body (Dcvel, Dcdofdot, Dcacc, Dcfrc:
-// 6 x nv blocks per body or dof).
+// 6-row blocks per body or dof over the body's row of the body-dof pattern B).
 #include <algorithm>
 
+#include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/rows.h"
 #include "engine/stack.h"
@@ -137,104 +138,161 @@ void InertiaMatrix(double* D, const double* i) {
   std::copy(rows, rows + 36, D);
 }
 
-// R (6 x nv) = A (6x6) B (6 x nv)
-void Mul6(double* R, const double* A, const double* B, int nv) {
+// R (6 x n) = A (6x6) B (6 x n)
+void Mul6(double* R, const double* A, const double* B, int n) {
   for (int r = 0; r < 6; r++) {
-    for (int c = 0; c < nv; c++) {
+    for (int c = 0; c < n; c++) {
       double s = 0;
-      for (int k = 0; k < 6; k++) s += A[6 * r + k] * B[k * nv + c];
-      R[r * nv + c] = s;
+      for (int k = 0; k < 6; k++) s += A[6 * r + k] * B[k * n + c];
+      R[r * n + c] = s;
     }
   }
 }
 
-// Velocity derivatives of cvel (per body) and cdof_dot (per dof), 6 x nv each.
-void ComVelDerivative(const Model& m, Data& d, double* dcvel, double* dcdofdot) {
-  int nv = m.nv;
+// The derivatives of a body's velocity, acceleration and force (and of its dofs'
+// cdof_dot) are 6 x n blocks over the body's row of the body-dof pattern B (m.B_colind:
+// its ancestors' dofs and its subtree's), the only dofs they depend on, as MuJoCo's
+// sparse mjd_rne_vel keeps them.
+struct BodyBlocks {
+  const Model& m;
+  double* data;        // block of body b at 6 * B_rowadr[b]
+  double* Of(int b) const { return data + 6 * static_cast<size_t>(m.B_rowadr[b]); }
+  int Width(int b) const { return m.B_rownnz[b]; }
+};
+
+// where[dof] = its column in body b's row of B (entries of other dofs are left).
+void ScatterColumns(const Model& m, int b, int* where) {
+  const int* cols = &m.B_colind[m.B_rowadr[b]];
+  for (int c = 0; c < m.B_rownnz[b]; c++) where[cols[c]] = c;
+}
+
+// Body b's block = its parent's block on b's columns (a subset of the parent's).
+void CopyFromParent(const Model& m, const BodyBlocks& blocks, int b, int* where) {
+  int parent = m.body_parentid[b], n = blocks.Width(b), np = blocks.Width(parent);
+  ScatterColumns(m, parent, where);
+  const int* cols = &m.B_colind[m.B_rowadr[b]];
+  const double* src = blocks.Of(parent);
+  double* dst = blocks.Of(b);
+  for (int k = 0; k < 6; k++) {
+    for (int c = 0; c < n; c++) dst[k * n + c] = src[k * np + where[cols[c]]];
+  }
+}
+
+// Velocity derivatives of cvel (per body) and cdof_dot (per dof, over its body's row).
+void ComVelDerivative(const Model& m, Data& d, const BodyBlocks& dcvel, double* dcdofdot,
+                      const int* dofblock, int* where) {
   double mat[36];
   for (int i = 1; i < m.nbody; i++) {
-    double* dv = dcvel + static_cast<size_t>(i) * 6 * nv;
-    std::copy_n(dcvel + static_cast<size_t>(m.body_parentid[i]) * 6 * nv, 6 * nv, dv);
+    CopyFromParent(m, dcvel, i, where);
+    double* dv = dcvel.Of(i);
+    int n = dcvel.Width(i);
+    ScatterColumns(m, i, where);
     int end = m.body_dofadr[i] + m.body_dofnum[i];
-    for (int j = m.body_dofadr[i]; j < end;) {
+    for (int j = m.body_dofadr[i]; j >= 0 && j < end;) {
       int type = m.jnt_type[m.dof_jntid[j]];
       int ntran = type == kJointFree ? 3 : 0;
       int nrot = (type == kJointFree || type == kJointBall) ? 3 : 1;
       // Translations of a free joint: cdof_dot = 0, velocity adds directly.
       for (int t = 0; t < ntran; t++) {
-        for (int k = 0; k < 6; k++) dv[k * nv + j + t] += d.cdof[6 * (j + t) + k];
+        for (int k = 0; k < 6; k++) dv[k * n + where[j + t]] += d.cdof[6 * (j + t) + k];
       }
       j += ntran;
       // Rotations (or a hinge/slide): D cdof_dot = Dcross * Dcvel, then velocity.
       for (int t = 0; t < nrot; t++) {
         CrossMotionVelDerivative(mat, &d.cdof[6 * (j + t)]);
-        Mul6(dcdofdot + static_cast<size_t>(j + t) * 6 * nv, mat, dv, nv);
+        Mul6(dcdofdot + dofblock[j + t], mat, dv, n);
       }
       for (int t = 0; t < nrot; t++) {
-        for (int k = 0; k < 6; k++) dv[k * nv + j + t] += d.cdof[6 * (j + t) + k];
+        for (int k = 0; k < 6; k++) dv[k * n + where[j + t]] += d.cdof[6 * (j + t) + k];
       }
       j += nrot;
     }
   }
 }
 
+// Dcfrc of body i from its Dcacc and Dcvel: I Dcacc + (Dcross_v(I v) + Dcross_f(v) I) Dcvel.
+void BodyForceDerivative(const Data& d, int i, const double* da, const double* dv, int n,
+                         double* df, double* tmp) {
+  double dmul[36], mat[36], mat1[36], momentum[6];
+  InertiaMatrix(dmul, &d.cinert[10 * i]);
+  Mul6(df, dmul, da, n);
+  MulInertVec(momentum, &d.cinert[10 * i], &d.cvel[6 * i]);
+  CrossForceVelDerivative(mat, momentum);
+  CrossForceFrcDerivative(mat1, &d.cvel[6 * i]);
+  for (int r = 0; r < 6; r++) {
+    for (int c = 0; c < 6; c++) {
+      double s = 0;
+      for (int k = 0; k < 6; k++) s += mat1[6 * r + k] * dmul[6 * k + c];
+      mat[6 * r + c] += s;
+    }
+  }
+  Mul6(tmp, mat, dv, n);
+  for (int t = 0; t < 6 * n; t++) df[t] += tmp[t];
+}
+
 // qDeriv -= d qfrc_bias / d qvel.
 void RneDerivative(const Model& m, Data& d) {
-  int nv = m.nv;
-  size_t block = static_cast<size_t>(6) * nv;
   StackFrame frame(d);
-  double* dcvel = frame.Alloc(m.nbody * block);
-  double* dcdofdot = frame.Alloc(nv * block);
-  double* dcacc = frame.Alloc(m.nbody * block);
-  double* dcfrc = frame.Alloc(m.nbody * block);
-  double* tmp = frame.Alloc(block);
-  ComVelDerivative(m, d, dcvel, dcdofdot);
+  size_t nb = 6 * static_cast<size_t>(m.nB);
+  BodyBlocks dcvel{m, frame.Alloc(nb)}, dcacc{m, frame.Alloc(nb)}, dcfrc{m, frame.Alloc(nb)};
+  // (each dof's cdof_dot derivative over its body's row)
+  SolverFrame ints(d.solver_scratch);
+  int* where = ints.Ints(m.nv);
+  int* dofblock = ints.Ints(m.nv);
+  double* dcdofdot = frame.Alloc(DofBlockOffsets(m, dofblock));
+  double* tmp = frame.Alloc(6 * static_cast<size_t>(m.nv));
+  ComVelDerivative(m, d, dcvel, dcdofdot, dofblock, where);
 
-  // Forward pass: Dcacc, then Dcfrc = I Dcacc + (Dcross_v + Dcross_f I) Dcvel.
-  double dmul[36], mat[36], mat1[36], mat2[36], momentum[6];
+  // Forward pass: Dcacc from the parent's, the dofs' cdof_dot and its derivative; Dcfrc.
   for (int i = 1; i < m.nbody; i++) {
-    double* da = dcacc + i * block;
-    std::copy_n(dcacc + m.body_parentid[i] * block, block, da);
-    for (int j = m.body_dofadr[i]; j < m.body_dofadr[i] + m.body_dofnum[i]; j++) {
-      for (int k = 0; k < 6; k++) da[k * nv + j] += d.cdof_dot[6 * j + k];
-      const double* dd = dcdofdot + j * block;
-      for (size_t t = 0; t < block; t++) da[t] += dd[t] * d.qvel[j];
+    CopyFromParent(m, dcacc, i, where);
+    double* da = dcacc.Of(i);
+    int n = dcacc.Width(i);
+    ScatterColumns(m, i, where);
+    for (int j = m.body_dofadr[i]; j >= 0 && j < m.body_dofadr[i] + m.body_dofnum[i]; j++) {
+      for (int k = 0; k < 6; k++) da[k * n + where[j]] += d.cdof_dot[6 * j + k];
+      const double* dd = dcdofdot + dofblock[j];
+      for (int t = 0; t < 6 * n; t++) da[t] += dd[t] * d.qvel[j];
     }
-    InertiaMatrix(dmul, &d.cinert[10 * i]);
-    Mul6(dcfrc + i * block, dmul, da, nv);
-    MulInertVec(momentum, &d.cinert[10 * i], &d.cvel[6 * i]);
-    CrossForceVelDerivative(mat, momentum);
-    CrossForceFrcDerivative(mat1, &d.cvel[6 * i]);
-    for (int r = 0; r < 6; r++) {
-      for (int c = 0; c < 6; c++) {
-        double s = 0;
-        for (int k = 0; k < 6; k++) s += mat1[6 * r + k] * dmul[6 * k + c];
-        mat2[6 * r + c] = s;
-      }
-    }
-    for (int k = 0; k < 36; k++) mat[k] += mat2[k];
-    Mul6(tmp, mat, dcvel + i * block, nv);
-    for (size_t t = 0; t < block; t++) dcfrc[i * block + t] += tmp[t];
+    BodyForceDerivative(d, i, da, dcvel.Of(i), n, dcfrc.Of(i), tmp);
   }
 
-  // Backward pass, then project onto the dofs.
+  // Backward pass (a body's columns are among its parent's), then onto the dofs: the
+  // entries of dof v's row of D are all in its body's row of B.
   for (int i = m.nbody - 1; i > 0; i--) {
     int parent = m.body_parentid[i];
-    if (parent > 0) {
-      for (size_t t = 0; t < block; t++) dcfrc[parent * block + t] += dcfrc[i * block + t];
+    if (parent == 0) continue;
+    ScatterColumns(m, parent, where);
+    const int* cols = &m.B_colind[m.B_rowadr[i]];
+    int n = dcfrc.Width(i), np = dcfrc.Width(parent);
+    const double* src = dcfrc.Of(i);
+    double* dst = dcfrc.Of(parent);
+    for (int k = 0; k < 6; k++) {
+      for (int c = 0; c < n; c++) dst[k * np + where[cols[c]]] += src[k * n + c];
     }
   }
-  for (int v = 0; v < nv; v++) {
-    const double* df = dcfrc + m.dof_bodyid[v] * block;
+  for (int v = 0; v < m.nv; v++) {
+    int b = m.dof_bodyid[v], n = dcfrc.Width(b);
+    ScatterColumns(m, b, where);
+    const double* df = dcfrc.Of(b);
     for (int k = 0; k < 6; k++) {
       double c = d.cdof[6 * v + k];
       int adr = m.D_rowadr[v], end = adr + m.D_rownnz[v];
-      for (; adr < end; adr++) d.qDeriv[adr] -= c * df[k * nv + m.D_colind[adr]];
+      for (; adr < end; adr++) d.qDeriv[adr] -= c * df[k * n + where[m.D_colind[adr]]];
     }
   }
 }
 
 }  // namespace
+
+size_t DofBlockOffsets(const Model& m, int* offset) {
+  size_t total = 0;
+  for (int j = 0; j < m.nv; j++) {
+    if (offset) offset[j] = static_cast<int>(total);
+    total += 6 * static_cast<size_t>(m.B_rownnz[m.dof_bodyid[j]]);
+  }
+  return total;
+}
 
 void SmoothVelocityDerivative(const Model& m, Data& d, bool with_bias) {
   std::fill(d.qDeriv.begin(), d.qDeriv.end(), 0.0);

@@ -205,6 +205,9 @@ void Euler(const Model& m, Data& d);
 void RungeKutta4(const Model& m, Data& d);
 void ImplicitIntegrate(const Model& m, Data& d);
 
+// Where each dof's 6-row block of the RNE velocity derivative starts (over its body's row
+// of the body-dof pattern B), and their total size in doubles (derivative.cc).
+size_t DofBlockOffsets(const Model& m, int* offset);
 // qDeriv = d(qfrc_actuator + qfrc_passive [- qfrc_bias]) / d qvel (derivative.cc).
 void SmoothVelocityDerivative(const Model& m, Data& d, bool with_bias);
 // qDeriv += d qfrc_fluid / d qvel (fluid.cc).

@@ -19,6 +19,7 @@
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/sensor.h"
+#include "engine/sleep.h"
 #include "engine/stack.h"
 #include "engine/timer.h"
 #include "simlab/simlab.h"
@@ -97,9 +98,11 @@ void KinematicsAndInertia(const Model& m, Data& d) {
   {
     StageTimer timer(d, kTimerPosKinematics);
     Kinematics(m, d);
+    if (WakeChanged(m, d)) UpdateSleep(m, d);
     ComPos(m, d);
     CamLight(m, d);
     Tendon(m, d);
+    if (WakeOnTendonLimit(m, d)) UpdateSleep(m, d);
   }
   StageTimer timer(d, kTimerPosInertia);
   MakeInertia(m, d);
@@ -211,7 +214,13 @@ void FwdPosition(const Model& m, Data& d) {
   {
     StageTimer part(d, kTimerPosCollision);
     Collision(m, d);
+    // Sleeping trees touched by awake ones wake, and meet each other: collide again.
+    if (WakeOnContact(m, d)) {
+      UpdateSleep(m, d);
+      Collision(m, d);
+    }
   }
+  if (WakeOnEquality(m, d)) UpdateSleep(m, d);
   {
     StageTimer part(d, kTimerPosMake);
     MakeConstraint(m, d);

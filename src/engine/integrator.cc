@@ -13,6 +13,7 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/sleep.h"
 #include "engine/stack.h"
 #include "engine/timer.h"
 #include "math/dot.h"
@@ -20,18 +21,25 @@
 
 namespace simlab {
 
-void IntegratePos(const Model& m, double* qpos, const double* qvel, double dt) {
-  for (int j = 0; j < m.njnt; j++) {
-    int padr = m.jnt_qposadr[j], vadr = m.jnt_dofadr[j];
-    switch (m.jnt_type[j]) {
-      case kJointFree:
-        for (int t = 0; t < 3; t++) qpos[padr + t] += dt * qvel[vadr + t];
-        math::QuatIntegrate(qpos + padr + 3, qvel + vadr + 3, dt);
-        break;
-      case kJointBall: math::QuatIntegrate(qpos + padr, qvel + vadr, dt); break;
-      default: qpos[padr] += dt * qvel[vadr];
-    }
+namespace {
+
+// Joint j's coordinates moved by its velocity for dt.
+void IntegrateJoint(const Model& m, double* qpos, const double* qvel, double dt, int j) {
+  int padr = m.jnt_qposadr[j], vadr = m.jnt_dofadr[j];
+  switch (m.jnt_type[j]) {
+    case kJointFree:
+      for (int t = 0; t < 3; t++) qpos[padr + t] += dt * qvel[vadr + t];
+      math::QuatIntegrate(qpos + padr + 3, qvel + vadr + 3, dt);
+      break;
+    case kJointBall: math::QuatIntegrate(qpos + padr, qvel + vadr, dt); break;
+    default: qpos[padr] += dt * qvel[vadr];
   }
+}
+
+}  // namespace
+
+void IntegratePos(const Model& m, double* qpos, const double* qvel, double dt) {
+  for (int j = 0; j < m.njnt; j++) IntegrateJoint(m, qpos, qvel, dt, j);
 }
 
 void NormalizeQuat(const Model& m, double* qpos) {
@@ -43,6 +51,13 @@ void NormalizeQuat(const Model& m, double* qpos) {
 }
 
 namespace {
+
+// IntegratePos on the joints of awake bodies only.
+void IntegrateAwakePos(const Model& m, Data& d, const double* qvel, double dt) {
+  for (int j = 0; j < m.njnt; j++) {
+    if (d.body_awake[m.jnt_bodyid[j]] == kAwake) IntegrateJoint(m, d.qpos.data(), qvel, dt, j);
+  }
+}
 
 // Advances activations, velocities (by qacc), positions (by qvel_for_pos, or the new
 // qvel if null) and time by one step.
@@ -61,8 +76,23 @@ void Advance(const Model& m, Data& d, const double* act_dot, const double* qacc,
     }
     So3Rewind(m, d);
   }
-  for (int v = 0; v < m.nv; v++) d.qvel[v] += qacc[v] * h;
-  IntegratePos(m, d.qpos.data(), qvel_for_pos ? qvel_for_pos : d.qvel.data(), h);
+  // Trees slow for long enough fall asleep; what depends on their (now zero) velocity is
+  // computed again before they stop moving (the integrated qacc stays this step's).
+  if (PutToSleep(m, d)) {
+    ForwardSkip(m, d, kStagePos, Sensors::kCompute);
+    UpdateSleep(m, d);
+  }
+  if (AnyAsleep(m, d)) {
+    // Only the awake trees move.
+    for (int k = 0; k < d.nv_awake; k++) {
+      int v = d.dof_awake_ind[k];
+      d.qvel[v] += qacc[v] * h;
+    }
+    IntegrateAwakePos(m, d, qvel_for_pos ? qvel_for_pos : d.qvel.data(), h);
+  } else {
+    for (int v = 0; v < m.nv; v++) d.qvel[v] += qacc[v] * h;
+    IntegratePos(m, d.qpos.data(), qvel_for_pos ? qvel_for_pos : d.qvel.data(), h);
+  }
   d.time += h;
   d.qacc_warmstart = d.qacc;
   PluginAdvance(m, d);
@@ -76,9 +106,12 @@ void Euler(const Model& m, Data& d) {
   double* qacc = frame.Alloc(m.nv);
   bool damping = false;
   if (!(m.opt.disableflags & (kDisableEulerdamp | kDisableDamper))) {
-    damping = std::any_of(m.dof_damping.begin(), m.dof_damping.end(), [](double b) { return b > 0; });
-    // Actuator damping on a joint counts too (MuJoCo 3.7+).
-    for (int v = 0; v < m.nv; v++) damping = damping || m.jnt_actuatorid[m.dof_jntid[v]] != -1;
+    // (of the awake dofs, when trees sleep) Actuator damping on a joint counts too (MuJoCo 3.7+).
+    bool any_asleep = AnyAsleep(m, d);
+    for (int v = 0; v < m.nv; v++) {
+      if (any_asleep && d.body_awake[m.dof_bodyid[v]] != kAwake) continue;
+      damping = damping || m.dof_damping[v] > 0 || m.jnt_actuatorid[m.dof_jntid[v]] != -1;
+    }
   }
 
   if (!damping) {

@@ -54,6 +54,31 @@ int Root(int* parent, int t) {
   return t;
 }
 
+// tree_island, island_ntree, island_itreeadr and map_itree2tree: each island's trees in
+// increasing order, islands in order, then the trees of no island.
+void ListTreesByIsland(const Model& m, Data& d, const int* tree_island) {
+  std::copy(tree_island, tree_island + m.ntree, d.tree_island.begin());
+  std::fill(d.island_ntree.begin(), d.island_ntree.begin() + d.nisland, 0);
+  for (int t = 0; t < m.ntree; t++) {
+    if (tree_island[t] >= 0) d.island_ntree[tree_island[t]]++;
+  }
+  int adr = 0;
+  for (int i = 0; i < d.nisland; i++) {
+    d.island_itreeadr[i] = adr;
+    adr += d.island_ntree[i];
+  }
+  int* next = d.island_ntree.data();  // (counts again while placing)
+  std::fill(next, next + d.nisland, 0);
+  for (int t = 0; t < m.ntree; t++) {
+    int island = tree_island[t];
+    if (island >= 0) {
+      d.map_itree2tree[d.island_itreeadr[island] + next[island]++] = t;
+    } else {
+      d.map_itree2tree[adr++] = t;
+    }
+  }
+}
+
 }  // namespace
 
 void FindIslands(const Model& m, Data& d) {
@@ -98,6 +123,7 @@ void FindIslands(const Model& m, Data& d) {
     tree_island[t] = root_island[root];
   }
   for (int v = 0; v < m.nv; v++) d.dof_island[v] = tree_island[m.dof_treeid[v]];
+  ListTreesByIsland(m, d, tree_island);
   for (int r = 0; r < d.nefc; r++) {
     d.efc_island[r] = first_tree[r] < 0 ? -1 : tree_island[first_tree[r]];
   }

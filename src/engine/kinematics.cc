@@ -7,6 +7,7 @@
 // the frame directly from qpos. Spatial quantities are expressed in the world frame at
 // the centre of mass of the body's kinematic subtree root (subtree_com[rootid]).
 #include "engine/engine.h"
+#include "engine/sleep.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -134,8 +135,23 @@ void Kinematics(const Model& m, Data& d) {
   Zero3(&d.xipos[0]);
   for (int k = 0; k < 9; k++) d.xmat[k] = d.ximat[k] = (k % 4 == 0) ? 1 : 0;
 
-  // Body frames, parents before children.
-  for (int i = 1; i < m.nbody; i++) BodyFrame(m, d, i);
+  // Body frames, parents before children. A sleeping body that moved (its state was
+  // changed) marks its tree awake, for WakeChanged.
+  bool any_asleep = AnyAsleep(m, d);
+  for (int i = 1; i < m.nbody; i++) {
+    if (!any_asleep || d.body_awake[i] != kAsleep || m.body_jntnum[i] == 0) {
+      BodyFrame(m, d, i);
+      continue;
+    }
+    double xpos[3], xquat[4];
+    Copy3(xpos, &d.xpos[3 * i]);
+    math::CopyQuat(xquat, &d.xquat[4 * i]);
+    BodyFrame(m, d, i);
+    bool moved = false;
+    for (int k = 0; k < 3; k++) moved = moved || xpos[k] != d.xpos[3 * i + k];
+    for (int k = 0; k < 4; k++) moved = moved || xquat[k] != d.xquat[4 * i + k];
+    if (moved) d.tree_awake[m.body_treeid[i]] = 1;
+  }
 
   // Inertial frames of the bodies.
   for (int i = 1; i < m.nbody; i++) {

@@ -13,6 +13,7 @@
 #include "engine/actuator_target.h"
 #include "engine/engine.h"
 #include "engine/rows.h"
+#include "engine/sleep.h"
 
 #include "math/math.h"
 
@@ -128,7 +129,10 @@ double DampingSlope(double linear, const double poly[kNPoly], double v) {
   return slope;
 }
 
-void Passive(const Model& m, Data& d) {
+namespace {
+
+// Springs, dampers, fluid forces and gravity compensation of every dof.
+void PassiveForces(const Model& m, Data& d) {
   std::fill(d.qfrc_spring.begin(), d.qfrc_spring.end(), 0.0);
   std::fill(d.qfrc_damper.begin(), d.qfrc_damper.end(), 0.0);
   std::fill(d.qfrc_passive.begin(), d.qfrc_passive.end(), 0.0);
@@ -165,6 +169,19 @@ void Passive(const Model& m, Data& d) {
       if (!m.jnt_actgravcomp[m.dof_jntid[v]]) d.qfrc_passive[v] += d.qfrc_gravcomp[v];
     }
   }
+}
+
+}  // namespace
+
+void Passive(const Model& m, Data& d) {
+  // (a sleeping tree's passive forces stay as they were when it fell asleep)
+  StackFrame frame(d);
+  SleepingDofValues kept(m, d, frame, {d.qfrc_spring.data(), d.qfrc_damper.data(), d.qfrc_passive.data(),
+                                       d.qfrc_gravcomp.data()});
+  SleepingDofValues kept_fluid(m, d, frame, {d.qfrc_fluid.data(), nullptr, nullptr, nullptr});
+  PassiveForces(m, d);
+  kept.Restore();
+  kept_fluid.Restore();
   // Passive-force plugins add theirs last.
   PluginPassiveForces(m, d);
 }

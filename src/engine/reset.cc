@@ -7,6 +7,7 @@
 
 #include "engine/engine.h"
 #include "engine/rows.h"
+#include "engine/sleep.h"
 #include "simlab/simlab.h"
 
 namespace simlab {
@@ -70,6 +71,8 @@ void ResetData(const Model& m, Data& d) {
   d.stack_overflow = 0;
   d.plugin_state = std::move(plugin_state);
   ResetPlugins(m, d);
+  // Every tree awake, or those marked sleep="init" asleep.
+  ResetSleep(m, d);
 }
 
 void ResetDataKeyframe(const Model& m, Data& d, int key) {

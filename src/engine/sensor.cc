@@ -9,6 +9,7 @@
 
 #include "engine/engine.h"
 #include "engine/sensor.h"
+#include "engine/sleep.h"
 #include "math/math.h"
 #include "simlab/plugin.h"
 
@@ -220,9 +221,11 @@ void PluginSensorStage(const Model& m, Data& d, int stage) {
 // the callback, then the plugins' (MuJoCo's mj_sensorPos/Vel/Acc).
 void SensorStage(const Model& m, Data& d, int stage) {
   if (m.opt.disableflags & kDisableSensor) return;
-  bool any_user = false;
+  bool any_user = false, any_asleep = AnyAsleep(m, d);
   for (int i = 0; i < m.nsensor; i++) {
     if (m.sensor_needstage[i] != stage || m.sensor_type[i] == kSensPlugin) continue;
+    // (a sleeping sensor keeps its last output)
+    if (any_asleep && ElementSleepState(m, d, kObjSensor, i) == kAsleep) continue;
     double* out = &d.sensordata[m.sensor_adr[i]];
     if (m.sensor_type[i] == kSensUser) {
       std::fill(out, out + m.sensor_dim[i], 0.0);

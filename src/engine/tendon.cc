@@ -19,6 +19,7 @@
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/rows.h"
+#include "engine/sleep.h"
 #include "engine/stack.h"
 #include "engine/tendon_wrap.h"
 #include "math/math.h"
@@ -242,12 +243,15 @@ void SetTendonPattern(const Model& m, Data& d, int i) {
 
 void Tendon(const Model& m, Data& d) {
   int count = 0;
+  bool any_asleep = AnyAsleep(m, d);
   for (int i = 0; i < m.ntendon; i++) {
     // (zero where the last pattern said it may not be)
     double* jac = RowOf(d.ten_J, i, m.nv);
     ClearPattern(jac, RowOf(d.ten_J_colind, i, m.nv), d.ten_J_rownnz[i]);
     d.ten_J_rownnz[i] = 0;
     d.ten_length[i] = 0;
+    // (a sleeping tendon keeps zero length and Jacobian, and its old wrap points)
+    if (any_asleep && ElementSleepState(m, d, kObjTendon, i) == kAsleep) continue;
     d.ten_wrapadr[i] = count;
     d.ten_wrapnum[i] = 0;
     if (m.tendon_num[i] == 0) continue;

@@ -22,6 +22,7 @@
 
 #include "engine/engine.h"
 #include "engine/rows.h"
+#include "engine/sleep.h"
 #include "engine/stack.h"
 #include "math/math.h"
 
@@ -299,7 +300,16 @@ void SetMomentPattern(const Model& m, Data& d, int i) {
 }  // namespace
 
 void Transmission(const Model& m, Data& d) {
+  bool any_asleep = AnyAsleep(m, d);
   for (int i = 0; i < m.nactuator; i++) {
+    // A sleeping actuator has no moment (so no velocity) and keeps its length.
+    if (any_asleep && ElementSleepState(m, d, kObjActuator, i) == kAsleep) {
+      for (int o = m.actuator_outadr[i]; o < m.actuator_outadr[i] + m.actuator_outnum[i]; o++) {
+        ClearPattern(RowOf(d.actuator_moment, o, m.nv), RowOf(d.moment_colind, o, m.nv), d.moment_rownnz[o]);
+        d.moment_rownnz[o] = 0;
+      }
+      continue;
+    }
     if (m.actuator_trntype[i] == kTrnSo3) {
       So3Transmission(m, d, i);  // (3 rows: orientation.cc)
       continue;

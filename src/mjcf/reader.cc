@@ -310,8 +310,8 @@ void Reader::ChildBody(const XmlElement& e, BodySpec* parent, const FramePtr& fr
   e.Orient(&body->alt);
   e.Bool("mocap", &body->mocap);
   e.Number("gravcomp", &body->gravcomp);
-  int sleep = 0;
-  e.Enum("sleep", &sleep, {{"auto", 0}, {"never", 1}, {"allowed", 2}, {"init", 3}});
+  e.Enum("sleep", &body->sleep,
+         {{"auto", kSleepAuto}, {"never", kSleepNever}, {"allowed", kSleepAllowed}, {"init", kSleepInit}});
   e.Vector("user");
 
   // Contents, with the childclass (if any) as their default.

@@ -84,7 +84,6 @@ void Reader::Option(const XmlElement& e) {
                      "noslip_iterations", "ccd_iterations", "sdf_iterations",
                      "sdf_initpoints", "actuatorgroupdisable"});
   simlab::Option& o = spec_->option;
-  double unused = 0;
   int unused_int = 0;
   e.Number("timestep", &o.timestep);
   e.Number("impratio", &o.impratio);
@@ -92,7 +91,7 @@ void Reader::Option(const XmlElement& e) {
   e.Number("ls_tolerance", &o.ls_tolerance);
   e.Number("noslip_tolerance", &o.noslip_tolerance);
   e.Number("ccd_tolerance", &o.ccd_tolerance);
-  e.Number("sleep_tolerance", &unused);
+  e.Number("sleep_tolerance", &o.sleep_tolerance);
   e.Numbers("gravity", o.gravity);
   e.Numbers("wind", o.wind);
   e.Numbers("magnetic", o.magnetic);

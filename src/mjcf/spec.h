@@ -200,6 +200,7 @@ struct BodySpec {
   Orientation alt;
   bool mocap = false;
   double gravcomp = 0;
+  int sleep = 0;  // SleepPolicy: auto, never, allowed or init
   FramePtr frame;
 
   // <inertial>, if written (ipos[0] is NaN otherwise, as MuJoCo)

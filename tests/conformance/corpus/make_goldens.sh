@@ -13,11 +13,12 @@
 #   tolerance, and "none" for no controls (else ctrlgen's). ctrl/<name>.csv = ctrlgen.mjs MODEL --steps N; goldens/<name>.jsonl =
 #   rollout.mjs MODEL --steps N --every E --ctrl CTRL. Writes
 #   tests/conformance/corpus_cases.txt.
-# Requirements: bash, node, and `npm ci` done in ../shared/oracle.
+# Requirements: bash, node, and `npm ci` done in ../shared/oracle (or an oracle folder
+# with its node_modules in $SIMLAB_ORACLE).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
-ORACLE="$(cd "$ROOT/../shared/oracle" && pwd)"
+ORACLE="$(cd "${SIMLAB_ORACLE:-$ROOT/../shared/oracle}" && pwd)"
 [ -d "$ORACLE/node_modules/mujoco" ] || { echo "run 'npm ci' in $ORACLE first" >&2; exit 1; }
 cd "$ROOT"
 OUT=tests/conformance/corpus
@@ -31,6 +32,26 @@ MODELS=(
   # humanoids in a <replicate>, each with the child's excludes.
   # (no controls: 2100 actuators' schedule would be megabytes)
   "tests/conformance/corpus/mujoco/humanoid100.xml 100 50 1e-6 none"
+  # Sleeping (copied into mujoco/sleep/ from MuJoCo's test/engine/testdata/sleep and
+  # model/sleep): trees falling asleep in islands, waking on contact (also explicit
+  # pairs), tendon limits, equalities and mocap motion, sleep="init", sleeping sensors,
+  # static and world bodies (no actuators: no controls). (The domino row stops at 200 steps: at step 205 a new
+  # contact breaks the row's mirror symmetry in the sign of a 1e-17 sideways velocity.)
+  "tests/conformance/corpus/mujoco/sleep/sleep_contact.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_contactpair.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_equality.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_init.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_init_island.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_mocap.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_sensor.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_static.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_scene.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_smooth.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_tendon.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_tendon2.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_perf_static.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_perf_world.xml 400 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/sleep/sleep_dominos.xml 200 10 1e-9 none"
 )
 rm -rf "$OUT/goldens" "$OUT/ctrl"
 mkdir -p "$OUT/goldens" "$OUT/ctrl"
