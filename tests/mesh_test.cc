@@ -1,8 +1,10 @@
 // Meshes: what the compiler goldens (tests/meshes, MuJoCo 3.5.1) cannot show — ASCII
 // STL (which MuJoCo refuses) against the same binary STL, the shape of the convex-hull
 // graph, and bad input reported at the <mesh> or <geom> line.
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -79,6 +81,33 @@ TEST(Mesh, HullGraphOfABox) {
 }
 
 // A visual-only mesh geom (no collisions) gets no hull.
+// The hull's flat sides as polygons (multiccd): a cube's six quads with MuJoCo 3.5.1's
+// vertex paths (printed from the oracle's mesh_polyvert; MuJoCo lists the polygons in the
+// order of a hash map, so only the paths are compared), unit normals along the axes, and
+// every corner in three of them.
+TEST(Mesh, CubePolygons) {
+  Model m = LoadXmlString(
+      "<mujoco><asset><mesh name='box' vertex='-1 -1 -1 1 -1 -1 1 1 -1 1 1 1 1 -1 1 -1 1 -1 -1 1 1 -1 -1 1'/>"
+      "</asset><worldbody><body><freejoint/><geom type='mesh' mesh='box'/></body></worldbody></mujoco>");
+  ASSERT_EQ(m.mesh_polynum[0], 6);
+  std::vector<std::vector<int>> ours, mujoco = {{3, 4, 1, 2}, {6, 3, 2, 5}, {4, 3, 6, 7},
+                                                {5, 2, 1, 0}, {4, 7, 0, 1}, {6, 5, 0, 7}};
+  for (int p = 0; p < 6; p++) {
+    ASSERT_EQ(m.mesh_polyvertnum[p], 4);
+    int adr = m.mesh_polyvertadr[p];
+    ours.emplace_back(m.mesh_polyvert.begin() + adr, m.mesh_polyvert.begin() + adr + 4);
+    const double* n = &m.mesh_polynormal[3 * p];
+    EXPECT_NEAR(std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]), 1.0, 1e-12);
+    // (the normal points away from the centre, through the first corner's side)
+    const double* v = &m.mesh_vert[3 * ours.back()[0]];
+    EXPECT_GT(n[0] * v[0] + n[1] * v[1] + n[2] * v[2], 0);
+  }
+  std::sort(ours.begin(), ours.end());
+  std::sort(mujoco.begin(), mujoco.end());
+  EXPECT_EQ(ours, mujoco);
+  for (int v = 0; v < 8; v++) EXPECT_EQ(m.mesh_polymapnum[v], 3);
+}
+
 TEST(Mesh, NoHullWithoutCollisions) {
   Model m = LoadWithMeshes("<mesh name=\"box\" file=\"box.stl\"/>",
                            "<geom type=\"mesh\" mesh=\"box\" contype=\"0\" conaffinity=\"0\"/>");

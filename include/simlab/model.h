@@ -365,6 +365,17 @@ struct Visual {
   X(double, mesh_vert, nmeshvert, 3)               \
   X(int, mesh_face, nmeshface, 3)                  \
   X(int, mesh_graph, nmeshgraph, 1)                \
+  /* the hull's flat sides (multiccd): polygons of \
+     mesh vertices, and each vertex's polygons */   \
+  X(int, mesh_polynum, nmesh, 1)                   \
+  X(int, mesh_polyadr, nmesh, 1)                   \
+  X(double, mesh_polynormal, nmeshpoly, 3)         \
+  X(int, mesh_polyvertadr, nmeshpoly, 1)           \
+  X(int, mesh_polyvertnum, nmeshpoly, 1)           \
+  X(int, mesh_polyvert, nmeshpolyvert, 1)          \
+  X(int, mesh_polymapadr, nmeshvert, 1)            \
+  X(int, mesh_polymapnum, nmeshvert, 1)            \
+  X(int, mesh_polymap, nmeshpolymap, 1)            \
   /* mesh normals, float-rounded (wedges and plates: normal and 2 tangents per vertex) */ \
   X(int, mesh_normaladr, nmesh, 1)                 \
   X(int, mesh_normalnum, nmesh, 1)                 \
@@ -602,6 +613,9 @@ struct Visual {
   X(nmeshvert)   /* vertices of all meshes */                              \
   X(nmeshface)   /* triangles of all meshes */                             \
   X(nmeshgraph)  /* ints of all convex-hull graphs (mesh_graph) */         \
+  X(nmeshpoly)   /* polygons of the meshes' hulls */                       \
+  X(nmeshpolyvert) /* vertices of all polygons */                          \
+  X(nmeshpolymap) /* vertex-to-polygon entries */                          \
   X(nmeshnormal) /* normals of all meshes (mesh_normal rows) */           \
   X(nmeshtexcoord) /* texture coordinates of all meshes */                \
   X(nhfield)     /* height fields */                                       \

@@ -65,6 +65,9 @@ struct MeshState {
   std::vector<float> normal;  // x y z each, single precision as MuJoCo keeps them
   std::vector<float> texcoord;    // u v each
   std::vector<int> facetexcoord;  // a texcoord per face corner, when there are texcoords
+  // The hull's flat sides (mesh_polygon.cc): vertex paths, and unit normals.
+  std::vector<std::vector<int>> polygons;
+  std::vector<double> polynormal;
   double pos[3] = {0, 0, 0};
   double quat[4] = {1, 0, 0, 0};
   double aamm[6] = {0, 0, 0, 0, 0, 0};  // bounding box (min, max) in the inertial frame
@@ -148,6 +151,10 @@ void MeshSizes(const CompileState& state, Model* m);
 void MeshGeomFrame(const mjcf::CompilerSpec& c, GeomState* g);
 void MeshGeomSize(GeomState* g);
 void LayoutMeshes(const CompileState& state, Model* m);
+// The hull's flat sides as polygons, from the vertices as read (mesh_polygon.cc); their
+// normals, from the vertices in the mesh's final frame.
+void MakeMeshPolygons(MeshState* mesh);
+void MeshPolygonNormals(MeshState* mesh);
 // Height fields and the geoms that use them (hfield.cc): before the bodies.
 void CompileHFields(const mjcf::ModelSpec& spec, CompileState* state);
 // An hfield geom's size from its height field (MuJoCo's geom_size for hfields).

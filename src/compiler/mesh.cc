@@ -418,12 +418,14 @@ void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh)
     mesh->facetexcoord = data.facetexcoord.empty() ? mesh->face : std::move(data.facetexcoord);
   }
   if (mesh->normal.empty()) MakeVertexNormals(mesh);
+  MakeMeshPolygons(mesh);
 
   ApplyReference(s, &mesh->vert);
   ReferenceNormals(s, &mesh->normal);
   double com[3], quat[4];
   MassProperties(mesh, com, quat);
   MoveToInertialFrame(mesh, com, quat);
+  MeshPolygonNormals(mesh);
 }
 
 // ---------------------------------------------------------------- geoms that use meshes
@@ -572,14 +574,52 @@ void MeshGeomSize(GeomState* g) {
 void MeshSizes(const CompileState& state, Model* m) {
   m->nmesh = static_cast<int>(state.meshes.size());
   m->nmeshvert = m->nmeshface = m->nmeshgraph = m->nmeshnormal = m->nmeshtexcoord = 0;
+  m->nmeshpoly = m->nmeshpolyvert = m->nmeshpolymap = 0;
   for (const MeshState& mesh : state.meshes) {
     m->nmeshtexcoord += static_cast<int>(mesh.texcoord.size() / 2);
     m->nmeshvert += static_cast<int>(mesh.vert.size() / 3);
     m->nmeshnormal += static_cast<int>(mesh.normal.size() / 3);
     m->nmeshface += static_cast<int>(mesh.face.size() / 3);
     m->nmeshgraph += static_cast<int>(mesh.graph.size());
+    m->nmeshpoly += static_cast<int>(mesh.polygons.size());
+    for (const std::vector<int>& p : mesh.polygons) m->nmeshpolyvert += static_cast<int>(p.size());
+  }
+  m->nmeshpolymap = m->nmeshpolyvert;  // (each polygon vertex maps back to its polygon)
+}
+
+namespace {
+
+// mesh_poly*: each mesh's polygons (vertex paths and normals) and, per vertex, the
+// polygons it belongs to (ascending); vertex and polygon numbers are the mesh's own.
+void LayoutMeshPolygons(const CompileState& state, Model* m) {
+  int poly = 0, polyvert = 0, polymap = 0;
+  for (int i = 0; i < m->nmesh; i++) {
+    const MeshState& mesh = state.meshes[i];
+    int npoly = static_cast<int>(mesh.polygons.size());
+    m->mesh_polyadr[i] = poly;
+    m->mesh_polynum[i] = npoly;
+    std::vector<std::vector<int>> of_vertex(m->mesh_vertnum[i]);
+    for (int p = 0; p < npoly; p++) {
+      const std::vector<int>& path = mesh.polygons[p];
+      m->mesh_polyvertadr[poly + p] = polyvert;
+      m->mesh_polyvertnum[poly + p] = static_cast<int>(path.size());
+      std::copy(path.begin(), path.end(), m->mesh_polyvert.begin() + polyvert);
+      polyvert += static_cast<int>(path.size());
+      for (int k = 0; k < 3; k++) m->mesh_polynormal[3 * (poly + p) + k] = mesh.polynormal[3 * p + k];
+      for (int v : path) of_vertex[v].push_back(p);
+    }
+    for (int v = 0; v < m->mesh_vertnum[i]; v++) {
+      int global = m->mesh_vertadr[i] + v;
+      m->mesh_polymapadr[global] = polymap;
+      m->mesh_polymapnum[global] = static_cast<int>(of_vertex[v].size());
+      std::copy(of_vertex[v].begin(), of_vertex[v].end(), m->mesh_polymap.begin() + polymap);
+      polymap += static_cast<int>(of_vertex[v].size());
+    }
+    poly += npoly;
   }
 }
+
+}  // namespace
 
 void LayoutMeshes(const CompileState& state, Model* m) {
   int vert = 0, face = 0, graph = 0, normal = 0, texcoord = 0;
@@ -616,6 +656,7 @@ void LayoutMeshes(const CompileState& state, Model* m) {
     graph += static_cast<int>(mesh.graph.size());
     m->mesh_names[i] = mesh.spec->src.name;
   }
+  LayoutMeshPolygons(state, m);
 }
 
 }  // namespace simlab::compiler

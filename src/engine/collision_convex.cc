@@ -174,6 +174,7 @@ ConvexShape MakeShape(const Model& m, const Data& d, int g, double margin) {
   std::copy_n(&d.geom_xmat[9 * g], 9, s.mat);
   std::copy_n(&m.geom_size[3 * g], 3, s.size);
   s.margin = margin;
+  s.model = &m;
   switch (s.type) {
     case kGeomSphere: s.support = SphereSupport; break;
     case kGeomCapsule: s.support = CapsuleSupport; break;
@@ -198,8 +199,8 @@ ConvexShape MakeShape(const Model& m, const Data& d, int g, double margin) {
 // ---------------------------------------------------------------- convex pairs
 
 // How many contacts one query may return: one, except for pairs of flat-sided shapes
-// (boxes, meshes) without margin: 8 for two boxes, 4 under multiccd. (Those polygon
-// contacts need the meshes' polygon data, not supported yet: one contact is returned.)
+// (boxes, meshes) without margin: 8 for two boxes, 4 under multiccd (the corners of the
+// polygon where their sides meet, collision_multiccd.cc).
 int MaxContacts(const Model& m, const ConvexShape& s1, const ConvexShape& s2) {
   if (s1.margin > 0 || s2.margin > 0) return 1;
   if (s1.type == kGeomBox && s2.type == kGeomBox) return 8;

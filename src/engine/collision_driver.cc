@@ -159,11 +159,13 @@ bool SpheresApart(const Model& m, const Data& d, int g1, int g2, double margin) 
 
 // True when two oriented boxes (aabb: centre and half sizes in a frame at pos with
 // axes mat) are farther than margin apart along one of their six face normals (MuJoCo's
-// mj_collideOBB; a box infinite in every direction is never apart, and the faces of a
-// box are not tested against one infinite in some direction).
+// mj_collideOBB, with its arithmetic: a box infinite in every direction is never apart,
+// and the faces of a box are not tested against one infinite in some direction).
+// `by_offsets` computes the centres' projections as MuJoCo does for tree nodes (from the
+// frame origins' projections and the axes' products) instead of from the centres.
 bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* mat1,
                         const double* aabb2, const double* pos2, const double* mat2,
-                        double margin) {
+                        double margin, bool by_offsets = false) {
   const double* aabb[2] = {aabb1, aabb2};
   const double* mat[2] = {mat1, mat2};
   const double* pos[2] = {pos1, pos2};
@@ -174,28 +176,32 @@ bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* m
     if (everywhere) return false;
     infinite[i] = half[0] >= kMaxVal || half[1] >= kMaxVal || half[2] >= kMaxVal;
   }
-  // The centres' offset in each box's frame, and the rotation between the frames:
-  // turn[3 k + l] = axis k of box 1 . axis l of box 2.
-  double centre[2][3], offset[3], local[2][3], turn[9];
+  // Box centres in the world, and each box's axes (columns of its frame).
+  double centre[2][3], axis[2][3][3];
   for (int i = 0; i < 2; i++) {
     math::MulMatVec3(centre[i], mat[i], aabb[i]);
-    math::Add3(centre[i], centre[i], pos[i]);
+    for (int k = 0; k < 3; k++) centre[i][k] += pos[i][k];
+    for (int j = 0; j < 3; j++) {
+      for (int k = 0; k < 3; k++) axis[i][j][k] = mat[i][3 * k + j];
+    }
   }
-  math::Sub3(offset, centre[1], centre[0]);
-  math::MulMatTVec3(local[0], mat[0], offset);
-  math::MulMatTVec3(local[1], mat[1], offset);
-  math::MulMatTMat3(turn, mat[0], mat[1]);
-  const double *half1 = aabb[0] + 3, *half2 = aabb[1] + 3;
-  // Box 1's faces, then box 2's: the projected half widths against the centres' distance.
-  for (int k = 0; k < 3 && !infinite[1]; k++) {
-    double reach = half1[k] + std::abs(half2[0] * turn[3 * k]) +
-                   std::abs(half2[1] * turn[3 * k + 1]) + std::abs(half2[2] * turn[3 * k + 2]);
-    if (reach + margin < std::abs(local[0][k])) return true;
-  }
-  for (int k = 0; k < 3 && !infinite[0]; k++) {
-    double reach = half2[k] + std::abs(half1[0] * turn[k]) + std::abs(half1[1] * turn[3 + k]) +
-                   std::abs(half1[2] * turn[6 + k]);
-    if (reach + margin < std::abs(local[1][k])) return true;
+  // Along each face normal of box j: the centres' projections and the half widths.
+  for (int j = 0; j < 2; j++) {
+    if (infinite[1 - j]) continue;
+    for (int k = 0; k < 3; k++) {
+      const double* normal = axis[j][k];
+      double proj[2], radius[2];
+      for (int i = 0; i < 2; i++) {
+        double along[3] = {math::Dot3(axis[i][0], normal), math::Dot3(axis[i][1], normal),
+                           math::Dot3(axis[i][2], normal)};
+        proj[i] = by_offsets ? aabb[i][0] * along[0] + aabb[i][1] * along[1] + aabb[i][2] * along[2] +
+                                   math::Dot3(pos[i], normal)
+                             : math::Dot3(centre[i], normal);
+        radius[i] = std::abs(aabb[i][3] * along[0]) + std::abs(aabb[i][4] * along[1]) +
+                    std::abs(aabb[i][5] * along[2]);
+      }
+      if (radius[0] + radius[1] + margin < std::abs(proj[1] - proj[0])) return true;
+    }
   }
   return false;
 }
@@ -205,16 +211,6 @@ bool BoxesApart(const Model& m, const Data& d, int g1, int g2, double margin) {
   return OrientedBoxesApart(&m.geom_aabb[6 * g1], &d.geom_xpos[3 * g1], &d.geom_xmat[9 * g1],
                             &m.geom_aabb[6 * g2], &d.geom_xpos[3 * g2], &d.geom_xmat[9 * g2],
                             margin);
-}
-
-// Is a pair's narrow phase costly enough to test the bounding boxes first? Spheres,
-// capsules and planes collide faster than the test runs.
-bool WorthBoxTest(const Model& m, int g1, int g2) {
-  auto cheap = [&m](int g) {
-    int type = m.geom_type[g];
-    return type == kGeomSphere || type == kGeomCapsule || type == kGeomPlane;
-  };
-  return !cheap(g1) || !cheap(g2);
 }
 
 // Is the point outside box (pos, mat, size) inflated by `ratio` (1), inside the box
@@ -296,10 +292,6 @@ void CollideGeoms(const Model& m, Data& d, int g1, int g2, int ipair) {
   double margin = AssignMargin(m, ipair < 0 ? m.geom_margin[g1] + m.geom_margin[g2]
                                             : m.pair_margin[ipair]);
   if (SpheresApart(m, d, g1, g2, margin)) return;
-  // (the boxes too, for pairs the broad phase found, as MuJoCo's midphase does)
-  if (ipair < 0 && WorthBoxTest(m, g1, g2) && BoxesApart(m, d, g1, g2, margin)) {
-    return;
-  }
 
   // Narrow phase into the free end of the contact array.
   if (d.contact.size() < static_cast<size_t>(d.ncon + kMaxContactPair)) {
@@ -503,7 +495,7 @@ int LeafGeom(const Model& m, int b, int node) {
 bool NodesOverlap(const Model& m, const Data& d, int b1, int n1, int b2, int n2, double margin) {
   return !OrientedBoxesApart(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)], &d.xipos[3 * b1],
                              &d.ximat[9 * b1], &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)],
-                             &d.xipos[3 * b2], &d.ximat[9 * b2], margin);
+                             &d.xipos[3 * b2], &d.ximat[9 * b2], margin, /*by_offsets=*/true);
 }
 
 // The surface area of node n of body b's box, over 8 (from its half sizes).
@@ -557,7 +549,11 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
     int n1 = stack[2 * nstack], n2 = stack[2 * nstack + 1];
     int leaf1 = LeafGeom(m, b1, n1), leaf2 = LeafGeom(m, b2, n2);
     if (leaf1 >= 0 && leaf2 >= 0) {
-      CollideUnlessPaired(m, d, leaf1, leaf2, start, end);
+      // (two leaves: their geoms' spheres and boxes first, as MuJoCo's midphase)
+      double pair_margin = AssignMargin(m, m.geom_margin[leaf1] + m.geom_margin[leaf2]);
+      if (!SpheresApart(m, d, leaf1, leaf2, pair_margin) && !BoxesApart(m, d, leaf1, leaf2, pair_margin)) {
+        CollideUnlessPaired(m, d, leaf1, leaf2, start, end);
+      }
       continue;
     }
     if (!NodesOverlap(m, d, b1, n1, b2, n2, margin)) continue;

