@@ -580,7 +580,7 @@ void LayoutBodyDofMatrix(Model* m) {
   int adr = 0;
   for (int b = 0; b < m->nbody; b++) {
     m->B_rowadr[b] = adr;
-    int* row = &m->B_colind[adr];
+    int* row = m->B_colind.data() + adr;
     int n = 0;
     for (int a = m->body_parentid[b]; b > 0 && a > 0; a = m->body_parentid[a]) {
       for (int k = m->body_dofnum[a] - 1; k >= 0; k--) row[n++] = m->body_dofadr[a] + k;

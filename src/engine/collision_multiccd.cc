@@ -324,7 +324,7 @@ struct MeshSides {
   int mesh, polyadr, vertadr;
   MeshSides(const ConvexShape& s)
       : m(*s.model), mesh(s.model->geom_dataid[s.geom]), polyadr(m.mesh_polyadr[mesh]), vertadr(m.mesh_vertadr[mesh]) {}
-  const int* PolygonsOf(int v) const { return &m.mesh_polymap[m.mesh_polymapadr[vertadr + v]]; }
+  const int* PolygonsOf(int v) const { return m.mesh_polymap.data() + m.mesh_polymapadr[vertadr + v]; }
   int CountOf(int v) const { return m.mesh_polymapnum[vertadr + v]; }
   const double* Normal(int p) const { return &m.mesh_polynormal[3 * (polyadr + p)]; }
 };

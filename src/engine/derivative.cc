@@ -162,7 +162,7 @@ struct BodyBlocks {
 
 // where[dof] = its column in body b's row of B (entries of other dofs are left).
 void ScatterColumns(const Model& m, int b, int* where) {
-  const int* cols = &m.B_colind[m.B_rowadr[b]];
+  const int* cols = m.B_colind.data() + m.B_rowadr[b];
   for (int c = 0; c < m.B_rownnz[b]; c++) where[cols[c]] = c;
 }
 
@@ -170,7 +170,7 @@ void ScatterColumns(const Model& m, int b, int* where) {
 void CopyFromParent(const Model& m, const BodyBlocks& blocks, int b, int* where) {
   int parent = m.body_parentid[b], n = blocks.Width(b), np = blocks.Width(parent);
   ScatterColumns(m, parent, where);
-  const int* cols = &m.B_colind[m.B_rowadr[b]];
+  const int* cols = m.B_colind.data() + m.B_rowadr[b];
   const double* src = blocks.Of(parent);
   double* dst = blocks.Of(b);
   for (int k = 0; k < 6; k++) {
@@ -263,7 +263,7 @@ void RneDerivative(const Model& m, Data& d) {
     int parent = m.body_parentid[i];
     if (parent == 0) continue;
     ScatterColumns(m, parent, where);
-    const int* cols = &m.B_colind[m.B_rowadr[i]];
+    const int* cols = m.B_colind.data() + m.B_rowadr[i];
     int n = dcfrc.Width(i), np = dcfrc.Width(parent);
     const double* src = dcfrc.Of(i);
     double* dst = dcfrc.Of(parent);
