@@ -4,7 +4,9 @@
 //
 //   position:     Kinematics, ComPos, CamLight, Tendon, MakeInertia, FactorInertia,
 //                 Collision, MakeConstraint, Transmission (adhesion's body transmission
-//                 uses the contact rows), ProjectConstraint
+//                 uses the contact rows), ProjectConstraint; with sleep enabled, sleeping
+//                 trees wake after Kinematics (a changed state), Tendon (a tendon limit),
+//                 Collision (a contact: collide again) and for an equality (sleep.cc)
 //   velocity:     TendonVelocity, ActuatorVelocity, ComVel, Passive,
 //                 ReferenceConstraint, Rne and TendonBias (bias forces)
 //   acceleration: Actuation, SmoothAcceleration, Constraint

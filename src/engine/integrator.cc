@@ -1,7 +1,8 @@
 // Time integration (MuJoCo engine_forward.c: mj_Euler, mj_RungeKutta, mj_implicit).
 //
 // All integrators end in Advance: act <- next activation, qvel += h qacc,
-// qpos <- qpos (+) h qvel on the configuration manifold, time += h.
+// qpos <- qpos (+) h qvel on the configuration manifold, time += h. Between act and qvel,
+// trees slow for long enough fall asleep (sleep.cc); only awake trees then move.
 //   Euler:        qacc from forward; if any dof has damping it is treated implicitly,
 //                 qacc = (M + h diag(damping))^-1 (qfrc_smooth + qfrc_constraint).
 //   RK4:          classic 4-stage Runge-Kutta on (qpos, qvel, act).
