@@ -58,6 +58,7 @@ const Case kCases[] = {
     {"key_equality", "key-breaks-equality", 0, 20, LintSeverity::kWarning, {"\"mirror\"", "violated by 0.03"}},
     {"massless", "nearly-massless", -1, 8, LintSeverity::kWarning, {"0.0001 kg", "0.5 kg"}},
     {"joint_clamp", "joint-clamps-force", -1, 13, LintSeverity::kWarning, {"1570", "[-2, 2]"}, 1, "weak_servo_ok"},
+    {"sleep_ignored", "sleep-ignored", -1, 5, LintSeverity::kWarning, {"sleep=\"init\"", "not enabled"}},
 };
 
 TEST(Lint, EachTrapIsCaughtWithItsNumbersAndLine) {

@@ -454,6 +454,24 @@ void CheckGeomsCollideWithNothing(const Subject& s) {
   }
 }
 
+// A root body that asks to sleep (sleep="allowed" or "init") in a model that does not
+// enable sleeping: the attribute does nothing, and the tree is simulated all the time.
+void CheckSleepIgnored(const Subject& s) {
+  const Model& m = s.m;
+  if (m.opt.enableflags & kEnableSleep) return;
+  for (int t = 0; t < m.ntree; t++) {
+    const int policy = m.tree_sleep_policy[t];
+    if (policy != kSleepAllowed && policy != kSleepInit) continue;
+    const char* asked = policy == kSleepInit ? "init" : "allowed";
+    s.AddOn(kObjBody, "body", s.src.body, m.tree_bodyadr[t],
+            Finding("sleep-ignored", LintSeverity::kWarning,
+                    std::string("sleep=\"") + asked + "\", but the model's <option><flag sleep> is not enabled",
+                    "sleeping is off unless the model enables it: the body never sleeps, and "
+                    "sleep=\"init\" does not start it asleep.",
+                    "add <option><flag sleep=\"enable\"/></option>, or drop the attribute."));
+  }
+}
+
 // A keyframe whose qpos puts a limited joint outside its range: the limit pushes it back
 // at the first step.
 void CheckKeyQposRange(const Subject& s) {
@@ -646,6 +664,7 @@ LintReport LintFile(const std::string& path, int key) {
   CheckNearlyMassless(subject);
   CheckJointForceClamp(subject);
   CheckGeomsCollideWithNothing(subject);
+  CheckSleepIgnored(subject);
   CheckRangesSwitchedOff(loaded.spec, &report.findings);
   CheckRangesInDegrees(loaded.spec, &report.findings);
   CheckUnusedClasses(loaded.spec, &report.findings);
