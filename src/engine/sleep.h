@@ -51,8 +51,9 @@ class SleepingDofValues {
 // With `static_awake`, bodies of no tree count as awake instead of static (for reset).
 void UpdateSleep(const Model& m, Data& d, bool static_awake = false);
 
-// Wakes trees the user changed: asleep trees with a force applied, or all trees when
-// sleep is disabled. Returns how many woke (then UpdateSleep).
+// Wakes trees the user changed: asleep trees given a force or a velocity, or whose pose
+// Kinematics found moved (it sets their tree_awake), or every tree when sleep is
+// disabled. Returns how many woke (then UpdateSleep).
 int WakeChanged(const Model& m, Data& d);
 // Wakes asleep trees in contact with awake ones (after the collision stage).
 int WakeOnContact(const Model& m, Data& d);
