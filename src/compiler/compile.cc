@@ -110,8 +110,7 @@ void CollectSources(const mjcf::ModelSpec& spec, const CompileState& state, Elem
 }
 
 // Trees marked sleep="init" must be able to start asleep (with their whole island): a
-// reset tells, as MuJoCo's compiler does.
-// (the error points at the first body marked init)
+// reset tells, as MuJoCo's compiler does. The error points at the first body marked init.
 void CheckInitialSleep(const CompileState& state, const Model& m) {
   if (!(m.opt.enableflags & kEnableSleep)) return;
   auto first = std::find(m.tree_sleep_policy.begin(), m.tree_sleep_policy.end(), kSleepInit);

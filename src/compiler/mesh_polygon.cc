@@ -18,14 +18,20 @@ namespace {
 
 constexpr double kAngleTolerance = 0.01;
 
-// The rounded (azimuth, polar) angles of triangle (a, b, c)'s normal, in units of the
-// tolerance; false for a degenerate triangle.
-bool DirectionKey(const double* a, const double* b, const double* c, std::pair<double, double>* key) {
-  double ab[3], ac[3], n[3];
+// (b - a) x (c - a) into n; returns its length.
+double TriangleCross(const double* a, const double* b, const double* c, double n[3]) {
+  double ab[3], ac[3];
   math::Sub3(ab, b, a);
   math::Sub3(ac, c, a);
   math::Cross3(n, ab, ac);
-  double norm = std::sqrt(math::Dot3(n, n));
+  return std::sqrt(math::Dot3(n, n));
+}
+
+// The rounded (azimuth, polar) angles of triangle (a, b, c)'s normal, in units of the
+// tolerance; false for a degenerate triangle.
+bool DirectionKey(const double* a, const double* b, const double* c, std::pair<double, double>* key) {
+  double n[3];
+  double norm = TriangleCross(a, b, c, n);
   if (norm < kMinVal) return false;
   // (+0.0 turns a -0 into +0: atan2 tells them apart)
   for (double& x : n) x = x / norm + 0.0;
@@ -162,11 +168,8 @@ void MeshPolygonNormals(MeshState* mesh) {
   mesh->polynormal.assign(3 * mesh->polygons.size(), 0.0);
   for (size_t i = 0; i < mesh->polygons.size(); i++) {
     const std::vector<int>& p = mesh->polygons[i];
-    double ab[3], ac[3], n[3];
-    math::Sub3(ab, &mesh->vert[3 * p[1]], &mesh->vert[3 * p[0]]);
-    math::Sub3(ac, &mesh->vert[3 * p[2]], &mesh->vert[3 * p[0]]);
-    math::Cross3(n, ab, ac);
-    double norm = std::sqrt(math::Dot3(n, n));
+    double n[3];
+    double norm = TriangleCross(&mesh->vert[3 * p[0]], &mesh->vert[3 * p[1]], &mesh->vert[3 * p[2]], n);
     for (int k = 0; k < 3; k++) mesh->polynormal[3 * i + k] = n[k] / norm;
   }
 }

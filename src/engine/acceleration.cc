@@ -23,7 +23,7 @@ void XfrcAccumulate(const Model& m, Data& d, double* qfrc) {
 void SmoothAcceleration(const Model& m, Data& d) {
   // (a sleeping tree's smooth force and acceleration stay as they were)
   StackFrame frame(d);
-  SleepingDofValues kept(m, d, frame, {d.qfrc_smooth.data(), d.qacc_smooth.data(), nullptr, nullptr});
+  SleepingDofValues kept(m, d, frame, {d.qfrc_smooth.data(), d.qacc_smooth.data()});
   for (int v = 0; v < m.nv; v++) {
     d.qfrc_smooth[v] = d.qfrc_passive[v] - d.qfrc_bias[v] + d.qfrc_applied[v] + d.qfrc_actuator[v];
   }

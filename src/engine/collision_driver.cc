@@ -161,11 +161,12 @@ bool SpheresApart(const Model& m, const Data& d, int g1, int g2, double margin) 
 // axes mat) are farther than margin apart along one of their six face normals (MuJoCo's
 // mj_collideOBB, with its arithmetic: a box infinite in every direction is never apart,
 // and the faces of a box are not tested against one infinite in some direction).
-// `by_offsets` computes the centres' projections as MuJoCo does for tree nodes (from the
-// frame origins' projections and the axes' products) instead of from the centres.
+// The centres' projections come from the centres (geoms), or, as MuJoCo computes them
+// for tree nodes, from the frame origins' projections and the axes' products.
+enum class Projection { kFromCentres, kFromOrigins };
 bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* mat1,
                         const double* aabb2, const double* pos2, const double* mat2,
-                        double margin, bool by_offsets = false) {
+                        double margin, Projection projection) {
   const double* aabb[2] = {aabb1, aabb2};
   const double* mat[2] = {mat1, mat2};
   const double* pos[2] = {pos1, pos2};
@@ -194,9 +195,10 @@ bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* m
       for (int i = 0; i < 2; i++) {
         double along[3] = {math::Dot3(axis[i][0], normal), math::Dot3(axis[i][1], normal),
                            math::Dot3(axis[i][2], normal)};
-        proj[i] = by_offsets ? aabb[i][0] * along[0] + aabb[i][1] * along[1] + aabb[i][2] * along[2] +
-                                   math::Dot3(pos[i], normal)
-                             : math::Dot3(centre[i], normal);
+        const double* c = aabb[i];
+        proj[i] = projection == Projection::kFromOrigins
+                      ? c[0] * along[0] + c[1] * along[1] + c[2] * along[2] + math::Dot3(pos[i], normal)
+                      : math::Dot3(centre[i], normal);
         radius[i] = std::abs(aabb[i][3] * along[0]) + std::abs(aabb[i][4] * along[1]) +
                     std::abs(aabb[i][5] * along[2]);
       }
@@ -210,7 +212,7 @@ bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* m
 bool BoxesApart(const Model& m, const Data& d, int g1, int g2, double margin) {
   return OrientedBoxesApart(&m.geom_aabb[6 * g1], &d.geom_xpos[3 * g1], &d.geom_xmat[9 * g1],
                             &m.geom_aabb[6 * g2], &d.geom_xpos[3 * g2], &d.geom_xmat[9 * g2],
-                            margin);
+                            margin, Projection::kFromCentres);
 }
 
 // Is the point outside box (pos, mat, size) inflated by `ratio` (1), inside the box
@@ -340,16 +342,17 @@ bool HasPlane(const Model& m, int b) {
 
 // True when MuJoCo never collides these bodies: welded together, or (unless the
 // filterparent flag is disabled) one welded to the other's parent (filterBodyPair); or,
-// while trees sleep, both asleep, or one asleep and the other welded to the world.
-// `always1` marks the world side of the always-colliding pairs (which counts as asleep).
-bool BodyPairFiltered(const Model& m, const Data& d, int b1, int b2, bool always1) {
+// while trees sleep (body_awake given, else null), both asleep, or one asleep and the
+// other welded to the world. `always1` marks the world side of the always-colliding
+// pairs (which counts as asleep).
+bool BodyPairFiltered(const Model& m, const int* body_awake, int b1, int b2, bool always1) {
   int weld1 = always1 ? 0 : m.body_weldid[b1];
   int weld2 = m.body_weldid[b2];
   int parent1 = always1 ? 0 : m.body_weldid[m.body_parentid[weld1]];
   int parent2 = m.body_weldid[m.body_parentid[weld2]];
   if (weld1 == weld2) return true;
-  if (AnyAsleep(m, d)) {
-    bool asleep1 = always1 || d.body_awake[b1] == kAsleep, asleep2 = d.body_awake[b2] == kAsleep;
+  if (body_awake) {
+    bool asleep1 = always1 || body_awake[b1] == kAsleep, asleep2 = body_awake[b2] == kAsleep;
     if ((asleep1 && asleep2) || (asleep1 && weld2 == 0) || (asleep2 && weld1 == 0)) return true;
   }
   if (always1 && weld2 == 0) return true;
@@ -441,6 +444,7 @@ void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
 // Body pairs worth testing, as sorted unique signatures (b1 << 16) + b2, b1 < b2, in
 // d.broadphase.pairs: MuJoCo's mj_broadphase.
 void BroadPhase(const Model& m, Data& d) {
+  const int* sleeping = AnyAsleep(m, d) ? d.body_awake.data() : nullptr;
   std::vector<int>& pairs = d.broadphase.pairs;
   pairs.clear();
   auto add = [&](int b1, int b2) {
@@ -457,7 +461,7 @@ void BroadPhase(const Model& m, Data& d) {
       continue;
     }
     for (int b2 = 0; b2 < m.nbody; b2++) {
-      if (CanCollide(m, b2) && !BodyPairFiltered(m, d, b1, b2, true)) add(b1, b2);
+      if (CanCollide(m, b2) && !BodyPairFiltered(m, sleeping, b1, b2, true)) add(b1, b2);
     }
   }
   // Other bodies meet when their boxes overlap in the principal frame of the moving
@@ -475,7 +479,7 @@ void BroadPhase(const Model& m, Data& d) {
       BodyBox(m, d, b, frame, &boxes[6 * b], &boxes[6 * b + 3]);
     }
     SweepAndPrune(d.broadphase, boxes, [&](int b1, int b2) {
-      if (!BodyPairFiltered(m, d, b1, b2, false)) add(b1, b2);
+      if (!BodyPairFiltered(m, sleeping, b1, b2, false)) add(b1, b2);
     });
   }
   std::sort(pairs.begin(), pairs.end());
@@ -495,7 +499,7 @@ int LeafGeom(const Model& m, int b, int node) {
 bool NodesOverlap(const Model& m, const Data& d, int b1, int n1, int b2, int n2, double margin) {
   return !OrientedBoxesApart(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)], &d.xipos[3 * b1],
                              &d.ximat[9 * b1], &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)],
-                             &d.xipos[3 * b2], &d.ximat[9 * b2], margin, /*by_offsets=*/true);
+                             &d.xipos[3 * b2], &d.ximat[9 * b2], margin, Projection::kFromOrigins);
 }
 
 // The surface area of node n of body b's box, over 8 (from its half sizes).

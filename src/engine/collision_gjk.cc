@@ -32,12 +32,6 @@ constexpr int kEpaStaticIterations = 170;  // polytope storage covers this many 
 
 // ---------------------------------------------------------------- small vector helpers
 
-// Are a and b the same point up to kMinVal per coordinate?
-bool SamePoint(const double* a, const double* b) {
-  return std::abs(a[0] - b[0]) < kMinVal && std::abs(a[1] - b[1]) < kMinVal &&
-         std::abs(a[2] - b[2]) < kMinVal;
-}
-
 // Determinant of the 3x3 matrix with columns a, b, c: a . (b x c).
 double Det3(const double* a, const double* b, const double* c) {
   return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +

@@ -9,6 +9,8 @@
 #ifndef SIMLAB_ENGINE_COLLISION_GJK_H_
 #define SIMLAB_ENGINE_COLLISION_GJK_H_
 
+#include <cmath>
+
 #include "engine/collision.h"
 
 namespace simlab::ccd {
@@ -50,6 +52,12 @@ struct CcdConfig {
   int max_contacts = 1;      // 0: only decide overlap, no penetration depth
   double dist_cutoff = 0;    // report distances of separated shapes up to this
 };
+
+// Are a and b the same point up to kMinVal per coordinate?
+inline bool SamePoint(const double* a, const double* b) {
+  return std::abs(a[0] - b[0]) < kMinVal && std::abs(a[1] - b[1]) < kMinVal &&
+         std::abs(a[2] - b[2]) < kMinVal;
+}
 
 // A vertex of the Minkowski difference shape1 - shape2, with the two support points.
 struct CcdVertex {

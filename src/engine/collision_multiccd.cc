@@ -34,15 +34,6 @@ void ToWorld(double* res, const double* mat, const double* pos, double x, double
   }
 }
 
-void Normalize(double* v) {
-  double norm = std::sqrt(Dot3(v, v));
-  if (norm < kMinVal) {
-    v[0] = 1, v[1] = v[2] = 0;
-    return;
-  }
-  for (int k = 0; k < 3; k++) v[k] /= norm;
-}
-
 // ---------------------------------------------------------------- polygon clipping
 
 // Area of the quadrilateral a b c d.
@@ -190,11 +181,7 @@ void ClipPolygons(CcdStatus* status, const double* face1, int n1, const double* 
   int count = 0;
   for (int i = 0; i < npolygon; i++) {
     bool seen = false;
-    for (int j = 0; j < count && !seen; j++) {
-      const double* x = status->x2 + 3 * j;
-      const double* p = polygon + 3 * i;
-      seen = std::abs(x[0] - p[0]) < kMinVal && std::abs(x[1] - p[1]) < kMinVal && std::abs(x[2] - p[2]) < kMinVal;
-    }
+    for (int j = 0; j < count && !seen; j++) seen = SamePoint(status->x2 + 3 * j, polygon + 3 * i);
     if (!seen) SetWitness(status, count++, polygon + 3 * i, dir);
   }
   status->nx = count;
@@ -284,7 +271,7 @@ int BoxCornerEdges(double* res, double* ends, const ConvexShape& s, const double
   for (int i = 0; i < 3; i++) {
     ToWorld(ends + 3 * i, s.mat, s.pos, far[i][0], far[i][1], far[i][2]);
     Sub3(res + 3 * i, ends + 3 * i, v1);
-    Normalize(res + 3 * i);
+    math::Normalize3(res + 3 * i);
   }
   return 3;
 }
@@ -378,7 +365,7 @@ int MeshVertexEdges(double* res, double* ends, const ConvexShape& s, const doubl
       const double* v = &m.mesh_vert[3 * (sides.vertadr + prev)];
       ToWorld(ends + 3 * i, s.mat, s.pos, v[0], v[1], v[2]);
       Sub3(res + 3 * i, ends + 3 * i, v1);
-      Normalize(res + 3 * i);
+      math::Normalize3(res + 3 * i);
       break;
     }
   }
@@ -451,7 +438,7 @@ int FeatureEdges(double* res, double* ends, int dim, const ConvexShape& s, const
   if (dim == 2) {
     math::Copy3(ends, points[1]);
     Sub3(res, points[1], points[0]);
-    Normalize(res);
+    math::Normalize3(res);
     return 1;
   }
   if (dim != 1) return 0;

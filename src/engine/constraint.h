@@ -23,6 +23,11 @@ void ReferenceConstraint(const Model& m, Data& d);
 void ProjectConstraint(const Model& m, Data& d);
 // The body of side j (0 or 1) of a connect or weld, in its body or site form.
 int EqualityBody(const Model& m, int eq, int j);
+// How far `value` is inside the lower (side -1) or upper (side +1) end of `range`; a
+// limit row is made (its side active) when this is below the margin.
+inline double LimitDistance(const double* range, double value, int side) {
+  return side * (range[(side + 1) / 2] - value);
+}
 // The impedance of solimp at position `pos` with `margin`, and its derivative.
 void Impedance(const double* solimp, double pos, double margin, double* imp, double* slope);
 

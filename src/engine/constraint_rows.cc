@@ -284,7 +284,7 @@ void FrictionRows(const Model& m, Data& d) {
 void ScalarLimitRows(const Model& m, Data& d, double value, const double* range, double margin,
                      const double* grad, Columns cols, double* jac, ConstraintType type, int id) {
   for (int side = -1; side <= 1; side += 2) {
-    double dist = side * (range[(side + 1) / 2] - value);
+    double dist = LimitDistance(range, value, side);
     if (dist >= margin) continue;
     for (int k = 0; k < cols.n; k++) jac[k] = -side * grad[k];
     AddRows(m, d, jac, cols, &dist, margin, 0, 1, type, id);

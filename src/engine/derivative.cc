@@ -166,24 +166,33 @@ void ScatterColumns(const Model& m, int b, int* where) {
   for (int c = 0; c < m.B_rownnz[b]; c++) where[cols[c]] = c;
 }
 
-// Body b's block = its parent's block on b's columns (a subset of the parent's).
-void CopyFromParent(const Model& m, const BodyBlocks& blocks, int b, int* where) {
+// For every entry of B, the place of its column in the parent body's row (a body's
+// columns are among its parent's): in_parent, nB entries.
+void ParentColumns(const Model& m, int* in_parent, int* where) {
+  for (int b = 1; b < m.nbody; b++) {
+    ScatterColumns(m, m.body_parentid[b], where);
+    const int* cols = m.B_colind.data() + m.B_rowadr[b];
+    for (int c = 0; c < m.B_rownnz[b]; c++) in_parent[m.B_rowadr[b] + c] = where[cols[c]];
+  }
+}
+
+// Body b's block = its parent's block on b's columns.
+void CopyFromParent(const Model& m, const BodyBlocks& blocks, int b, const int* in_parent) {
   int parent = m.body_parentid[b], n = blocks.Width(b), np = blocks.Width(parent);
-  ScatterColumns(m, parent, where);
-  const int* cols = m.B_colind.data() + m.B_rowadr[b];
+  const int* place = in_parent + m.B_rowadr[b];
   const double* src = blocks.Of(parent);
   double* dst = blocks.Of(b);
   for (int k = 0; k < 6; k++) {
-    for (int c = 0; c < n; c++) dst[k * n + c] = src[k * np + where[cols[c]]];
+    for (int c = 0; c < n; c++) dst[k * n + c] = src[k * np + place[c]];
   }
 }
 
 // Velocity derivatives of cvel (per body) and cdof_dot (per dof, over its body's row).
 void ComVelDerivative(const Model& m, Data& d, const BodyBlocks& dcvel, double* dcdofdot,
-                      const int* dofblock, int* where) {
+                      const int* dofblock, const int* in_parent, int* where) {
   double mat[36];
   for (int i = 1; i < m.nbody; i++) {
-    CopyFromParent(m, dcvel, i, where);
+    CopyFromParent(m, dcvel, i, in_parent);
     double* dv = dcvel.Of(i);
     int n = dcvel.Width(i);
     ScatterColumns(m, i, where);
@@ -239,13 +248,15 @@ void RneDerivative(const Model& m, Data& d) {
   SolverFrame ints(d.solver_scratch);
   int* where = ints.Ints(m.nv);
   int* dofblock = ints.Ints(m.nv);
+  int* in_parent = ints.Ints(m.nB);
+  ParentColumns(m, in_parent, where);
   double* dcdofdot = frame.Alloc(DofBlockOffsets(m, dofblock));
   double* tmp = frame.Alloc(6 * static_cast<size_t>(m.nv));
-  ComVelDerivative(m, d, dcvel, dcdofdot, dofblock, where);
+  ComVelDerivative(m, d, dcvel, dcdofdot, dofblock, in_parent, where);
 
   // Forward pass: Dcacc from the parent's, the dofs' cdof_dot and its derivative; Dcfrc.
   for (int i = 1; i < m.nbody; i++) {
-    CopyFromParent(m, dcacc, i, where);
+    CopyFromParent(m, dcacc, i, in_parent);
     double* da = dcacc.Of(i);
     int n = dcacc.Width(i);
     ScatterColumns(m, i, where);
@@ -262,18 +273,17 @@ void RneDerivative(const Model& m, Data& d) {
   for (int i = m.nbody - 1; i > 0; i--) {
     int parent = m.body_parentid[i];
     if (parent == 0) continue;
-    ScatterColumns(m, parent, where);
-    const int* cols = m.B_colind.data() + m.B_rowadr[i];
+    const int* place = in_parent + m.B_rowadr[i];
     int n = dcfrc.Width(i), np = dcfrc.Width(parent);
     const double* src = dcfrc.Of(i);
     double* dst = dcfrc.Of(parent);
     for (int k = 0; k < 6; k++) {
-      for (int c = 0; c < n; c++) dst[k * np + where[cols[c]]] += src[k * n + c];
+      for (int c = 0; c < n; c++) dst[k * np + place[c]] += src[k * n + c];
     }
   }
   for (int v = 0; v < m.nv; v++) {
     int b = m.dof_bodyid[v], n = dcfrc.Width(b);
-    ScatterColumns(m, b, where);
+    if (v == 0 || m.dof_bodyid[v - 1] != b) ScatterColumns(m, b, where);  // (once per body)
     const double* df = dcfrc.Of(b);
     for (int k = 0; k < 6; k++) {
       double c = d.cdof[6 * v + k];

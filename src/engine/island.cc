@@ -54,10 +54,11 @@ int Root(int* parent, int t) {
   return t;
 }
 
-// tree_island, island_ntree, island_itreeadr and map_itree2tree: each island's trees in
-// increasing order, islands in order, then the trees of no island.
-void ListTreesByIsland(const Model& m, Data& d, const int* tree_island) {
-  std::copy(tree_island, tree_island + m.ntree, d.tree_island.begin());
+// island_ntree, island_itreeadr and map_itree2tree from d.tree_island: each island's
+// trees in increasing order, islands in order, then the trees of no island. `placed` is
+// scratch for d.nisland counts.
+void ListTreesByIsland(const Model& m, Data& d, int* placed) {
+  const int* tree_island = d.tree_island.data();
   std::fill(d.island_ntree.begin(), d.island_ntree.begin() + d.nisland, 0);
   for (int t = 0; t < m.ntree; t++) {
     if (tree_island[t] >= 0) d.island_ntree[tree_island[t]]++;
@@ -67,12 +68,10 @@ void ListTreesByIsland(const Model& m, Data& d, const int* tree_island) {
     d.island_itreeadr[i] = adr;
     adr += d.island_ntree[i];
   }
-  int* next = d.island_ntree.data();  // (counts again while placing)
-  std::fill(next, next + d.nisland, 0);
   for (int t = 0; t < m.ntree; t++) {
     int island = tree_island[t];
     if (island >= 0) {
-      d.map_itree2tree[d.island_itreeadr[island] + next[island]++] = t;
+      d.map_itree2tree[d.island_itreeadr[island] + placed[island]++] = t;
     } else {
       d.map_itree2tree[adr++] = t;
     }
@@ -82,8 +81,7 @@ void ListTreesByIsland(const Model& m, Data& d, const int* tree_island) {
 }  // namespace
 
 void FindIslands(const Model& m, Data& d) {
-  int ntree = 0;
-  for (int v = 0; v < m.nv; v++) ntree = std::max(ntree, m.dof_treeid[v] + 1);
+  int ntree = m.ntree;
   SolverFrame frame(d.solver_scratch);
   int* parent = frame.Ints(ntree);
   int* used = frame.Ints(ntree);
@@ -111,7 +109,7 @@ void FindIslands(const Model& m, Data& d) {
   }
 
   // Number islands by their lowest tree; map dofs and rows.
-  int* tree_island = frame.Ints(ntree);
+  int* tree_island = d.tree_island.data();
   int* root_island = frame.Ints(ntree);
   std::fill(tree_island, tree_island + ntree, -1);
   std::fill(root_island, root_island + ntree, -1);
@@ -123,7 +121,7 @@ void FindIslands(const Model& m, Data& d) {
     tree_island[t] = root_island[root];
   }
   for (int v = 0; v < m.nv; v++) d.dof_island[v] = tree_island[m.dof_treeid[v]];
-  ListTreesByIsland(m, d, tree_island);
+  ListTreesByIsland(m, d, frame.Ints(d.nisland));
   for (int r = 0; r < d.nefc; r++) {
     d.efc_island[r] = first_tree[r] < 0 ? -1 : tree_island[first_tree[r]];
   }

@@ -177,11 +177,9 @@ void Passive(const Model& m, Data& d) {
   // (a sleeping tree's passive forces stay as they were when it fell asleep)
   StackFrame frame(d);
   SleepingDofValues kept(m, d, frame, {d.qfrc_spring.data(), d.qfrc_damper.data(), d.qfrc_passive.data(),
-                                       d.qfrc_gravcomp.data()});
-  SleepingDofValues kept_fluid(m, d, frame, {d.qfrc_fluid.data(), nullptr, nullptr, nullptr});
+                                       d.qfrc_gravcomp.data(), d.qfrc_fluid.data()});
   PassiveForces(m, d);
   kept.Restore();
-  kept_fluid.Restore();
   // Passive-force plugins add theirs last.
   PluginPassiveForces(m, d);
 }

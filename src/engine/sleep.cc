@@ -111,8 +111,7 @@ bool EqualityTrees(const Model& m, int e, int* a, int* b) {
 bool TendonLimitActive(const Model& m, const Data& d, int t) {
   if (!m.tendon_limited[t]) return false;
   for (int side = -1; side <= 1; side += 2) {
-    double dist = side * (m.tendon_range[2 * t + (side + 1) / 2] - d.ten_length[t]);
-    if (dist < m.tendon_margin[t]) return true;
+    if (LimitDistance(&m.tendon_range[2 * t], d.ten_length[t], side) < m.tendon_margin[t]) return true;
   }
   return false;
 }
@@ -201,7 +200,7 @@ SleepState SensorSleepState(const Model& m, const Data& d, int s) {
 
 // ---------------------------------------------------------------- kept values
 
-SleepingDofValues::SleepingDofValues(const Model& m, Data& d, StackFrame& frame, std::array<double*, 4> arrays)
+SleepingDofValues::SleepingDofValues(const Model& m, Data& d, StackFrame& frame, Arrays arrays)
     : m_(m), d_(d), arrays_(arrays), active_(AnyAsleep(m, d)) {
   if (!active_) return;
   for (size_t k = 0; k < arrays_.size(); k++) {

@@ -31,19 +31,20 @@ inline bool AnyAsleep(const Model& m, const Data& d) {
   return (m.opt.enableflags & kEnableSleep) && d.ntree_awake < m.ntree;
 }
 
-// The sleeping dofs' entries of up to four nv-arrays, kept while a stage recomputes every
+// The sleeping dofs' entries of up to five nv-arrays, kept while a stage recomputes every
 // dof and put back by Restore: a sleeping tree's forces stay as they were when it fell
 // asleep (MuJoCo computes only the awake dofs). Does nothing while every tree is awake.
 class SleepingDofValues {
  public:
-  SleepingDofValues(const Model& m, Data& d, StackFrame& frame, std::array<double*, 4> arrays);
+  using Arrays = std::array<double*, 5>;  // (unused slots null)
+  SleepingDofValues(const Model& m, Data& d, StackFrame& frame, Arrays arrays);
   void Restore();
 
  private:
   const Model& m_;
   Data& d_;
-  std::array<double*, 4> arrays_;
-  std::array<double*, 4> kept_{};
+  Arrays arrays_;
+  Arrays kept_{};
   bool active_ = false;
 };
 
