@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "compiler/orientation.h"
+#include "math/elementary.h"
 #include "math/math.h"
 #include "mjcf/error.h"
 #include "mjcf/limits.h"
@@ -27,10 +28,10 @@ constexpr double kPi = std::numbers::pi;
 
 // Signed powers of cos and sin (the superquadric shape functions).
 double SignedPowCos(double angle, double power) {
-  return std::copysign(std::pow(std::abs(std::cos(angle)), power), std::cos(angle));
+  return std::copysign(std::pow(std::abs(math::Cos(angle)), power), math::Cos(angle));
 }
 double SignedPowSin(double angle, double power) {
-  return std::copysign(std::pow(std::abs(std::sin(angle)), power), std::sin(angle));
+  return std::copysign(std::pow(std::abs(math::Sin(angle)), power), math::Sin(angle));
 }
 
 void PushVertex(MeshData* out, double x, double y, double z) {
@@ -212,8 +213,8 @@ std::vector<double> FovealEdges(int bins, double fov_deg, double gamma) {
 // normal (elevation tangent x azimuth tangent), then the unit azimuth and elevation
 // tangents, each rounded to float.
 void PushWedgeFrame(MeshData* out, double a, double e) {
-  double along_a[3] = {std::cos(e) * std::cos(a), 0, std::cos(e) * std::sin(a)};
-  double along_e[3] = {-std::sin(e) * std::sin(a), std::cos(e), std::sin(e) * std::cos(a)};
+  double along_a[3] = {math::Cos(e) * math::Cos(a), 0, math::Cos(e) * math::Sin(a)};
+  double along_e[3] = {-math::Sin(e) * math::Sin(a), math::Cos(e), math::Sin(e) * math::Cos(a)};
   NormalizeVec(along_a, 3);
   NormalizeVec(along_e, 3);
   double normal[3];
@@ -232,7 +233,7 @@ MeshData Wedge(const int res[2], const double fov[2], double gamma) {
   for (int i = 0; i < res[0]; i++) {
     for (int j = 0; j < res[1]; j++) {
       double a = 0.5 * (az[i + 1] + az[i]), e = 0.5 * (el[j + 1] + el[j]);
-      PushVertex(&out, std::cos(e) * std::sin(a), std::sin(e), -std::cos(e) * std::cos(a));
+      PushVertex(&out, math::Cos(e) * math::Sin(a), math::Sin(e), -math::Cos(e) * math::Cos(a));
       PushWedgeFrame(&out, a, e);
     }
   }
@@ -264,14 +265,14 @@ MeshData Plate(const int res[2]) {
 MeshData Cone(int nedge, double radius) {
   MeshData out;
   for (int i = 0; i < nedge; i++) {
-    PushVertex(&out, std::cos(2 * i * kPi / nedge), std::sin(2 * i * kPi / nedge), -1);
+    PushVertex(&out, math::Cos(2 * i * kPi / nedge), math::Sin(2 * i * kPi / nedge), -1);
   }
   if (radius <= 0) {
     PushVertex(&out, 0, 0, 1);
     return out;
   }
   for (int i = nedge; i < 2 * nedge; i++) {
-    PushVertex(&out, radius * std::cos(2 * i * kPi / nedge), radius * std::sin(2 * i * kPi / nedge), 1);
+    PushVertex(&out, radius * math::Cos(2 * i * kPi / nedge), radius * math::Sin(2 * i * kPi / nedge), 1);
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "compiler/compiler.h"
+#include "math/elementary.h"
 #include "math/math.h"
 
 namespace simlab::compiler {
@@ -39,7 +40,7 @@ bool DirectionKey(const double* a, const double* b, const double* c, std::pair<d
     *key = {0.0, n[2] < 0 ? std::round(std::numbers::pi / kAngleTolerance) : 0.0};
     return true;
   }
-  *key = {std::round(std::atan2(n[1], n[0]) / kAngleTolerance), std::round(std::acos(n[2]) / kAngleTolerance)};
+  *key = {std::round(math::Atan2(n[1], n[0]) / kAngleTolerance), std::round(math::Acos(n[2]) / kAngleTolerance)};
   return true;
 }
 

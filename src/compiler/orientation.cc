@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "math/elementary.h"
 #include "math/math.h"
 #include "mjcf/error.h"
 
@@ -33,8 +34,8 @@ const char* FromAxisAngle(double* quat, bool degree, const std::array<double, 4>
   double axis[3] = {aa[0], aa[1], aa[2]};
   double angle = degree ? aa[3] / 180.0 * kPi : aa[3];
   if (NormalizeVec(axis, 3) < kEps) return "axisangle too small";
-  quat[0] = std::cos(angle / 2);
-  for (int i = 0; i < 3; i++) quat[i + 1] = std::sin(angle / 2) * axis[i];
+  quat[0] = math::Cos(angle / 2);
+  for (int i = 0; i < 3; i++) quat[i + 1] = math::Sin(angle / 2) * axis[i];
   return nullptr;
 }
 
@@ -67,10 +68,10 @@ const char* FromEuler(double* quat, bool degree, const std::string& seq,
   math::SetIdentityQuat(quat);
   for (int i = 0; i < 3; i++) {
     double angle = degree ? euler[i] / 180.0 * kPi : euler[i];
-    double rot[4] = {std::cos(angle / 2), 0, 0, 0}, tmp[4];
+    double rot[4] = {math::Cos(angle / 2), 0, 0, 0}, tmp[4];
     char axis = seq[i];
     int k = (axis == 'x' || axis == 'X') ? 1 : (axis == 'y' || axis == 'Y') ? 2 : 3;
-    rot[k] = std::sin(angle / 2);
+    rot[k] = math::Sin(angle / 2);
     if (axis == 'x' || axis == 'y' || axis == 'z') {
       math::MulQuat(tmp, quat, rot);
     } else {

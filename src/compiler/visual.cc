@@ -16,6 +16,7 @@
 #include "compiler/orientation.h"
 #include "compiler/texture_png.h"
 #include "engine/engine.h"
+#include "math/elementary.h"
 #include "math/math.h"
 #include "mjcf/error.h"
 
@@ -137,8 +138,8 @@ void BuiltinCube(const mjcf::TextureSpec& s, const Image& img) {
         double x = 2 * c / static_cast<double>(w - 1) - 1;
         double y = 1 - 2 * r / static_cast<double>(w - 1);
         double norm = std::sqrt(1 + x * x + y * y);
-        double side = std::asin(y / norm) / (0.5 * M_PI);
-        double up = 1 - std::acos(1.0 / norm) / (0.5 * M_PI);
+        double side = math::Asin(y / norm) / (0.5 * M_PI);
+        double up = 1 - math::Acos(1.0 / norm) / (0.5 * M_PI);
         Pixel p = Blend(s.rgb1, s.rgb2, side);
         for (int f : {0, 1, 4, 5}) img.Set(f, r, c, p);
         img.Set(2, r, c, Blend(s.rgb1, s.rgb2, up));

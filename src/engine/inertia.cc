@@ -75,9 +75,7 @@ void MakeInertia(const Model& m, Data& d) {
     double f[6];
     MulInertVec(f, &d.crb[10 * m.dof_bodyid[i]], &d.cdof[6 * i]);
     for (int j = i; j >= 0; j = m.dof_parentid[j]) {
-      const double* c = &d.cdof[6 * j];
-      d.M[adr--] += c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3] + c[4] * f[4] +
-                    c[5] * f[5];
+      d.M[adr--] += Dot(&d.cdof[6 * j], f, 6);
     }
   }
 

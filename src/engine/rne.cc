@@ -9,6 +9,7 @@
 #include "engine/engine.h"
 #include "engine/rows.h"
 #include "engine/stack.h"
+#include "math/dot.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -102,11 +103,9 @@ void Rne(const Model& m, Data& d, bool flg_acc, double* result) {
     }
   }
 
-  // Project onto the dofs.
+  // Project onto the dofs (summed in mju_dot's order).
   for (int v = 0; v < m.nv; v++) {
-    const double* c = &d.cdof[6 * v];
-    const double* f = cfrc + 6 * m.dof_bodyid[v];
-    result[v] = c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3] + c[4] * f[4] + c[5] * f[5];
+    result[v] = Dot(&d.cdof[6 * v], cfrc + 6 * m.dof_bodyid[v], 6);
   }
 }
 

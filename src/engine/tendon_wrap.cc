@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "math/elementary.h"
 #include "math/math.h"
 #include "simlab/model.h"
 
@@ -51,7 +52,7 @@ double ArcLength(const double* p0, const double* p1, bool long_way, double radiu
   double u0[2] = {p0[0], p0[1]}, u1[2] = {p1[0], p1[1]};
   Normalize2(u0);
   Normalize2(u1);
-  double angle = std::acos(Dot2(u0, u1));
+  double angle = math::Acos(Dot2(u0, u1));
   double turn = p0[1] * p1[0] - p0[0] * p1[1];
   if ((turn > 0 && long_way) || (turn < 0 && !long_way)) angle = 2 * std::numbers::pi - angle;
   return radius * angle;
@@ -112,7 +113,7 @@ double WrapCircle(double pnt[4], const double end[4], const double* side, double
 
 // Residual of the inside-wrap equation asin(A z) + asin(B z) - 2 asin(z) + G.
 double InsideResidual(double z, double A, double B, double G) {
-  return std::asin(A * z) + std::asin(B * z) - 2 * std::asin(z) + G;
+  return math::Asin(A * z) + math::Asin(B * z) - 2 * math::Asin(z) + G;
 }
 
 // Wrap through a circle whose side point lies inside: the path touches the circle at
@@ -151,7 +152,7 @@ double WrapInside(double pnt[4], const double end[4], double radius) {
   double cos_g = (len0 * len0 + len1 * len1 - dd) / (2 * len0 * len1);
   if (cos_g < -1 + kMinVal) return -1;
   if (cos_g > 1 - kMinVal) return 0;
-  double G = std::acos(cos_g);
+  double G = math::Acos(cos_g);
   double z = kZInit;
   double f = InsideResidual(z, A, B, G);
   if (f > 0) return 0;
@@ -174,15 +175,15 @@ double WrapInside(double pnt[4], const double end[4], double radius) {
   if (end[0] * end[3] - end[1] * end[2] > 0) {
     dir[0] = end[0];
     dir[1] = end[1];
-    angle = std::asin(z) - std::asin(A * z);
+    angle = math::Asin(z) - math::Asin(A * z);
   } else {
     dir[0] = end[2];
     dir[1] = end[3];
-    angle = std::asin(z) - std::asin(B * z);
+    angle = math::Asin(z) - math::Asin(B * z);
   }
   Normalize2(dir);
-  pnt[0] = radius * (std::cos(angle) * dir[0] - std::sin(angle) * dir[1]);
-  pnt[1] = radius * (std::sin(angle) * dir[0] + std::cos(angle) * dir[1]);
+  pnt[0] = radius * (math::Cos(angle) * dir[0] - math::Sin(angle) * dir[1]);
+  pnt[1] = radius * (math::Sin(angle) * dir[0] + math::Cos(angle) * dir[1]);
   pnt[2] = pnt[0];
   pnt[3] = pnt[1];
   return 0;

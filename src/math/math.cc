@@ -2,8 +2,10 @@
 #include "math/math.h"
 
 #include <cmath>
-#include <utility>
 #include <numbers>
+#include <utility>
+
+#include "math/elementary.h"
 
 namespace simlab::math {
 
@@ -41,8 +43,8 @@ void AxisAngleToQuat(double* q, const double* axis, double angle) {
     SetIdentityQuat(q);
     return;
   }
-  double s = std::sin(angle * 0.5);
-  q[0] = std::cos(angle * 0.5);
+  double s = math::Sin(angle * 0.5);
+  q[0] = math::Cos(angle * 0.5);
   q[1] = axis[0] * s;
   q[2] = axis[1] * s;
   q[3] = axis[2] * s;
@@ -51,7 +53,7 @@ void AxisAngleToQuat(double* q, const double* axis, double angle) {
 void QuatToVel(double* vel, const double* q, double dt) {
   double axis[3] = {q[1], q[2], q[3]};
   double sin_half = Normalize3(axis);
-  double angle = 2 * std::atan2(sin_half, q[0]);
+  double angle = 2 * math::Atan2(sin_half, q[0]);
   // A rotation past pi is the shorter rotation the other way.
   if (angle > std::numbers::pi) angle -= 2 * std::numbers::pi;
   Scale3(vel, axis, angle / dt);
@@ -89,7 +91,7 @@ void QuatZ2Vec(double* q, const double* vec) {
     }
     return;
   }
-  AxisAngleToQuat(q, axis, std::atan2(s, Dot3(vn, z)));
+  AxisAngleToQuat(q, axis, math::Atan2(s, Dot3(vn, z)));
 }
 
 // ---------------------------------------------------------------- spatial algebra

@@ -212,23 +212,31 @@ inline void MulInertVec(double* r, const double* i, const double* v) {
   r[4] = i[6] * v[2] - i[8] * v[0] + i[9] * v[4];
   r[5] = i[7] * v[0] - i[6] * v[1] + i[9] * v[5];
 }
-// r = v x m  (motion cross motion)
+// r = v x m  (motion cross motion); the rotational part of the linear rows is summed
+// first and the rest added after, MuJoCo's grouping (the last bit depends on it).
 inline void CrossMotion(double* r, const double* v, const double* m) {
   r[0] = -v[2] * m[1] + v[1] * m[2];
   r[1] = v[2] * m[0] - v[0] * m[2];
   r[2] = -v[1] * m[0] + v[0] * m[1];
-  r[3] = -v[2] * m[4] + v[1] * m[5] - v[5] * m[1] + v[4] * m[2];
-  r[4] = v[2] * m[3] - v[0] * m[5] + v[5] * m[0] - v[3] * m[2];
-  r[5] = -v[1] * m[3] + v[0] * m[4] - v[4] * m[0] + v[3] * m[1];
+  r[3] = -v[2] * m[4] + v[1] * m[5];
+  r[4] = v[2] * m[3] - v[0] * m[5];
+  r[5] = -v[1] * m[3] + v[0] * m[4];
+  r[3] += -v[5] * m[1] + v[4] * m[2];
+  r[4] += v[5] * m[0] - v[3] * m[2];
+  r[5] += -v[4] * m[0] + v[3] * m[1];
 }
-// r = v x* f (motion cross force)
+// r = v x* f (motion cross force), grouped as MuJoCo's: the angular rows get their
+// translational terms added in a second sum.
 inline void CrossForce(double* r, const double* v, const double* f) {
-  r[0] = -v[2] * f[1] + v[1] * f[2] - v[5] * f[4] + v[4] * f[5];
-  r[1] = v[2] * f[0] - v[0] * f[2] + v[5] * f[3] - v[3] * f[5];
-  r[2] = -v[1] * f[0] + v[0] * f[1] - v[4] * f[3] + v[3] * f[4];
+  r[0] = -v[2] * f[1] + v[1] * f[2];
+  r[1] = v[2] * f[0] - v[0] * f[2];
+  r[2] = -v[1] * f[0] + v[0] * f[1];
   r[3] = -v[2] * f[4] + v[1] * f[5];
   r[4] = v[2] * f[3] - v[0] * f[5];
   r[5] = -v[1] * f[3] + v[0] * f[4];
+  r[0] += -v[5] * f[4] + v[4] * f[5];
+  r[1] += v[5] * f[3] - v[3] * f[5];
+  r[2] += -v[4] * f[3] + v[3] * f[4];
 }
 // The cinert of a body with principal inertia `inert` (3) in a frame rotated by `mat`
 // (local to world), its centre of mass at `dif` from the reference point.

@@ -16,6 +16,8 @@
 #      --every 10 --ctrl CTRL.
 #   2. Each base from its keyframe 0 (the keyframe's ctrl held: no control file), when it
 #      has one.
+#   A comment "golden_tol: X -->" in a base checks its cases at tolerance X instead of
+#   TOL (the reason beside it).
 #   3. mujoco/<name>.xml, MuJoCo's own test models (unchanged but for a comment naming
 #      their source), as they are, under the same smooth controls.
 #   Writes tests/conformance/actuators312_cases.txt.
@@ -50,7 +52,7 @@ native_case() {
   echo "rollout $model ${state} ${ctrl}"
   "$ROLLOUT" "$model" "${args[@]}"
   ! grep -qiE 'null|nan|infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
-  echo "$model $golden $STEPS $state $ctrl $TOL" >> "$CASES"
+  echo "$model $golden $STEPS $state $ctrl ${CASE_TOL:-$TOL}" >> "$CASES"
 }
 
 for base in "$OUT"/base/*.xml; do
@@ -58,6 +60,7 @@ for base in "$OUT"/base/*.xml; do
   read -r -a extra <<< "$(sed -n 's/.*ctrl_sines:\(.*\)-->.*/\1/p' "$base")"
   read -r -a integrators <<< "$(sed -n 's/.*integrators:\(.*\)-->.*/\1/p' "$base")"
   [ ${#integrators[@]} -gt 0 ] || integrators=(Euler RK4 implicit implicitfast)
+  CASE_TOL="$(sed -n 's/.*golden_tol: *\([0-9.e+-]*\) .*-->.*/\1/p' "$base")"
   for integrator in "${integrators[@]}"; do
     model="$OUT/models/${name}__$integrator.xml"
     sed "s|<option timestep=|<option integrator=\"$integrator\" timestep=|" "$base" > "$model"
@@ -69,6 +72,7 @@ for base in "$OUT"/base/*.xml; do
   done
   if grep -q '<key ' "$base"; then native_case "$OUT/models/${name}__implicitfast.xml" key:0 -; fi
 done
+CASE_TOL=
 for model in "$OUT"/mujoco/*.xml; do
   ctrl="$OUT/ctrl/$(basename "$model" .xml).csv"
   tools/ctrl_sines.py "$(header "$model" nu)" "$STEPS" "$(header "$model" timestep)" > "$ctrl"
