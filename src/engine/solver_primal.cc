@@ -228,12 +228,6 @@ void MulJ(const ConstraintProblem& p, const double* vec, double* res) {
 
 // ---------------------------------------------------------------- sparse rows
 
-// Below this many dofs a problem's Newton Hessian is factored dense even when its rows
-// are sparse: on the 27-dof islands of 22 humanoids the dense factor (contiguous rows)
-// was measured faster than the sparse one, on the 66-dof cube the sparse one 1.8x faster.
-// (MuJoCo factors every island of a sparse model sparse; the two differ in rounding only.)
-constexpr int kSparseFactorDofs = 60;
-
 // The nonzeros of p's dense rows (each row keeps nv slots).
 SparseRows CompressDenseRows(const ConstraintProblem& p, SolverFrame& frame) {
   size_t slots = static_cast<size_t>(p.nefc) * p.nv;
@@ -387,8 +381,10 @@ struct Primal {
     if (!p.sparse()) rows = CompressDenseRows(p, frame);
     // (the factors are filled by FactorHessian and AddConeHessians, the update vectors by
     // their users: not cleared here)
+    // (sparse rows: the sparse factor on every problem, as MuJoCo factors each island of
+    // a sparse model, so that both round alike)
     size_t entries = static_cast<size_t>(nv) * nv;
-    sparse_factor = p.sparse() && nv >= kSparseFactorDofs;
+    sparse_factor = p.sparse();
     if (sparse_factor) {
       chol = SymbolicHessian(HessianUpperPattern(p, rows, jt, frame), frame);
       entries = chol.nnz;
@@ -487,18 +483,21 @@ void AddConeHessians(Primal& s) {
 }
 
 // Row r of H = J^T D J + M (columns 0..r) added into `dense`: the quadratic rows of J in
-// ascending order, then M (MuJoCo's order).
+// ascending order, then M. Each product is rounded as MuJoCo's mju_sqrMatTDSparse rounds
+// it: J(e, r) (D(e) J(e, c)) left of the diagonal, (J(e, r) J(e, r)) D(e) on it.
 void AddHessianRow(const Primal& s, int r, double* dense) {
   const ConstraintProblem& p = s.p;
   const SparseRows& jt = s.jt;
   for (int k = jt.rowadr[r]; k < jt.rowadr[r] + jt.rownnz[r]; k++) {
     int e = jt.colind[k];
     if (p.state[e] != kStateQuadratic) continue;
-    double scaled = p.D[e] * jt.values[k];
+    double jr = jt.values[k], d = p.D[e];
     for (int q = s.rows.rowadr[e]; q < s.rows.rowadr[e] + s.rows.rownnz[e]; q++) {
-      if (s.rows.colind[q] > r) break;
-      dense[s.rows.colind[q]] += scaled * s.rows.values[q];
+      int c = s.rows.colind[q];
+      if (c >= r) break;
+      dense[c] += jr * (d * s.rows.values[q]);
     }
+    dense[r] += (jr * jr) * d;
   }
   for (int k = p.M_rowadr[r]; k < p.M_rowadr[r] + p.M_rownnz[r]; k++) {
     dense[p.M_colind[k]] += p.M[k];
