@@ -483,28 +483,46 @@ void SparseARPattern(const SparseRows& y, const SparseRows& yt, int nefc, int* m
   }
 }
 
+// Y(a, :) . Y(b, :) over the dofs both rows hold, summed one term at a time from the
+// lowest dof up (MuJoCo's mju_sqrMatTDSparse order for the entries off the diagonal).
+double SharedDofsDot(const SparseRows& y, int a, int b) {
+  int qa = y.rowadr[a], ea = qa + y.rownnz[a];
+  int qb = y.rowadr[b], eb = qb + y.rownnz[b];
+  double sum = 0;
+  while (qa < ea && qb < eb) {
+    if (y.colind[qa] < y.colind[qb]) {
+      qa++;
+    } else if (y.colind[qb] < y.colind[qa]) {
+      qb++;
+    } else {
+      sum += y.values[qb++] * y.values[qa++];
+    }
+  }
+  return sum;
+}
+
 // Sparse efc_AR = Y Y^T + diag(R) in compressed rows (efc_AR_rownnz/rowadr/colind, nA
-// entries). Each entry below the diagonal is the one already computed above it.
+// entries), rounded as MuJoCo's: the diagonal a mju_dot of the row with itself, the
+// entries off it a sum over the shared dofs in order; each entry above the diagonal is
+// the one already computed below it.
 void ProjectSparse(const Model& m, Data& d) {
   int nv = m.nv, nefc = d.nefc;
   SolverFrame frame(d.solver_scratch);
   SparseRows y = SparseY(m, d, frame);
   SparseRows yt = TransposeRows(SparseRows{y.rownnz, y.rowadr, y.colind}, nefc, nv, frame);
   SparseARPattern(y, yt, nefc, frame.IntsToWrite(nefc), d);
-  double* x = frame.Reals(nv);
   for (int r = 0; r < nefc; r++) {
-    // (row r of Y scattered, dotted with each coupled row from r on)
-    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) x[y.colind[q]] = y.values[q];
     for (int k = d.efc_AR_rowadr[r]; k < d.efc_AR_rowadr[r] + d.efc_AR_rownnz[r]; k++) {
       int c = d.efc_AR_colind[k];
       if (c < r) {
         d.efc_AR[k] = d.efc_AR[AREntry(m, d, c, r)];
-        continue;
+      } else if (c == r) {
+        const double* row = y.values + y.rowadr[r];
+        d.efc_AR[k] = math::Dot(row, row, y.rownnz[r]) + d.efc_R[r];
+      } else {
+        d.efc_AR[k] = SharedDofsDot(y, c, r);
       }
-      d.efc_AR[k] = math::DotSparse(y.values + y.rowadr[c], x, y.rownnz[c], y.colind + y.rowadr[c]);
-      if (c == r) d.efc_AR[k] += d.efc_R[r];
     }
-    for (int q = y.rowadr[r]; q < y.rowadr[r] + y.rownnz[r]; q++) x[y.colind[q]] = 0;
   }
 }
 
