@@ -82,9 +82,8 @@ TEST(Mesh, HullGraphOfABox) {
 
 // A visual-only mesh geom (no collisions) gets no hull.
 // The hull's flat sides as polygons (multiccd): a cube's six quads with MuJoCo 3.5.1's
-// vertex paths (printed from the oracle's mesh_polyvert; MuJoCo lists the polygons in the
-// order of a hash map, so only the paths are compared), unit normals along the axes, and
-// every corner in three of them.
+// vertex paths in its order (printed from the oracle's mesh_polyvert: by normal, +x +y +z
+// -z -y -x), unit normals along the axes, and every corner in three of them.
 TEST(Mesh, CubePolygons) {
   Model m = LoadXmlString(
       "<mujoco><asset><mesh name='box' vertex='-1 -1 -1 1 -1 -1 1 1 -1 1 1 1 1 -1 1 -1 1 -1 -1 1 1 -1 -1 1'/>"
@@ -102,10 +101,17 @@ TEST(Mesh, CubePolygons) {
     const double* v = &m.mesh_vert[3 * ours.back()[0]];
     EXPECT_GT(n[0] * v[0] + n[1] * v[1] + n[2] * v[2], 0);
   }
-  std::sort(ours.begin(), ours.end());
-  std::sort(mujoco.begin(), mujoco.end());
   EXPECT_EQ(ours, mujoco);
   for (int v = 0; v < 8; v++) EXPECT_EQ(m.mesh_polymapnum[v], 3);
+}
+
+// A mesh without a hull gets the polygons of its own triangles (MuJoCo 3.5.1 makes them
+// from the faces then): a box's 12 triangles make its 6 sides.
+TEST(Mesh, PolygonsWithoutHull) {
+  Model m = LoadWithMeshes("<mesh name=\"box\" file=\"box.stl\"/>",
+                           "<geom type=\"mesh\" mesh=\"box\" contype=\"0\" conaffinity=\"0\"/>");
+  ASSERT_EQ(m.nmeshgraph, 0);
+  EXPECT_EQ(m.mesh_polynum[0], 6);
 }
 
 TEST(Mesh, NoHullWithoutCollisions) {

@@ -1,23 +1,23 @@
-// The flat sides of a mesh's convex hull as polygons (MuJoCo's mjCMesh::MakePolygons):
-// the hull's triangles are grouped by their normal's direction, rounded to 0.01 rad in
-// azimuth and polar angle, and the triangles of a group are merged into polygons by
-// cancelling their shared edges. The multi-contact collider (multiccd) clips these
-// polygons against each other. Each polygon's normal is then taken exactly from its
-// first three vertices in the mesh's final frame.
+// The flat sides of a mesh's convex hull (or of the mesh itself, without a hull) as polygons (MuJoCo 3.5.1's mjCMesh::MakePolygons):
+// the hull's triangles are grouped by their normal's direction (two normals closer than
+// cos = 0.99999872 are one direction), and the triangles of a group are merged into
+// polygons by cancelling their shared edges. The groups are ordered as MuJoCo's std::set
+// of them: by normal, x then y then z, largest first. The multi-contact collider
+// (multiccd) clips these polygons against each other, and the first of two equally good
+// edges wins there, so the order matters. Each polygon's normal is then taken exactly
+// from its first three vertices in the mesh's final frame.
 #include <cmath>
-#include <numbers>
+#include <set>
 #include <utility>
 #include <vector>
 
 #include "compiler/compiler.h"
-#include "math/elementary.h"
+#include "compiler/orientation.h"
 #include "math/math.h"
 
 namespace simlab::compiler {
 
 namespace {
-
-constexpr double kAngleTolerance = 0.01;
 
 // (b - a) x (c - a) into n; returns its length.
 double TriangleCross(const double* a, const double* b, const double* c, double n[3]) {
@@ -28,20 +28,25 @@ double TriangleCross(const double* a, const double* b, const double* c, double n
   return std::sqrt(math::Dot3(n, n));
 }
 
-// The rounded (azimuth, polar) angles of triangle (a, b, c)'s normal, in units of the
-// tolerance; false for a degenerate triangle.
-bool DirectionKey(const double* a, const double* b, const double* c, std::pair<double, double>* key) {
-  double n[3];
+// Triangle (a, b, c)'s unit normal as MuJoCo's mjuu_makenormal computes it (a degenerate
+// triangle gets x over its tiny length).
+void TriangleNormal(const double* a, const double* b, const double* c, double n[3]) {
   double norm = TriangleCross(a, b, c, n);
-  if (norm < kMinVal) return false;
-  // (+0.0 turns a -0 into +0: atan2 tells them apart)
-  for (double& x : n) x = x / norm + 0.0;
-  if (std::abs(n[2]) > 1.0 - 1e-7) {
-    *key = {0.0, n[2] < 0 ? std::round(std::numbers::pi / kAngleTolerance) : 0.0};
-    return true;
+  if (norm < kEps) {
+    n[0] = 1;
+    n[1] = n[2] = 0;
   }
-  *key = {std::round(math::Atan2(n[1], n[0]) / kAngleTolerance), std::round(math::Acos(n[2]) / kAngleTolerance)};
-  return true;
+  for (int k = 0; k < 3; k++) n[k] /= norm;
+}
+
+// The order of the groups: false for the same direction, else by x, y, z, larger first
+// (components within kMinVal count as equal).
+bool DirectionPrecedes(const double* n1, const double* n2) {
+  if (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2] > 0.99999872) return false;
+  for (int k = 0; k < 3; k++) {
+    if (std::abs(n1[k] - n2[k]) > kMinVal) return n1[k] > n2[k];
+  }
+  return false;
 }
 
 // The boundary of the triangles of one direction: directed edges, each labelled with the
@@ -139,27 +144,37 @@ class SideOutline {
 
 void MakeMeshPolygons(MeshState* mesh) {
   mesh->polygons.clear();
-  if (mesh->graph.empty()) return;
-  const int numvert = mesh->graph[0], numface = mesh->graph[1];
-  const int* faces = mesh->graph.data() + 2 + 3 * (numvert + numface);
-  // (groups in the order of their first triangle)
-  std::vector<std::pair<double, double>> keys;
-  std::vector<SideOutline> sides;
+
+  // The hull's triangles, or the mesh's own when it has no hull.
+  const int* faces = mesh->face.data();
+  int numface = static_cast<int>(mesh->face.size() / 3);
+  if (!mesh->graph.empty()) {
+    const int numvert = mesh->graph[0];
+    numface = mesh->graph[1];
+    faces = mesh->graph.data() + 2 + 3 * (numvert + numface);
+  }
+
+  // Each triangle joins the group of its direction, or starts a new one (a set ordered by
+  // direction, as MuJoCo's; the outline is not part of the order).
+  struct Side {
+    double normal[3];
+    mutable SideOutline outline;
+  };
+  auto precedes = [](const Side& a, const Side& b) { return DirectionPrecedes(a.normal, b.normal); };
+  std::set<Side, decltype(precedes)> sides(precedes);
   for (int f = 0; f < numface; f++) {
     const int* v = faces + 3 * f;
-    std::pair<double, double> key;
-    if (!DirectionKey(&mesh->vert[3 * v[0]], &mesh->vert[3 * v[1]], &mesh->vert[3 * v[2]], &key)) continue;
-    size_t g = 0;
-    while (g < keys.size() && keys[g] != key) g++;
-    if (g == keys.size()) {
-      keys.push_back(key);
-      sides.emplace_back(v[0], v[1], v[2]);
+    Side side{{0, 0, 0}, SideOutline(v[0], v[1], v[2])};
+    TriangleNormal(&mesh->vert[3 * v[0]], &mesh->vert[3 * v[1]], &mesh->vert[3 * v[2]], side.normal);
+    auto found = sides.find(side);
+    if (found != sides.end()) {
+      found->outline.Add(v[0], v[1], v[2]);
     } else {
-      sides[g].Add(v[0], v[1], v[2]);
+      sides.insert(std::move(side));
     }
   }
-  for (const SideOutline& side : sides) {
-    for (std::vector<int>& path : side.Paths()) {
+  for (const Side& side : sides) {
+    for (std::vector<int>& path : side.outline.Paths()) {
       if (path.size() >= 3) mesh->polygons.push_back(std::move(path));
     }
   }
@@ -169,9 +184,8 @@ void MeshPolygonNormals(MeshState* mesh) {
   mesh->polynormal.assign(3 * mesh->polygons.size(), 0.0);
   for (size_t i = 0; i < mesh->polygons.size(); i++) {
     const std::vector<int>& p = mesh->polygons[i];
-    double n[3];
-    double norm = TriangleCross(&mesh->vert[3 * p[0]], &mesh->vert[3 * p[1]], &mesh->vert[3 * p[2]], n);
-    for (int k = 0; k < 3; k++) mesh->polynormal[3 * i + k] = n[k] / norm;
+    TriangleNormal(&mesh->vert[3 * p[0]], &mesh->vert[3 * p[1]], &mesh->vert[3 * p[2]],
+                   &mesh->polynormal[3 * i]);
   }
 }
 
