@@ -140,6 +140,19 @@ void CheckModel(const std::string& name, const std::string& path) {
   if (sizes.contains("ntree")) EXPECT_EQ(m.ntree, sizes["ntree"].get<int>());
   if (sizes.contains("nB")) EXPECT_EQ(m.nB, sizes["nB"].get<int>());
   if (sizes.contains("nmeshtexcoord")) EXPECT_EQ(m.nmeshtexcoord, sizes["nmeshtexcoord"].get<int>());
+  if (sizes.contains("nmeshpoly")) {
+    EXPECT_EQ(m.nmeshpoly, sizes["nmeshpoly"].get<int>());
+    EXPECT_EQ(m.nmeshpolyvert, sizes["nmeshpolyvert"].get<int>());
+    EXPECT_EQ(m.nmeshpolymap, sizes["nmeshpolymap"].get<int>());
+  }
+  if (sizes.contains("nskin")) {
+    EXPECT_EQ(m.nskin, sizes["nskin"].get<int>());
+    EXPECT_EQ(m.nskinvert, sizes["nskinvert"].get<int>());
+    EXPECT_EQ(m.nskintexvert, sizes["nskintexvert"].get<int>());
+    EXPECT_EQ(m.nskinface, sizes["nskinface"].get<int>());
+    EXPECT_EQ(m.nskinbone, sizes["nskinbone"].get<int>());
+    EXPECT_EQ(m.nskinbonevert, sizes["nskinbonevert"].get<int>());
+  }
   if (::testing::Test::HasFailure()) return;
 
   // Every array we have and MuJoCo dumped.
@@ -284,6 +297,13 @@ TEST(CompilerConformance, StatisticsAsMuJoCo) {
     for (int k = 0; k < 7; k++) EXPECT_NEAR(ours[k], c.stat[k], 1e-12 * (1 + std::abs(c.stat[k]))) << c.path << " [" << k << "]";
   }
 }
+
+// Skins inline (in <asset> and <deformable>) and from a .skn file: weights normalized over
+// the bones, bind quaternions normalized, materials and groups.
+TEST(CompilerConformance, Skins) { CheckModel("skins", Local("skins.xml")); }
+
+// Mesh polygons in MuJoCo 3.5.1's order, with and without a hull.
+TEST(CompilerConformance, MeshPolygons) { CheckModel("mesh_polygons", Local("mesh_polygons.xml")); }
 
 }  // namespace
 }  // namespace simlab

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -307,6 +308,63 @@ TEST(MjcfErrors, SleepPolicies) {
       {"sleep_init_island_fail.xml:16:", "<body name=\"asleep_init0\">",
        "3 trees were marked as sleep='init' but only 0 could be slept"},
       "sleep_init_island_fail.xml");
+}
+
+// Skins: bad data, bones and files are refused with the skin's line; flexes in
+// <deformable> are not supported yet.
+TEST(MjcfErrors, Skins) {
+  auto skin = [](const std::string& attrs, const std::string& bone) {
+    return "<mujoco>\n<worldbody><body name=\"b\"><geom size=\".1\"/></body></worldbody>\n"
+           "<deformable>\n<skin " + attrs + ">\n" + bone + "\n</skin>\n</deformable>\n</mujoco>";
+  };
+  const std::string bone =
+      "<bone body=\"b\" bindpos=\"0 0 0\" bindquat=\"1 0 0 0\" vertid=\"0 1 2\" vertweight=\"1 1 1\"/>";
+  ExpectError(skin("vertex=\"0 0 0 1 0 0 0 1 0\" face=\"0 1 2\" group=\"7\"", bone),
+              {"bad.xml:4:", "skin group must be between 0 and 5"});
+  ExpectError(skin("vertex=\"0 0 0 1 0 0 0 1\" face=\"0 1 2\"", bone),
+              {"bad.xml:4:", "vertex data must be a multiple of 3"});
+  ExpectError(skin("vertex=\"0 0 0 1 0 0 0 1 0\"", bone), {"bad.xml:4:", "missing data in skin"});
+  ExpectError(skin("vertex=\"0 0 0 1 0 0 0 1 0\" face=\"0 1 2\"",
+                   "<bone body=\"nobody\" bindpos=\"0 0 0\" bindquat=\"1 0 0 0\" vertid=\"0\" vertweight=\"1\"/>"),
+              {"bad.xml:5:", "unknown body 'nobody' in skin"});
+  ExpectError(skin("vertex=\"0 0 0 1 0 0 0 1 0\" face=\"0 1 2\"",
+                   "<bone body=\"b\" bindpos=\"0 0 0\" bindquat=\"1 0 0 0\" vertid=\"0 5\" vertweight=\"1 1\"/>"),
+              {"bad.xml:5:", "vertid 5 out of range in skin"});
+  ExpectError(skin("vertex=\"0 0 0 1 0 0 0 1 0\" face=\"0 1 2\"",
+                   "<bone body=\"b\" bindpos=\"0 0 0\" bindquat=\"1 0 0 0\" vertid=\"0 1\" vertweight=\"1 1\"/>"),
+              {"bad.xml:4:", "vertex 2 must have positive total weight in skin"});
+  ExpectError(skin("vertex=\"0 0 0 1 0 0 0 1 0\" face=\"0 1 2\" material=\"cloth\"", bone),
+              {"bad.xml:4:", "unknown material 'cloth' in skin"});
+  ExpectError(skin("file=\"a.skn\" vertex=\"0 0 0 1 0 0 0 1 0\"", ""),
+              {"bad.xml:4:", "both skin data and file were specified"});
+  ExpectError(skin("file=\"a.obj\"", ""), {"bad.xml:4:", "unknown skin file type"});
+  ExpectError(skin("file=\"missing.skn\"", ""), {"bad.xml:4:", "could not read SKN file"});
+  ExpectError("<mujoco>\n<deformable>\n<flex name=\"f\"/>\n</deformable>\n</mujoco>",
+              {"bad.xml:3:", "<flex>", "not supported yet"});
+}
+
+// A truncated .skn file is refused, not read past its end.
+TEST(MjcfErrors, TruncatedSkinFile) {
+  std::string skn = std::string(SIMLAB_SOURCE_DIR) + "/tests/compiler_models/tetra.skn";
+  std::ifstream in(skn, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 100u);
+  const std::string xml =
+      "<mujoco>\n<worldbody><body name=\"arm\"/><body name=\"hand\"/></worldbody>\n"
+      "<deformable>\n<skin file=\"t.skn\"/>\n</deformable>\n</mujoco>";
+  for (size_t cut : {size_t{0}, size_t{10}, size_t{60}, bytes.size() - 200, bytes.size() - 3}) {
+    Assets assets{{"t.skn", bytes.substr(0, cut)}};
+    std::string message;
+    try {
+      LoadXmlString(xml, "bad.xml", assets);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find("bad.xml:4:"), std::string::npos) << cut << ": " << message;
+    EXPECT_NE(message.find("SKN file"), std::string::npos) << cut << ": " << message;
+  }
+  Assets whole{{"t.skn", bytes}};
+  EXPECT_EQ(LoadXmlString(xml, "bad.xml", whole).nskin, 1);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ import { loadOracleModel } from './oracle_model.mjs';
 const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntendon', 'nwrap',
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
   'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat', 'nmeshtexcoord',
-  'npair', 'nexclude', 'ntree', 'nB'];
+  'npair', 'nexclude', 'ntree', 'nB', 'nmeshpoly', 'nmeshpolyvert', 'nmeshpolymap', 'nskin',
+  'nskinvert', 'nskintexvert', 'nskinface', 'nskinbone', 'nskinbonevert'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -43,7 +44,13 @@ const ARRAYS = [
   'mesh_pos', 'mesh_quat', 'mesh_vert', 'mesh_face', 'mesh_graph',
   'mesh_normaladr', 'mesh_normalnum', 'mesh_normal', 'mesh_texcoordadr', 'mesh_texcoordnum',
   'mesh_texcoord', 'mesh_facetexcoord',
+  'mesh_polynum', 'mesh_polyadr', 'mesh_polynormal', 'mesh_polyvertadr', 'mesh_polyvertnum',
+  'mesh_polyvert', 'mesh_polymapadr', 'mesh_polymapnum', 'mesh_polymap',
   'hfield_size', 'hfield_nrow', 'hfield_ncol', 'hfield_adr', 'hfield_data',
+  'skin_matid', 'skin_group', 'skin_rgba', 'skin_inflate', 'skin_vertadr', 'skin_vertnum',
+  'skin_texcoordadr', 'skin_faceadr', 'skin_facenum', 'skin_boneadr', 'skin_bonenum', 'skin_vert',
+  'skin_texcoord', 'skin_face', 'skin_bonevertadr', 'skin_bonevertnum', 'skin_bonebindpos',
+  'skin_bonebindquat', 'skin_bonebodyid', 'skin_bonevertid', 'skin_bonevertweight',
   'site_type', 'site_bodyid', 'site_group', 'site_sameframe', 'site_size', 'site_pos',
   'site_quat', 'site_rgba', 'geom_matid', 'site_matid',
   'light_mode', 'light_bodyid', 'light_targetbodyid', 'light_type', 'light_texid',

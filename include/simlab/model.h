@@ -392,6 +392,29 @@ struct Visual {
   X(int, hfield_ncol, nhfield, 1)                  \
   X(int, hfield_adr, nhfield, 1)                   \
   X(double, hfield_data, nhfielddata, 1)           \
+  /* skins (float-rounded, as MuJoCo's): triangle meshes drawn over bodies, each vertex \
+     carried by its bones (a body, the pose it was bound in, a weight per vertex) */ \
+  X(int, skin_matid, nskin, 1)                     \
+  X(int, skin_group, nskin, 1)                     \
+  X(double, skin_rgba, nskin, 4)                   \
+  X(double, skin_inflate, nskin, 1)                \
+  X(int, skin_vertadr, nskin, 1)                   \
+  X(int, skin_vertnum, nskin, 1)                   \
+  X(int, skin_texcoordadr, nskin, 1)  /* first row in skin_texcoord, or -1 */ \
+  X(int, skin_faceadr, nskin, 1)                   \
+  X(int, skin_facenum, nskin, 1)                   \
+  X(int, skin_boneadr, nskin, 1)                   \
+  X(int, skin_bonenum, nskin, 1)                   \
+  X(double, skin_vert, nskinvert, 3)               \
+  X(double, skin_texcoord, nskintexvert, 2)        \
+  X(int, skin_face, nskinface, 3)                  \
+  X(int, skin_bonevertadr, nskinbone, 1)           \
+  X(int, skin_bonevertnum, nskinbone, 1)           \
+  X(double, skin_bonebindpos, nskinbone, 3)        \
+  X(double, skin_bonebindquat, nskinbone, 4)       \
+  X(int, skin_bonebodyid, nskinbone, 1)            \
+  X(int, skin_bonevertid, nskinbonevert, 1)        \
+  X(double, skin_bonevertweight, nskinbonevert, 1) \
   /* explicit contact pairs and excluded body pairs */ \
   X(int, pair_dim, npair, 1)                       \
   X(int, pair_geom1, npair, 1)                     \
@@ -584,6 +607,7 @@ struct Visual {
   X(cam, ncam)                \
   X(mesh, nmesh)              \
   X(hfield, nhfield)          \
+  X(skin, nskin)              \
   X(light, nlight)            \
   X(tex, ntex)                \
   X(mat, nmat)                \
@@ -620,6 +644,12 @@ struct Visual {
   X(nmeshtexcoord) /* texture coordinates of all meshes */                \
   X(nhfield)     /* height fields */                                       \
   X(nhfielddata) /* elevation numbers of all height fields */              \
+  X(nskin)       /* skins */                                               \
+  X(nskinvert)   /* vertices of all skins */                               \
+  X(nskintexvert) /* texture coordinates of all skins */                   \
+  X(nskinface)   /* triangles of all skins */                              \
+  X(nskinbone)   /* bones of all skins */                                  \
+  X(nskinbonevert) /* vertex weights of all bones */                       \
   X(nlight)      /* lights */                                              \
   X(ntex)        /* textures */                                            \
   X(ntexdata)    /* bytes of all textures */                               \

@@ -132,6 +132,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   CheckBodyCount(spec, state);
   CompileMeshes(spec, &state);
   CompileHFields(spec, &state);
+  CompileSkins(spec, &state);
   std::vector<TextureImage> textures = CompileTextures(spec);
   CompileBodies(&state);
   CheckMovingBodies(state);
@@ -145,6 +146,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   m.ncam = CameraCount(state);
   MeshSizes(state, &m);
   HFieldSizes(state, &m);
+  SkinSizes(state, &m);
   VisualSizes(spec, state, textures, &m);
   SectionSizes(spec, &m);
   CheckModelBudget(spec, m);
@@ -153,6 +155,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   CompileCameras(spec, state, &m);
   LayoutMeshes(state, &m);
   LayoutHFields(state, &m);
+  LayoutSkins(state, &m);
   LayoutVisual(spec, state, textures, &m);
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);

@@ -82,6 +82,14 @@ struct HFieldState {
   std::vector<float> data;
 };
 
+// A compiled skin (skin.cc): its data (from its file, weights normalized), the body of
+// each bone and its material.
+struct SkinState {
+  mjcf::SkinSpec data;
+  std::vector<int> bodyid;
+  int matid = -1;
+};
+
 // A geom while compiling (pose in the body frame, mass properties).
 struct GeomState {
   const mjcf::GeomSpec* spec = nullptr;
@@ -125,6 +133,7 @@ struct CompileState {
   std::vector<SiteState> sites;
   std::vector<MeshState> meshes;
   std::vector<HFieldState> hfields;
+  std::vector<SkinState> skins;
 };
 
 // Where each compiled element was written, by id (for messages about a compiled model
@@ -155,6 +164,10 @@ void LayoutMeshes(const CompileState& state, Model* m);
 // normals, from the vertices in the mesh's final frame.
 void MakeMeshPolygons(MeshState* mesh);
 void MeshPolygonNormals(MeshState* mesh);
+// Skins (skin.cc): after the tree is flattened (bones name bodies).
+void CompileSkins(const mjcf::ModelSpec& spec, CompileState* state);
+void SkinSizes(const CompileState& state, Model* m);
+void LayoutSkins(const CompileState& state, Model* m);
 // Height fields and the geoms that use them (hfield.cc): before the bodies.
 void CompileHFields(const mjcf::ModelSpec& spec, CompileState* state);
 // An hfield geom's size from its height field (MuJoCo's geom_size for hfields).

@@ -29,6 +29,7 @@ const std::vector<std::string>* Model::Names(ObjType type) const {
     case kObjCamera: return &cam_names;
     case kObjMesh: return &mesh_names;
     case kObjHfield: return &hfield_names;
+    case kObjSkin: return &skin_names;
     case kObjLight: return &light_names;
     case kObjTexture: return &tex_names;
     case kObjMaterial: return &mat_names;

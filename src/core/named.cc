@@ -30,6 +30,7 @@ const std::vector<ViewSpec>& ModelViews() {
       {kObjHfield, {"nhfield", "nhfielddata"}, {"hfield_"}},
       {kObjJoint, {"njnt", "nq", "nv"}, {"jnt_", "dof_", ""}},
       {kObjMesh, {"nmesh"}, {"mesh_"}},
+      {kObjSkin, {"nskin"}, {"skin_"}},
       {kObjPair, {"npair"}, {"pair_"}},
       {kObjSensor, {"nsensor"}, {"sensor_"}},
       {kObjSite, {"nsite"}, {"site_"}},

@@ -8,18 +8,6 @@
 
 namespace simlab::mjcf {
 
-namespace {
-
-// Top-level sections that MuJoCo accepts but simlab does not implement yet.
-bool IsUnsupportedSection(const std::string& tag) {
-  for (const char* name : {"deformable"}) {
-    if (tag == name) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 // ---------------------------------------------------------------- entry point
 
 ModelSpec ReadMjcf(const std::string& text, const std::string& file,
@@ -102,13 +90,13 @@ void Reader::Root(pugi::xml_node root) {
   static const char* kSections[] = {"compiler", "option",  "size",     "visual",
                                     "statistic", "default", "custom",   "asset",
                                     "contact",  "tendon",  "actuator", "keyframe",
-                                    "worldbody", "sensor", "equality", "extension"};
+                                    "worldbody", "sensor", "equality", "extension",
+                                    "deformable"};
   for (pugi::xml_node child : root.children()) {
     if (child.type() != pugi::node_element) continue;
     XmlElement e = Element(child);
     bool known = false;
     for (const char* name : kSections) known = known || e.tag() == name;
-    if (IsUnsupportedSection(e.tag())) NotSupported(e);
     if (!known) Unknown(e);
   }
 
@@ -126,6 +114,7 @@ void Reader::Root(pugi::xml_node root) {
   each("custom", [&](const XmlElement& e) { Custom(e); });
   each("asset", [&](const XmlElement& e) { Asset(e); });
   each("contact", [&](const XmlElement& e) { Contact(e); });
+  each("deformable", [&](const XmlElement& e) { Deformable(e); });
   each("equality", [&](const XmlElement& e) { Equality(e); });
   each("tendon", [&](const XmlElement& e) { Tendon(e); });
   each("actuator", [&](const XmlElement& e) { Actuator(e); });

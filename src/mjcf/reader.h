@@ -84,6 +84,9 @@ class Reader {
   std::string AssetPath(const std::string& written, const std::string& dir,
                         const XmlElement& e) const;
   void ReadHField(const XmlElement& e, HFieldSpec* hfield) const;
+  void ReadSkin(const XmlElement& e, SkinSpec* skin) const;
+  // the <deformable> section: skins (flexes are not supported yet)
+  void Deformable(const XmlElement& e);
   void ReadCamera(const XmlElement& e, CameraSpec* cam, bool in_default) const;
   // textures, materials and lights (reader_visual.cc)
   void ReadTexture(const XmlElement& e, TextureSpec* tex) const;

@@ -181,4 +181,48 @@ void Reader::ReadHField(const XmlElement& e, HFieldSpec* hfield) const {
   }
 }
 
+// ---------------------------------------------------------------- <skin>
+
+void Reader::ReadSkin(const XmlElement& e, SkinSpec* skin) const {
+  e.CheckAttributes({"name", "file", "material", "rgba", "inflate", "vertex", "texcoord", "face",
+                     "group"});
+  skin->src = e.src();
+  if (e.Text("file", &skin->file)) skin->path = AssetPath(skin->file, spec_->compiler.meshdir, e);
+  e.Text("material", &skin->material);
+  if (e.Int("group", &skin->group) && (skin->group < 0 || skin->group > 5)) {
+    e.Fail("skin group must be between 0 and 5");
+  }
+  std::array<double, 4> rgba;
+  if (e.Numbers("rgba", rgba)) {
+    for (int k = 0; k < 4; k++) skin->rgba[k] = static_cast<float>(rgba[k]);
+  }
+  double inflate;
+  if (e.Number("inflate", &inflate)) skin->inflate = static_cast<float>(inflate);
+  skin->vertex = ReadList(e, "vertex", ParseFloat);
+  skin->texcoord = ReadList(e, "texcoord", ParseFloat);
+  skin->face = ReadList(e, "face", ParseInt);
+
+  // Bones: each names its body, bind pose and the vertices it carries.
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement b = Element(n);
+    if (b.tag() != "bone") Unknown(b);
+    b.CheckAttributes({"body", "bindpos", "bindquat", "vertid", "vertweight"});
+    SkinBoneSpec bone;
+    bone.src = b.src();
+    b.RequiredText("body", &bone.body);
+    std::array<double, 3> pos;
+    std::array<double, 4> quat;
+    if (!b.Numbers("bindpos", pos)) b.Fail("missing attribute 'bindpos'");
+    if (!b.Numbers("bindquat", quat)) b.Fail("missing attribute 'bindquat'");
+    for (int k = 0; k < 3; k++) bone.bindpos[k] = static_cast<float>(pos[k]);
+    for (int k = 0; k < 4; k++) bone.bindquat[k] = static_cast<float>(quat[k]);
+    if (!b.Has("vertid")) b.Fail("missing attribute 'vertid'");
+    if (!b.Has("vertweight")) b.Fail("missing attribute 'vertweight'");
+    bone.vertid = ReadList(b, "vertid", ParseInt);
+    bone.vertweight = ReadList(b, "vertweight", ParseFloat);
+    skin->bones.push_back(std::move(bone));
+  }
+}
+
 }  // namespace simlab::mjcf

@@ -313,7 +313,24 @@ void Reader::Asset(const XmlElement& e) {
       spec_->hfields.emplace_back();
       ReadHField(c, &spec_->hfields.back());
     } else if (c.tag() == "skin") {
-      NotSupported(c, "<" + c.tag() + "> assets");
+      spec_->skins.emplace_back();
+      ReadSkin(c, &spec_->skins.back());
+    } else {
+      Unknown(c);
+    }
+  }
+}
+
+void Reader::Deformable(const XmlElement& e) {
+  e.CheckAttributes({});
+  for (pugi::xml_node n : e.node().children()) {
+    if (n.type() != pugi::node_element) continue;
+    XmlElement c = Element(n);
+    if (c.tag() == "skin") {
+      spec_->skins.emplace_back();
+      ReadSkin(c, &spec_->skins.back());
+    } else if (c.tag() == "flex") {
+      NotSupported(c);
     } else {
       Unknown(c);
     }

@@ -412,6 +412,32 @@ struct HFieldSpec {
   std::vector<float> elevation;               // nrow * ncol, or empty (all zero)
 };
 
+// One bone of a skin (MuJoCo's <bone>): a body, the pose it was bound in, and the skin
+// vertices it moves with their weights.
+struct SkinBoneSpec {
+  Source src;
+  std::string body;
+  std::array<float, 3> bindpos = {0, 0, 0};
+  std::array<float, 4> bindquat = {0, 0, 0, 0};
+  std::vector<int> vertid;
+  std::vector<float> vertweight;
+};
+
+// A skin (MuJoCo's mjsSkin, in <asset> or <deformable>): a triangle mesh drawn over
+// bodies, each vertex carried by its bones. Inline data or a .skn file, not both.
+struct SkinSpec {
+  Source src;
+  std::string file;  // as written
+  std::string path;  // resolved against the model folder and meshdir
+  std::string material;
+  std::array<float, 4> rgba = {0.5f, 0.5f, 0.5f, 1};
+  float inflate = 0;
+  int group = 0;
+  std::vector<float> vertex, texcoord;
+  std::vector<int> face;
+  std::vector<SkinBoneSpec> bones;
+};
+
 // A texture asset (MuJoCo's mjsTexture): a builtin pattern or image files.
 enum TextureType : int { kTexture2D = 0, kTextureCube = 1, kTextureSkybox = 2 };
 enum TextureBuiltin : int { kBuiltinNone = 0, kBuiltinGradient, kBuiltinChecker, kBuiltinFlat };
@@ -529,6 +555,7 @@ struct ModelSpec {
   std::vector<ExcludeSpec> excludes;
   std::vector<MeshSpec> meshes;
   std::vector<HFieldSpec> hfields;
+  std::vector<SkinSpec> skins;
   std::vector<TextureSpec> textures;
   std::vector<MaterialSpec> materials;
   std::vector<KeySpec> keys;
