@@ -306,7 +306,10 @@ class Lab {
       'mat_texrepeat', 'mat_texuniform', 'tex_type', 'tex_width', 'tex_height', 'tex_nchannel',
       'tex_adr', 'tex_data', 'light_type', 'light_active', 'light_castshadow', 'light_ambient',
       'light_diffuse', 'light_cutoff', 'light_exponent', 'mesh_texcoordadr', 'mesh_texcoord',
-      'mesh_facetexcoord'];
+      'mesh_facetexcoord', 'skin_vertadr', 'skin_vertnum', 'skin_faceadr', 'skin_facenum',
+      'skin_boneadr', 'skin_bonenum', 'skin_vert', 'skin_face', 'skin_bonebindpos', 'skin_bonebindquat',
+      'skin_bonebodyid', 'skin_bonevertadr', 'skin_bonevertnum', 'skin_bonevertid',
+      'skin_bonevertweight', 'skin_rgba', 'skin_inflate', 'skin_group', 'skin_matid'];
     const model = {};
     for (const name of names) model[name] = this.array('model', name) ?? new Float64Array(0);
     return model;
@@ -829,6 +832,10 @@ class Lab {
     state.cam_xpos = this.dataViews.get('cam_xpos');
     state.cam_xmat = this.dataViews.get('cam_xmat');
     state.subtree_com = this.dataViews.get('subtree_com');
+    if (this.sceneModel.skin_vertnum.length) {
+      state.xpos = this.dataViews.get('xpos');
+      state.xquat = this.dataViews.get('xquat');
+    }
     return state;
   }
 

@@ -323,6 +323,33 @@ async function testModel(file, interactive) {
   }
 }
 
+// A model with skins (tests/compiler_models/skins.xml: a sleeve over a swinging arm and
+// hand, a .skn tetrahedron, a triangle on the world): each skin is drawn, its vertices
+// follow the bones (the sleeve moves as the arm swings) and stay finite; a screenshot.
+async function testSkins() {
+  const model = path.join(repoRoot, 'tests/compiler_models/skins.xml');
+  const { session, page, problems } = await openViewer(model);
+  try {
+    const sample = () => page.evaluate(() => window.lab.scene.skins.meshes.map(({ mesh }) =>
+      Array.from(mesh.geometry.attributes.position.array)));
+    await page.waitForTimeout(300);
+    const before = await sample();
+    await page.waitForTimeout(1200);
+    const after = await sample();
+    await page.screenshot({ path: path.join(options.shots, 'view_skins.png') });
+    check(before.length === 3, `skins: ${before.length} skins drawn`);
+    check(after.flat().every(Number.isFinite) && after.flat().some((v) => v !== 0),
+          'skins: their vertices are finite and placed');
+    const moved = Math.max(...before[0].map((v, k) => Math.abs(v - after[0][k])));
+    const still = Math.max(...before[2].map((v, k) => Math.abs(v - after[2][k])));
+    check(moved > 1e-3 && still === 0,
+          `skins: the sleeve follows the swinging arm (moved ${moved.toFixed(3)}), the world's triangle stays (${still})`);
+    check(problems.length === 0, `skins: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
+  } finally {
+    await session.close();
+  }
+}
+
 async function main() {
   await openBuilds(options);
   fs.mkdirSync(options.shots, { recursive: true });
@@ -330,6 +357,7 @@ async function main() {
   for (const file of ['mug/mug.xml', 'cards/cards.xml', 'cube/cube_3x3x3.xml', 'car/car.xml']) {
     await testModel(file, false);
   }
+  await testSkins();
   console.log(`screenshots in ${options.shots}`);
   console.log('PASS');
 }
