@@ -97,16 +97,22 @@ function main() {
   const work = fs.mkdtempSync(path.join(os.tmpdir(), 'simlab-sweep-'));
   const rows = ['| model | verdict | detail |', '|---|---|---|'];
   const counts = {};
+  let deformable = 0;  // models simlab refuses for their flexes (issue 20 covers them)
   for (const model of models) {
     const { verdict, detail } = sweepOne(model, opts, work);
     counts[verdict] = (counts[verdict] ?? 0) + 1;
+    if (verdict === 'simlab does not load' && /<flex|<flexcomp|<deformable/.test(detail)) deformable++;
     const row = `| ${path.relative(opts.mujoco, model)} | ${verdict} | ${detail.replaceAll('|', '/')} |`;
     rows.push(row);
     console.error(row);
   }
   fs.rmSync(work, { recursive: true, force: true });
   const summary = Object.entries(counts).map(([verdict, n]) => `${verdict}: ${n}`).join(', ');
-  const text = `${rows.join('\n')}\n\n${models.length} models: ${summary}\n`;
+  // The acceptance's share: of the models MuJoCo loads, flexes aside, those that agree.
+  const loaded = models.length - (counts['MuJoCo does not load'] ?? 0) - deformable;
+  const share = loaded ? (100 * (counts.agrees ?? 0) / loaded).toFixed(1) : '-';
+  const text = `${rows.join('\n')}\n\n${models.length} models: ${summary}\n` +
+    `flexes aside (${deformable} refused for them): ${counts.agrees ?? 0} of ${loaded} agree (${share}%)\n`;
   if (opts.out) fs.writeFileSync(opts.out, text);
   process.stdout.write(text);
 }

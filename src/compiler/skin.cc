@@ -2,10 +2,11 @@
 // or from a .skn file; the compiler checks their sizes, finds each bone's body and the
 // material, normalizes each vertex's weights over its bones and each bind quaternion, and
 // lays the skins out in the skin_* arrays. Skins do not take part in the physics.
-#include <cmath>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "compiler/compiler.h"
 #include "compiler/orientation.h"
