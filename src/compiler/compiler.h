@@ -163,6 +163,8 @@ void LayoutMeshes(const CompileState& state, Model* m);
 // The hull's flat sides as polygons, from the vertices as read (mesh_polygon.cc); their
 // normals, from the vertices in the mesh's final frame.
 void MakeMeshPolygons(MeshState* mesh);
+// The triangles of a mesh's hull (the graph's face block; the graph must exist).
+const int* HullFaces(const MeshState& mesh);
 void MeshPolygonNormals(MeshState* mesh);
 // Skins (skin.cc): after the tree is flattened (bones name bodies).
 void CompileSkins(const mjcf::ModelSpec& spec, CompileState* state);

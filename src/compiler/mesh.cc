@@ -125,10 +125,6 @@ void MakeHull(MeshState* mesh) {
   }
 }
 
-// Triangles of the hull (the graph's face_globalid block).
-const int* HullFaces(const MeshState& mesh) {
-  return mesh.graph.data() + 2 + 3 * (mesh.graph[0] + mesh.graph[1]);
-}
 
 // ---------------------------------------------------------------- normals
 
@@ -457,6 +453,11 @@ std::vector<int> GeomMeshIds(const std::vector<std::string>& names, const Compil
 }
 
 }  // namespace
+
+// Triangles of the hull (the graph's face_globalid block).
+const int* HullFaces(const MeshState& mesh) {
+  return mesh.graph.data() + 2 + 3 * (mesh.graph[0] + mesh.graph[1]);
+}
 
 void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state) {
   // Names: unique; a mesh without one is named after its file.

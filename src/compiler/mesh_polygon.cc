@@ -1,7 +1,7 @@
-// The flat sides of a mesh's convex hull (or of the mesh itself, without a hull) as polygons (MuJoCo 3.5.1's mjCMesh::MakePolygons):
-// the hull's triangles are grouped by their normal's direction (two normals closer than
-// cos = 0.99999872 are one direction), and the triangles of a group are merged into
-// polygons by cancelling their shared edges. The groups are ordered as MuJoCo's std::set
+// The flat sides of a mesh's convex hull (or of the mesh itself, without a hull) as
+// polygons (MuJoCo 3.5.1's mjCMesh::MakePolygons): the triangles are grouped by their
+// normal's direction (two normals closer than cos = 0.99999872 are one direction), and
+// the triangles of a group are merged into polygons by cancelling their shared edges. The groups are ordered as MuJoCo's std::set
 // of them: by normal, x then y then z, largest first. The multi-contact collider
 // (multiccd) clips these polygons against each other, and the first of two equally good
 // edges wins there, so the order matters. Each polygon's normal is then taken exactly
@@ -19,19 +19,14 @@ namespace simlab::compiler {
 
 namespace {
 
-// (b - a) x (c - a) into n; returns its length.
-double TriangleCross(const double* a, const double* b, const double* c, double n[3]) {
+// Triangle (a, b, c)'s unit normal (b - a) x (c - a) as MuJoCo's mjuu_makenormal computes
+// it (a degenerate triangle gets x over its tiny length).
+void TriangleNormal(const double* a, const double* b, const double* c, double n[3]) {
   double ab[3], ac[3];
   math::Sub3(ab, b, a);
   math::Sub3(ac, c, a);
   math::Cross3(n, ab, ac);
-  return std::sqrt(math::Dot3(n, n));
-}
-
-// Triangle (a, b, c)'s unit normal as MuJoCo's mjuu_makenormal computes it (a degenerate
-// triangle gets x over its tiny length).
-void TriangleNormal(const double* a, const double* b, const double* c, double n[3]) {
-  double norm = TriangleCross(a, b, c, n);
+  double norm = std::sqrt(math::Dot3(n, n));
   if (norm < kEps) {
     n[0] = 1;
     n[1] = n[2] = 0;
@@ -140,37 +135,42 @@ class SideOutline {
   int npiece_ = 1;
 };
 
+// One group: its direction (its first triangle's normal) and outline.
+struct Side {
+  double normal[3];
+  mutable SideOutline outline;  // (not part of the order)
+};
+
+// The groups' order, as MuJoCo's set of them; a group is also found by a normal alone.
+struct ByDirection {
+  using is_transparent = void;
+  static const double* Of(const Side& s) { return s.normal; }
+  static const double* Of(const double* n) { return n; }
+  template <class A, class B>
+  bool operator()(const A& a, const B& b) const { return DirectionPrecedes(Of(a), Of(b)); }
+};
+
 }  // namespace
 
 void MakeMeshPolygons(MeshState* mesh) {
   mesh->polygons.clear();
 
   // The hull's triangles, or the mesh's own when it has no hull.
-  const int* faces = mesh->face.data();
-  int numface = static_cast<int>(mesh->face.size() / 3);
-  if (!mesh->graph.empty()) {
-    const int numvert = mesh->graph[0];
-    numface = mesh->graph[1];
-    faces = mesh->graph.data() + 2 + 3 * (numvert + numface);
-  }
+  const bool hull = !mesh->graph.empty();
+  const int* faces = hull ? HullFaces(*mesh) : mesh->face.data();
+  const int numface = hull ? mesh->graph[1] : static_cast<int>(mesh->face.size() / 3);
 
-  // Each triangle joins the group of its direction, or starts a new one (a set ordered by
-  // direction, as MuJoCo's; the outline is not part of the order).
-  struct Side {
-    double normal[3];
-    mutable SideOutline outline;
-  };
-  auto precedes = [](const Side& a, const Side& b) { return DirectionPrecedes(a.normal, b.normal); };
-  std::set<Side, decltype(precedes)> sides(precedes);
+  // Each triangle joins the group of its direction, or starts a new one.
+  std::set<Side, ByDirection> sides;
   for (int f = 0; f < numface; f++) {
     const int* v = faces + 3 * f;
-    Side side{{0, 0, 0}, SideOutline(v[0], v[1], v[2])};
-    TriangleNormal(&mesh->vert[3 * v[0]], &mesh->vert[3 * v[1]], &mesh->vert[3 * v[2]], side.normal);
-    auto found = sides.find(side);
+    double n[3];
+    TriangleNormal(&mesh->vert[3 * v[0]], &mesh->vert[3 * v[1]], &mesh->vert[3 * v[2]], n);
+    auto found = sides.find(static_cast<const double*>(n));
     if (found != sides.end()) {
       found->outline.Add(v[0], v[1], v[2]);
     } else {
-      sides.insert(std::move(side));
+      sides.insert(Side{{n[0], n[1], n[2]}, SideOutline(v[0], v[1], v[2])});
     }
   }
   for (const Side& side : sides) {

@@ -349,11 +349,12 @@ struct Primal {
   // Newton: the rows of J by their nonzeros (`rows`: p's own compressed rows, or the
   // nonzeros of its dense ones); the Cholesky factor of M + J^T D_active J, the same plus
   // the cone-zone contacts' Hessians, and room for update vectors (one per row of a
-  // contact). The factors are dense (nv x nv) or, with `sparse_factor`, in the layout of
+  // contact). The factors are dense (nv x nv) or, on sparse rows, in the layout of
   // `chol` (its nnz entries each) with two nv arrays of scratch: `dense` for the
-  // factorization (zero between uses) and `scattered` for the rank-one updates.
+  // factorization (zero between uses) and `scattered` for the rank-one updates. (Sparse
+  // rows get the sparse factor on every problem, as MuJoCo factors each island of a sparse
+  // model, so that both round alike.)
   SparseRows rows;
-  bool sparse_factor = false;
   CholeskyPattern chol;
   double *hessian = nullptr, *hessian_cone = nullptr, *updates = nullptr;
   double *dense = nullptr, *scattered = nullptr;
@@ -381,11 +382,8 @@ struct Primal {
     if (!p.sparse()) rows = CompressDenseRows(p, frame);
     // (the factors are filled by FactorHessian and AddConeHessians, the update vectors by
     // their users: not cleared here)
-    // (sparse rows: the sparse factor on every problem, as MuJoCo factors each island of
-    // a sparse model, so that both round alike)
     size_t entries = static_cast<size_t>(nv) * nv;
-    sparse_factor = p.sparse();
-    if (sparse_factor) {
+    if (sparse_factor()) {
       chol = SymbolicHessian(HessianUpperPattern(p, rows, jt, frame), frame);
       entries = chol.nnz;
       dense = frame.Reals(nv);
@@ -395,6 +393,8 @@ struct Primal {
     if (elliptic) hessian_cone = frame.RealsToWrite(entries);
     updates = frame.RealsToWrite(6 * static_cast<size_t>(nv));
   }
+
+  bool sparse_factor() const { return p.sparse(); }
 
   // The factor Newton steps with: with the cones' curvature when any contact is in the cone.
   const double* NewtonFactor() const { return ncone ? hessian_cone : hessian; }
@@ -422,7 +422,7 @@ void UpdateConstraint(Primal& s) {
 void UpdateGradient(Primal& s) {
   ConstraintProblem& p = s.p;
   for (int v = 0; v < p.nv; v++) s.grad[v] = s.ma[v] - p.qfrc_smooth[v] - p.qfrc_constraint[v];
-  if (s.newton && s.sparse_factor) {
+  if (s.newton && s.sparse_factor()) {
     SolveCholesky(s.chol, s.NewtonFactor(), s.grad, s.mgrad);
   } else if (s.newton) {
     CholSolve(s.NewtonFactor(), p.nv, s.grad, s.mgrad);
@@ -440,7 +440,7 @@ int ConeUpdateVectors(const Primal& s, int i, double* ltj) {
   const ConstraintProblem& p = s.p;
   const Contact& con = p.contact[p.id[i]];
   int dim = con.dim;
-  int width = s.sparse_factor ? s.rows.rownnz[i] : p.nv;
+  int width = s.sparse_factor() ? s.rows.rownnz[i] : p.nv;
   double local[36];
   std::copy(con.H, con.H + dim * dim, local);
   CholFactor(local, dim, kMinVal);
@@ -453,7 +453,7 @@ int ConeUpdateVectors(const Primal& s, int i, double* ltj) {
     for (int c = 0; c <= r; c++) {
       double* column = ltj + c * width;
       double scale = local[r * dim + c];
-      for (int k = 0; k < nnz; k++) column[s.sparse_factor ? k : cols[k]] += scale * vals[k];
+      for (int k = 0; k < nnz; k++) column[s.sparse_factor() ? k : cols[k]] += scale * vals[k];
     }
   }
   return width;
@@ -463,7 +463,7 @@ int ConeUpdateVectors(const Primal& s, int i, double* ltj) {
 // (C its Cholesky factor), i.e. by the dim vectors of (J_contact^T C).
 void AddConeHessians(Primal& s) {
   ConstraintProblem& p = s.p;
-  size_t entries = s.sparse_factor ? s.chol.nnz : static_cast<size_t>(p.nv) * p.nv;
+  size_t entries = s.sparse_factor() ? s.chol.nnz : static_cast<size_t>(p.nv) * p.nv;
   std::copy(s.hessian, s.hessian + entries, s.hessian_cone);
   double* ltj = s.updates;
   for (int i = 0; i < p.nefc; i++) {
@@ -471,7 +471,7 @@ void AddConeHessians(Primal& s) {
     int dim = p.contact[p.id[i]].dim;
     int width = ConeUpdateVectors(s, i, ltj);
     for (int r = 0; r < dim; r++) {
-      if (s.sparse_factor) {
+      if (s.sparse_factor()) {
         UpdateCholesky(s.chol, s.hessian_cone, &ltj[r * width], s.rows.colind + s.rows.rowadr[i],
                        width, true, s.scattered);
       } else {
@@ -530,7 +530,7 @@ void AssembleDenseHessian(Primal& s) {
 // H = M + J^T D J over the rows in the quadratic state, factored; then the cone factor
 // when contacts are in the cone.
 void FactorHessian(Primal& s) {
-  if (s.sparse_factor) {
+  if (s.sparse_factor()) {
     FactorCholesky(s.chol, s.hessian, kMinVal, s.dense,
                    [&s](int r, double* dense) { AddHessianRow(s, r, dense); });
   } else {
@@ -552,7 +552,7 @@ void UpdateHessian(Primal& s) {
     int adr = s.rows.rowadr[r], nnz = s.rows.rownnz[r];
     const int* cols = s.rows.colind + adr;
     int rank;
-    if (s.sparse_factor) {
+    if (s.sparse_factor()) {
       for (int k = 0; k < nnz; k++) x[k] = s.rows.values[adr + k] * sqrt_d;
       rank = UpdateCholesky(s.chol, s.hessian, x, cols, nnz, is, s.scattered);
     } else {

@@ -313,8 +313,7 @@ void Reader::Asset(const XmlElement& e) {
       spec_->hfields.emplace_back();
       ReadHField(c, &spec_->hfields.back());
     } else if (c.tag() == "skin") {
-      spec_->skins.emplace_back();
-      ReadSkin(c, &spec_->skins.back());
+      ReadSkin(c, &spec_->skins.emplace_back());
     } else {
       Unknown(c);
     }
@@ -327,8 +326,7 @@ void Reader::Deformable(const XmlElement& e) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     if (c.tag() == "skin") {
-      spec_->skins.emplace_back();
-      ReadSkin(c, &spec_->skins.back());
+      ReadSkin(c, &spec_->skins.emplace_back());
     } else if (c.tag() == "flex") {
       NotSupported(c);
     } else {

@@ -96,11 +96,9 @@ export class Skins {
       const e10 = pos[b] - pos[a], e11 = pos[b + 1] - pos[a + 1], e12 = pos[b + 2] - pos[a + 2];
       const e20 = pos[c] - pos[a], e21 = pos[c + 1] - pos[a + 1], e22 = pos[c + 2] - pos[a + 2];
       const n0 = e11 * e22 - e12 * e21, n1 = e12 * e20 - e10 * e22, n2 = e10 * e21 - e11 * e20;
-      for (const v of [a, b, c]) {
-        out[v] += n0;
-        out[v + 1] += n1;
-        out[v + 2] += n2;
-      }
+      out[a] += n0; out[a + 1] += n1; out[a + 2] += n2;
+      out[b] += n0; out[b + 1] += n1; out[b + 2] += n2;
+      out[c] += n0; out[c + 1] += n1; out[c + 2] += n2;
     }
     for (let v = 0; v < out.length; v += 3) {
       const len = Math.max(1e-15, Math.hypot(out[v], out[v + 1], out[v + 2]));
