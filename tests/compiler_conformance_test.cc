@@ -245,6 +245,14 @@ TEST(CompilerConformance, Visual) { CheckModel("visual", Local("visual.xml")); }
 
 // Trees, dof length scales and sleep policies (explicit, and the compiler's choices).
 TEST(CompilerConformance, SleepTrees) { CheckModel("sleep_trees", Local("sleep_trees.xml")); }
+// <compiler fusestatic>: static bodies fused into their parents, names that keep them,
+// MuJoCo 3.5.1's leftovers (cameras and lights keep their local pose, stale tree nodes).
+// Goldens from native MuJoCo (tools/dump_model.mjs --native): the WebAssembly oracle
+// crashes on these models.
+TEST(CompilerConformance, FuseStatic) {
+  CheckModel("fuse_static", Local("fuse_static.xml"));
+  CheckModel("fuse_static_refs", Local("fuse_static_refs.xml"));
+}
 TEST(CompilerConformance, FreeJointAlignment) { CheckModel("align_free", Local("align_free.xml")); }
 
 TEST(CompilerConformance, HFieldFiles) { CheckModel("hfield_files", Local("hfield_files.xml")); }

@@ -118,7 +118,6 @@ TEST(MjcfErrors, NotSupportedYet) {
               "<body><freejoint/><geom name=\"ball\" size=\".1\"/></body>\n</worldbody>\n</mujoco>",
               {"bad.xml:7:", "<geom name=\"ground\">", "nativeccd flag disabled are not supported yet",
                "'ball'"});
-  ExpectError("<mujoco>\n<compiler fusestatic=\"true\"/>\n</mujoco>", {"bad.xml:2:", "fusestatic", "not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body>\n<composite/>\n</body>\n</worldbody>\n</mujoco>",
               {"bad.xml:4:", "<composite> is not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"

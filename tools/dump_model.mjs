@@ -1,7 +1,7 @@
 // Dump selected compiled mjModel fields from MuJoCo itself (the oracle) as JSON, the
 // goldens of the compiler conformance test (tests/compiler_conformance_test.cc).
 //
-//   node tools/dump_model.mjs MODEL.xml [OUT.json]
+//   node tools/dump_model.mjs [--native BIN] MODEL.xml [OUT.json]
 //
 // Regenerate all compiler goldens (from the repository root):
 //   for f in tests/compiler_models/*.xml; do
@@ -11,6 +11,7 @@
 //
 // MuJoCo comes from the oracle's node_modules: $SIMLAB_ORACLE, else ../shared/oracle
 // beside the repository.
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 
 import { loadOracleModel } from './oracle_model.mjs';
@@ -87,9 +88,25 @@ const OPTIONS = ['timestep', 'impratio', 'tolerance', 'ls_tolerance', 'gravity',
   'jacobian', 'solver', 'iterations', 'ls_iterations', 'noslip_iterations', 'disableflags',
   'enableflags', 'disableactuator'];
 
-const [modelPath, outPath] = process.argv.slice(2);
-if (!modelPath) throw new Error('usage: node dump_model.mjs MODEL.xml [OUT.json]');
-const { mj, model } = await loadOracleModel(modelPath);
+// --native BIN: the fields from a native MuJoCo build instead (tools/native/dump_model.cc
+// compiled as BIN), for models the WebAssembly oracle cannot compile (fusestatic).
+const args = process.argv.slice(2);
+let nativeBin = null;
+const at = args.indexOf('--native');
+if (at >= 0) nativeBin = args.splice(at, 2)[1];
+const [modelPath, outPath] = args;
+if (!modelPath) throw new Error('usage: node dump_model.mjs [--native BIN] MODEL.xml [OUT.json]');
+const { mj, model } = nativeBin ? nativeModel(nativeBin, modelPath) : await loadOracleModel(modelPath);
+
+// The native dump shaped as the oracle's model: sizes and arrays by name, opt, stat.
+function nativeModel(bin, path) {
+  const text = execFileSync(bin, [path], { maxBuffer: 1 << 30 }).toString();
+  const dump = JSON.parse(text);
+  const opt = {};
+  for (const [k, v] of Object.entries(dump.opt)) opt[k] = v.length === 1 ? v[0] : v;
+  const fields = { ...dump.sizes, ...dump.arrays, opt, stat: dump.stat };
+  return { mj: { mj_versionString: () => dump.engine.replace(/^mujoco /, '') }, model: fields };
+}
 
 // Sizes, arrays (typed arrays become plain lists), options.
 const out = { engine: `mujoco ${mj.mj_versionString()}`, sizes: {}, arrays: {}, opt: {} };

@@ -31,6 +31,9 @@ void Visit(const mjcf::BodySpec& spec, int parent, CompileState* state) {
   body.joint_begin = static_cast<int>(state->joints.size());
   body.geom_begin = static_cast<int>(state->geoms.size());
   body.site_begin = static_cast<int>(state->sites.size());
+  body.joint_num = static_cast<int>(spec.joints.size());
+  body.geom_num = static_cast<int>(spec.geoms.size());
+  body.site_num = static_cast<int>(spec.sites.size());
   state->bodies.push_back(body);
   int id = body.id;
   for (const mjcf::JointSpec& j : spec.joints) {
@@ -150,7 +153,7 @@ void FlattenTree(const mjcf::ModelSpec& spec, CompileState* state) {
 
   // weldid: the body itself if it has joints, else its parent's.
   for (BodyState& b : state->bodies) {
-    b.weldid = (b.id == 0 || !b.spec->joints.empty()) ? b.id : state->bodies[b.parent].weldid;
+    b.weldid = (b.id == 0 || b.joint_num > 0) ? b.id : state->bodies[b.parent].weldid;
   }
 }
 
@@ -401,7 +404,7 @@ bool HasMassInertia(const CompileState& state, const std::vector<std::vector<int
     return true;
   }
   for (int child : children[id]) {
-    if (!state.bodies[child].spec->joints.empty()) continue;
+    if (state.bodies[child].joint_num > 0) continue;
     if (HasMassInertia(state, children, child)) return true;
   }
   return false;
@@ -414,7 +417,7 @@ void CheckMovingBodies(const CompileState& state) {
     if (b.parent >= 0) children[b.parent].push_back(b.id);
   }
   for (const BodyState& b : state.bodies) {
-    if (b.id == 0 || b.spec->joints.empty()) continue;
+    if (b.id == 0 || b.joint_num == 0) continue;
     if (!HasMassInertia(state, children, b.id)) {
       ThrowAt(b.spec->src, "mass and inertia of a moving body must be positive (mass=" +
                                std::to_string(b.mass) + ")");
@@ -634,8 +637,8 @@ void LayoutTree(const CompileState& state, Model* m) {
     m->body_mocapid[i] = b.spec->mocap ? mocap++ : -1;
 
     // Joints and dofs.
-    m->body_jntadr[i] = b.spec->joints.empty() ? -1 : jid;
-    m->body_jntnum[i] = static_cast<int>(b.spec->joints.size());
+    m->body_jntadr[i] = b.joint_num == 0 ? -1 : jid;
+    m->body_jntnum[i] = b.joint_num;
     m->body_dofadr[i] = b.dofnum ? dadr : -1;
     for (; jid < m->njnt && state.joints[jid].body == i; jid++) {
       const JointState& j = state.joints[jid];
@@ -646,8 +649,8 @@ void LayoutTree(const CompileState& state, Model* m) {
     }
 
     // Geoms and sites.
-    m->body_geomadr[i] = b.spec->geoms.empty() ? -1 : gid;
-    m->body_geomnum[i] = static_cast<int>(b.spec->geoms.size());
+    m->body_geomadr[i] = b.geom_num == 0 ? -1 : gid;
+    m->body_geomnum[i] = b.geom_num;
     for (; gid < m->ngeom && state.geoms[gid].body == i; gid++) LayoutGeom(state.geoms[gid], gid, b, m);
     for (; sid < m->nsite && state.sites[sid].body == i; sid++) LayoutSite(state.sites[sid], sid, b, m);
   }
@@ -672,7 +675,7 @@ void TreeSizes(const CompileState& state, Model* m) {
   std::vector<int> parent, lastdof(state.bodies.size(), -1);
   for (const BodyState& b : state.bodies) {
     lastdof[b.id] = b.parent >= 0 ? lastdof[b.parent] : -1;
-    for (size_t n = 0; n < b.spec->joints.size(); n++) {
+    for (int n = 0; n < b.joint_num; n++) {
       const JointState& j = state.joints[b.joint_begin + n];
       for (int k = 0; k < JointNv(j.spec->type); k++) {
         parent.push_back(lastdof[b.id]);
@@ -692,7 +695,7 @@ void TreeSizes(const CompileState& state, Model* m) {
   size_t nbody = state.bodies.size();
   std::vector<int> dofnum(nbody, 0), above(nbody, 0), subtree(nbody, 0);
   for (const BodyState& b : state.bodies) {
-    for (size_t n = 0; n < b.spec->joints.size(); n++) dofnum[b.id] += JointNv(state.joints[b.joint_begin + n].spec->type);
+    for (int n = 0; n < b.joint_num; n++) dofnum[b.id] += JointNv(state.joints[b.joint_begin + n].spec->type);
     if (b.parent >= 0) above[b.id] = above[b.parent] + dofnum[b.parent];
   }
   for (size_t i = nbody; i-- > 0;) {

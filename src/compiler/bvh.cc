@@ -32,15 +32,15 @@ struct Element {
   double aamm[6] = {0, 0, 0, 0, 0, 0};
 };
 
-// The geom's box, turned into the inertial frame of body b.
-Element MakeElement(const Model& m, int b, int g) {
+// The geom's box (aabb, in its frame at pos, quat in the body frame), turned into the
+// body's inertial frame (ipos, iquat).
+Element MakeElement(const BvhGeom& g, const double* ipos, const double* iquat) {
   Element e;
-  e.geom = g;
-  const double* aabb = &m.geom_aabb[6 * g];
-  const double* ipos = &m.body_ipos[3 * b];
+  e.geom = g.id;
+  const double* aabb = g.aabb;
   double inverse[4], offset[3];
-  math::NegQuat(inverse, &m.body_iquat[4 * b]);
-  math::Sub3(offset, &m.geom_pos[3 * g], ipos);
+  math::NegQuat(inverse, iquat);
+  math::Sub3(offset, g.pos, ipos);
   math::RotVecQuat(e.centre, offset, inverse);
   for (int k = 0; k < 3; k++) {
     e.aamm[k] = kMaxVal;
@@ -53,7 +53,7 @@ Element MakeElement(const Model& m, int b, int g) {
       double sign = (v >> k) & 1 ? 1 : -1;
       corner[k] = aabb[k] + sign * aabb[3 + k];
     }
-    math::RotVecQuat(body, corner, &m.geom_quat[4 * g]);
+    math::RotVecQuat(body, corner, g.quat);
     math::Add3(body, body, offset);
     math::RotVecQuat(inertial, body, inverse);
     for (int k = 0; k < 3; k++) {
@@ -141,7 +141,18 @@ class TreeBuilder {
 
 }  // namespace
 
-void CompileBodyBvh(Model* m) {
+std::vector<int> BvhNodeGeoms(const std::vector<BvhGeom>& geoms, const double* ipos,
+                              const double* iquat) {
+  std::vector<int> child, nodeid, depth;
+  std::vector<double> aabb;
+  TreeBuilder builder(child, nodeid, depth, aabb);
+  std::vector<Element> elements;
+  for (const BvhGeom& g : geoms) elements.push_back(MakeElement(g, ipos, iquat));
+  if (!elements.empty()) builder.Build(elements.begin(), elements.end(), 0);
+  return nodeid;
+}
+
+void CompileBodyBvh(Model* m, const CompileState& state) {
   std::vector<int> child, nodeid, depth;
   std::vector<double> aabb;
   TreeBuilder builder(child, nodeid, depth, aabb);
@@ -151,17 +162,31 @@ void CompileBodyBvh(Model* m) {
     std::vector<Element> elements;
     for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; g++) {
       m->body_margin[b] = std::max(m->body_margin[b], m->geom_margin[g]);
-      if (m->geom_contype[g] || m->geom_conaffinity[g]) elements.push_back(MakeElement(*m, b, g));
+      if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
+      BvhGeom geom{g, &m->geom_aabb[6 * g], &m->geom_pos[3 * g], &m->geom_quat[4 * g]};
+      elements.push_back(MakeElement(geom, &m->body_ipos[3 * b], &m->body_iquat[4 * b]));
     }
     int base = static_cast<int>(nodeid.size());
     m->body_bvhadr[b] = elements.empty() ? -1 : base;
     if (!elements.empty()) builder.Build(elements.begin(), elements.end(), 0);
     m->body_bvhnum[b] = static_cast<int>(nodeid.size()) - base;
+    // Inner nodes keep what earlier trees of a body that took fused bodies left there.
+    const std::vector<int>& stale = state.bodies[b].stale_bvh_nodeid;
+    for (int k = 0; k < m->body_bvhnum[b] && k < static_cast<int>(stale.size()); k++) {
+      int& id = nodeid[static_cast<size_t>(base + k)];
+      if (child[2 * static_cast<size_t>(base + k)] >= 0 && id < 0) id = stale[static_cast<size_t>(k)];
+    }
     // Children are numbered within the body's tree.
     for (size_t k = 2 * static_cast<size_t>(base); k < child.size(); k++) {
       if (child[k] >= 0) child[k] -= base;
     }
   }
+  // Zero nodes past the trees (fusestatic's count, see CompileState::fused_bvh_padding).
+  const int padding = state.fused_bvh_padding;
+  child.resize(child.size() + 2 * static_cast<size_t>(padding), 0);
+  nodeid.resize(nodeid.size() + static_cast<size_t>(padding), 0);
+  depth.resize(depth.size() + static_cast<size_t>(padding), 0);
+  aabb.resize(aabb.size() + 6 * static_cast<size_t>(padding), 0);
   m->nbvh = static_cast<int>(nodeid.size());
   m->bvh_child = std::move(child);
   m->bvh_nodeid = std::move(nodeid);

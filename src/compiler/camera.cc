@@ -26,11 +26,15 @@ struct CameraRef {
   int body = 0;
 };
 
-// Cameras in body order (bodies are depth-first), each body's in XML order.
+// Cameras in body order (bodies are depth-first), each body's in XML order, then those
+// of the bodies fused into it (with the pose they had there, as MuJoCo keeps it).
 std::vector<CameraRef> CollectCameras(const CompileState& state) {
   std::vector<CameraRef> cams;
   for (const BodyState& b : state.bodies) {
     for (const mjcf::CameraSpec& c : b.spec->cameras) cams.push_back({&c, b.id});
+    for (const mjcf::BodySpec* f : b.fused) {
+      for (const mjcf::CameraSpec& c : f->cameras) cams.push_back({&c, b.id});
+    }
   }
   return cams;
 }
@@ -148,6 +152,7 @@ void CamLightConstants(Model* m) {
     int com_body = target >= 0 ? target : body;
     math::Sub3(&m->light_pos0[3 * i], &d.light_xpos[3 * i], &d.xpos[3 * body]);
     math::Sub3(&m->light_poscom0[3 * i], &d.light_xpos[3 * i], &d.subtree_com[3 * com_body]);
+    math::Normalize3(&d.light_xdir[3 * i]);  // (as MuJoCo's camlight leaves every light's)
     math::Copy3(&m->light_dir0[3 * i], &d.light_xdir[3 * i]);
   }
 }

@@ -132,9 +132,10 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   CheckBodyCount(spec, state);
   CompileMeshes(spec, &state);
   CompileHFields(spec, &state);
-  CompileSkins(spec, &state);
   std::vector<TextureImage> textures = CompileTextures(spec);
   CompileBodies(&state);
+  FuseStaticBodies(spec, &state);
+  CompileSkins(spec, &state);
   CheckMovingBodies(state);
   CheckHFieldCollisions(spec, state);
 
@@ -160,7 +161,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);
-  CompileBodyBvh(&m);
+  CompileBodyBvh(&m, state);
   CompileActuators(spec, state, &m);
   CompileTrees(state, &m);
   CompilePlugins(spec, state, &m);

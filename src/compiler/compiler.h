@@ -40,9 +40,18 @@ struct BodyState {
   double inertia[3] = {0, 0, 0};
   int weldid = 0;
   int dofnum = 0;
-  // Its joints, geoms and sites: spec->joints.size() (...) entries of the state's lists
-  // from these, which list each body's elements together.
+  // Its joints, geoms and sites: the `num` entries of the state's lists from `begin`,
+  // which list each body's elements together (fusestatic adds a fused body's).
   int joint_begin = 0, geom_begin = 0, site_begin = 0;
+  int joint_num = 0, geom_num = 0, site_num = 0;
+  // Bodies fused into this one (fusestatic), whose cameras and lights it carries after
+  // its own.
+  std::vector<const mjcf::BodySpec*> fused;
+  // For a body that took fused bodies, the geom ids MuJoCo 3.5.1 reports for the inner
+  // nodes of its tree: it rebuilds the tree after each fusion without clearing the
+  // nodes' geom pointers, so an inner node reads the geom an earlier tree had as a leaf
+  // at that place (-1: none).
+  std::vector<int> stale_bvh_nodeid;
   // A free body aligned with its inertial frame (joint align, compiler alignfree): the
   // transformation its geoms, sites, cameras and lights take (the inverse of the
   // inertial frame it moved onto).
@@ -134,6 +143,10 @@ struct CompileState {
   std::vector<MeshState> meshes;
   std::vector<HFieldState> hfields;
   std::vector<SkinState> skins;
+  // Bounding-volume nodes MuJoCo 3.5.1 counts past the bodies' trees after fusing static
+  // bodies (its count grows by one for each fusion of two bodies that both had colliding
+  // geoms): zero nodes at the end of bvh_*.
+  int fused_bvh_padding = 0;
 };
 
 // Where each compiled element was written, by id (for messages about a compiled model
@@ -179,6 +192,9 @@ void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& stat
 void HFieldSizes(const CompileState& state, Model* m);
 void LayoutHFields(const CompileState& state, Model* m);
 void CompileBodies(CompileState* state);
+// <compiler fusestatic>: static bodies merged into their parents (fuse.cc), after the
+// bodies compile and before anything is laid out.
+void FuseStaticBodies(const mjcf::ModelSpec& spec, CompileState* state);
 void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g);
 void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>& geoms,
                       BodyState* body);
@@ -218,7 +234,21 @@ void AutoSpringDamper(const CompileState& state, Model* m);
 // Explicit pairs, exclusions and body_contype/conaffinity (contact.cc).
 void CompileContacts(const mjcf::ModelSpec& spec, Model* m);
 // body_margin and the bodies' bounding volume hierarchies (nbvh, bvh_*) (bvh.cc).
-void CompileBodyBvh(Model* m);
+// (after fusestatic, with MuJoCo's leftovers: see BodyState::stale_bvh_nodeid and
+// CompileState::fused_bvh_padding)
+void CompileBodyBvh(Model* m, const CompileState& state);
+// A geom in a body's tree: its id, its box (centre, half sizes) in its frame, and that
+// frame's pose in the body frame.
+struct BvhGeom {
+  int id = -1;
+  const double* aabb = nullptr;
+  const double* pos = nullptr;
+  const double* quat = nullptr;
+};
+// The nodes of the tree CompileBodyBvh builds over these geoms in the frame (ipos,
+// iquat): each node's geom id if it is a leaf, else -1.
+std::vector<int> BvhNodeGeoms(const std::vector<BvhGeom>& geoms, const double* ipos,
+                              const double* iquat);
 // eq_data computed from the body poses at qpos0 (connect and weld between bodies).
 void EqualityConstants(Model* m);
 // What an actuator reads and writes (checked): its input signature and control entries

@@ -137,9 +137,10 @@ void GlobalInertia(double global[6], const double local[3], const double quat[4]
   double r[9];
   math::QuatToMat(r, quat);
   // R diag(local) R^T, upper triangle.
+  // (each product grouped as MuJoCo's compiler groups it)
   auto entry = [&](int i, int j) {
-    return r[3 * i] * local[0] * r[3 * j] + r[3 * i + 1] * local[1] * r[3 * j + 1] +
-           r[3 * i + 2] * local[2] * r[3 * j + 2];
+    return r[3 * i] * (r[3 * j] * local[0]) + r[3 * i + 1] * (r[3 * j + 1] * local[1]) +
+           r[3 * i + 2] * (r[3 * j + 2] * local[2]);
   };
   global[0] = entry(0, 0);
   global[1] = entry(1, 1);

@@ -267,11 +267,15 @@ struct LightRef {
   int body = 0;
 };
 
-// Lights in body order (bodies are depth-first), each body's in XML order.
+// Lights in body order (bodies are depth-first), each body's in XML order, then those of
+// the bodies fused into it (with the pose they had there, as MuJoCo keeps it).
 std::vector<LightRef> CollectLights(const CompileState& state) {
   std::vector<LightRef> lights;
   for (const BodyState& b : state.bodies) {
     for (const mjcf::LightSpec& l : b.spec->lights) lights.push_back({&l, b.id});
+    for (const mjcf::BodySpec* f : b.fused) {
+      for (const mjcf::LightSpec& l : f->lights) lights.push_back({&l, b.id});
+    }
   }
   return lights;
 }

@@ -69,7 +69,8 @@ void LightFixedPose(const Model& m, Data& d, int i) {
   const double* xmat = &d.xmat[9 * body];
   MulMatVec3(&d.light_xpos[3 * i], xmat, &m.light_pos[3 * i]);
   Add3(&d.light_xpos[3 * i], &d.light_xpos[3 * i], &d.xpos[3 * body]);
-  MulMatVec3(&d.light_xdir[3 * i], xmat, &m.light_dir[3 * i]);
+  // (the direction turned by the body's quaternion, as MuJoCo 3.5 turns it)
+  RotVecQuat(&d.light_xdir[3 * i], &m.light_dir[3 * i], &d.xquat[4 * body]);
 }
 
 namespace {

@@ -46,8 +46,7 @@ void Reader::Compiler(const XmlElement& e) {
   }
   e.Bool("discardvisual", &flag);
   e.Bool("usethread", &flag);
-  bool fusestatic = false;
-  if (e.Bool("fusestatic", &fusestatic) && fusestatic) NotSupported(e, "fusestatic=\"true\"");
+  e.Bool("fusestatic", &c.fusestatic);
   e.Tri("inertiafromgeom", &c.inertiafromgeom);
   e.Ints("inertiagrouprange", c.inertiagrouprange.data(), 2);
   e.Bool("saveinertial", &flag);

@@ -526,6 +526,7 @@ struct CompilerSpec {
   int inertiafromgeom = kAuto;
   std::array<int, 2> inertiagrouprange = {0, 5};
   bool alignfree = false;
+  bool fusestatic = false;  // static bodies merged into their parents (fuse.cc)
   // Mesh files: folders (meshdir over assetdir), and whether to drop a file's folders.
   std::string meshdir;
   std::string texturedir;
