@@ -224,6 +224,12 @@ TEST(CompilerConformance, ComposeAttach) {
 TEST(CompilerConformance, ComposeInclude) {
   CheckModel("compose_include", Local("compose_include.xml"));
 }
+// An attached model with other <compiler> settings (angles, Euler sequence, autolimits,
+// inertia from geoms, bounds, alignfree): its elements keep their own.
+TEST(CompilerConformance, ComposeSettings) {
+  CheckModel("compose_settings", Local("compose_settings.xml"));
+  CheckModel("compose_settings_nested", Local("compose_settings_nested.xml"));
+}
 TEST(CompilerConformance, ComposeNested) {
   CheckModel("compose_nested", Local("compose_nested.xml"));
 }

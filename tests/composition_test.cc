@@ -186,9 +186,6 @@ TEST(Attach, BadAttachmentsAreRefused) {
   files.Write("child.xml",
               "<mujoco>\n  <worldbody>\n    <body name=\"b\"><joint/><geom size=\"1\"/></body>\n"
               "  </worldbody>\n</mujoco>\n");
-  files.Write("radian.xml",
-              "<mujoco>\n  <compiler angle=\"radian\"/>\n  <worldbody>\n"
-              "    <body name=\"b\"><joint/><geom size=\"1\"/></body>\n  </worldbody>\n</mujoco>\n");
   struct Case {
     std::string xml, expect;
   };
@@ -202,9 +199,6 @@ TEST(Attach, BadAttachmentsAreRefused) {
        "<worldbody><attach model=\"c\" body=\"b\"/></worldbody>",
        "prefix"},
       {"<asset><model name=\"c\" file=\"missing.xml\"/></asset>", "cannot open model file"},
-      {"<asset><model name=\"c\" file=\"radian.xml\"/></asset>"
-       "<worldbody><attach model=\"c\" body=\"b\" prefix=\"p/\"/></worldbody>",
-       "<compiler> settings differ"},
   };
   for (const Case& c : cases) {
     ExpectError(files.Write("main.xml", "<mujoco>\n" + c.xml + "\n</mujoco>\n"),

@@ -80,10 +80,10 @@ void InheritRange(const mjcf::ActuatorSpec& a, const CompileState& s, const Mode
   (*range)[1] = mean + radius;
 }
 
-bool Limited(const mjcf::ModelSpec& spec, const mjcf::Source& src, int limited,
+bool Limited(const mjcf::CompilerSpec& c, const mjcf::Source& src, int limited,
              const std::array<double, 2>& range, const char* attr) {
   bool hasrange = !(range[0] == 0 && range[1] == 0);
-  if (limited == kAuto && !spec.compiler.autolimits && hasrange) {
+  if (limited == kAuto && !c.autolimits && hasrange) {
     ThrowAt(src, std::string("has ") + attr + "range but not " + attr +
                      "limited; set autolimits=\"true\" in <compiler> or set " + attr + "limited");
   }
@@ -95,12 +95,13 @@ bool Limited(const mjcf::ModelSpec& spec, const mjcf::Source& src, int limited,
 void Limits(const mjcf::ModelSpec& spec, const mjcf::ActuatorSpec& a,
             const std::array<double, 2>& ctrl, const std::array<double, 2>& act, int i, Model* m) {
   int u = m->actuator_ctrladr[i], o = m->actuator_outadr[i];
-  m->actuator_forcelimited[i] = Limited(spec, a.src, a.forcelimited, a.forcerange, "force");
-  bool ctrllimited = Limited(spec, a.src, a.ctrllimited, ctrl, "ctrl");
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(a.compiler, spec.compiler);  // (its own model's)
+  m->actuator_forcelimited[i] = Limited(c, a.src, a.forcelimited, a.forcerange, "force");
+  bool ctrllimited = Limited(c, a.src, a.ctrllimited, ctrl, "ctrl");
   // (an so3 integrator limited with no range is unlimited, as MuJoCo)
   bool so3 = a.gaintype == kGainSo3;
   int actlimited = so3 && a.actlimited == kTrue && act[0] == 0 && act[1] == 0 ? mjcf::kFalse : a.actlimited;
-  m->actuator_actlimited[i] = Limited(spec, a.src, actlimited, act, "act");
+  m->actuator_actlimited[i] = Limited(c, a.src, actlimited, act, "act");
   if (m->actuator_forcelimited[i] && a.forcerange[0] >= a.forcerange[1]) ThrowAt(a.src, "invalid forcerange");
   if (ctrllimited && ctrl[0] >= ctrl[1]) ThrowAt(a.src, "invalid ctrlrange");
   if (m->actuator_actlimited[i] && act[0] >= act[1]) ThrowAt(a.src, "invalid actrange");

@@ -173,9 +173,11 @@ bool ResolveLimited(const mjcf::CompilerSpec& c, const mjcf::Source& src, int li
   return limited == kTrue || (limited == kAuto && range[0] < range[1]);
 }
 
-// Limits, axis and anchor of one joint; returns its number of dofs.
-int CompileJoint(const mjcf::CompilerSpec& c, JointState* j) {
+// Limits, axis and anchor of one joint (under its own model's settings; `model`: this
+// model's); returns its number of dofs.
+int CompileJoint(const mjcf::CompilerSpec& model, JointState* j) {
   const mjcf::JointSpec& s = *j->spec;
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(s.compiler, model);
   int type = s.type;
   j->range[0] = s.range[0];
   j->range[1] = s.range[1];
@@ -201,7 +203,7 @@ int CompileJoint(const mjcf::CompilerSpec& c, JointState* j) {
 
   // Axis and anchor, through the enclosing frames.
   double fpos[3] = {0, 0, 0}, fquat[4] = {1, 0, 0, 0};
-  if (s.frame) FramePose(*s.frame, c.degree, c.eulerseq, fpos, fquat);
+  if (s.frame) FramePose(*s.frame, model, fpos, fquat);
   math::Copy3(j->axis, s.axis.data());
   math::Copy3(j->pos, s.pos.data());
   if (!scalar) {
@@ -229,8 +231,9 @@ int CompileJoint(const mjcf::CompilerSpec& c, JointState* j) {
 
 // ---------------------------------------------------------------- sites
 
-void CompileSite(const mjcf::CompilerSpec& c, SiteState* site) {
+void CompileSite(const mjcf::CompilerSpec& model, SiteState* site) {
   const mjcf::SiteSpec& s = *site->spec;
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(s.compiler, model);
   if (s.type == kGeomMesh || s.type == kGeomHfield || s.type == kGeomPlane || s.type == kGeomSdf) {
     ThrowAt(s.src, "meshes, hfields and planes are not allowed in sites");
   }
@@ -261,7 +264,7 @@ void CompileSite(const mjcf::CompilerSpec& c, SiteState* site) {
   // Enclosing frames, then normalize.
   if (s.frame) {
     double fpos[3], fquat[4];
-    FramePose(*s.frame, c.degree, c.eulerseq, fpos, fquat);
+    FramePose(*s.frame, model, fpos, fquat);
     AccumulateChild(fpos, fquat, site->pos, site->quat);
   }
   NormalizeVec(site->quat, 4);
@@ -331,9 +334,11 @@ void AlignedPose(const BodyState& b, double pos[3], double quat[4]) {
 namespace {
 
 void CompileBody(CompileState* state, int id) {
-  const mjcf::CompilerSpec& c = state->spec->compiler;
   BodyState& b = state->bodies[id];
   const mjcf::BodySpec& s = *b.spec;
+  // (an attached body and its elements keep their own model's settings)
+  const mjcf::CompilerSpec& model = state->spec->compiler;
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(s.compiler, model);
   BodyFrame(c, &b);
 
   // Geoms, then the inertial frame from geoms where MuJoCo infers it.
@@ -345,7 +350,7 @@ void CompileBody(CompileState* state, int id) {
     if (g.spec->type == kGeomPlane && b.weldid != 0) {
       ThrowAt(g.spec->src, "planes are only allowed in static bodies");
     }
-    CompileGeom(c, infer, &g);
+    CompileGeom(model, infer, &g);
     geoms.push_back(&g);
   }
   if (id > 0 && (c.inertiafromgeom == kTrue || (std::isnan(b.ipos[0]) && c.inertiafromgeom == kAuto))) {
@@ -360,7 +365,7 @@ void CompileBody(CompileState* state, int id) {
   // The enclosing frames move the body within its parent.
   if (s.frame) {
     double fpos[3], fquat[4];
-    FramePose(*s.frame, c.degree, c.eulerseq, fpos, fquat);
+    FramePose(*s.frame, model, fpos, fquat);
     AccumulateChild(fpos, fquat, b.pos, b.quat);
   }
   if (id > 0 && AlignsFree(c, s)) AlignToInertia(&b, geoms);
@@ -369,7 +374,7 @@ void CompileBody(CompileState* state, int id) {
   bool ball = false;
   for (size_t k = 0; k < s.joints.size(); k++) {
     JointState& j = state->joints[b.joint_begin + k];
-    b.dofnum += CompileJoint(c, &j);
+    b.dofnum += CompileJoint(model, &j);
     int type = j.spec->type;
     if (ball && (type == kJointBall || type == kJointHinge)) ThrowAt(j.spec->src, "a ball joint is followed by a rotation in the same body");
     ball = ball || type == kJointBall;
@@ -382,7 +387,7 @@ void CompileBody(CompileState* state, int id) {
   }
   for (size_t k = 0; k < s.sites.size(); k++) {
     SiteState& site = state->sites[b.site_begin + k];
-    CompileSite(c, &site);
+    CompileSite(model, &site);
     AlignedPose(b, site.pos, site.quat);
   }
 }

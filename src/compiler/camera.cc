@@ -40,8 +40,9 @@ std::vector<CameraRef> CollectCameras(const CompileState& state) {
 }
 
 // Position and orientation in the body frame.
-void CameraPose(const mjcf::CompilerSpec& c, const mjcf::CameraSpec& s, double* pos,
+void CameraPose(const mjcf::CompilerSpec& model, const mjcf::CameraSpec& s, double* pos,
                 double* quat) {
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(s.compiler, model);
   math::Copy3(pos, s.pos.data());
   math::CopyQuat(quat, s.quat.data());
   if (const char* err = ResolveOrientation(quat, c.degree, c.eulerseq, s.alt)) {
@@ -49,7 +50,7 @@ void CameraPose(const mjcf::CompilerSpec& c, const mjcf::CameraSpec& s, double* 
   }
   if (s.frame) {
     double fpos[3], fquat[4];
-    FramePose(*s.frame, c.degree, c.eulerseq, fpos, fquat);
+    FramePose(*s.frame, model, fpos, fquat);
     AccumulateChild(fpos, fquat, pos, quat);
   }
   NormalizeVec(quat, 4);

@@ -195,7 +195,8 @@ void CompileBodies(CompileState* state);
 // <compiler fusestatic>: static bodies merged into their parents (fuse.cc), after the
 // bodies compile and before anything is laid out.
 void FuseStaticBodies(const mjcf::ModelSpec& spec, CompileState* state);
-void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g);
+// (`model`: this model's settings; an attached geom keeps its own model's)
+void CompileGeom(const mjcf::CompilerSpec& model, bool infer_inertia, GeomState* g);
 void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>& geoms,
                       BodyState* body);
 void BoundMassInertia(const mjcf::CompilerSpec& c, BodyState* body);

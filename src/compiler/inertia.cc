@@ -189,8 +189,9 @@ void CheckSize(const mjcf::GeomSpec& s, const double* size) {
 
 // ---------------------------------------------------------------- geoms
 
-void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) {
+void CompileGeom(const mjcf::CompilerSpec& model, bool infer_inertia, GeomState* g) {
   const mjcf::GeomSpec& s = *g->spec;
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(s.compiler, model);
   if (s.type == kGeomSdf) ThrowAt(s.src, "sdf geoms are not supported yet");
   if (s.condim != 1 && s.condim != 3 && s.condim != 4 && s.condim != 6) {
     ThrowAt(s.src, "condim must be 1, 3, 4 or 6");
@@ -241,7 +242,7 @@ void CompileGeom(const mjcf::CompilerSpec& c, bool infer_inertia, GeomState* g) 
   // Enclosing frames.
   if (s.frame) {
     double fpos[3], fquat[4];
-    FramePose(*s.frame, c.degree, c.eulerseq, fpos, fquat);
+    FramePose(*s.frame, model, fpos, fquat);
     AccumulateChild(fpos, fquat, g->pos, g->quat);
   }
 }

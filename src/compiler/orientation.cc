@@ -113,19 +113,20 @@ void AccumulateChild(const double fpos[3], const double fquat[4], double pos[3],
   math::CopyQuat(quat, q);
 }
 
-void FramePose(const mjcf::FrameSpec& frame, bool degree, const std::string& eulerseq,
-               double pos[3], double quat[4]) {
-  // This frame's own pose.
+void FramePose(const mjcf::FrameSpec& frame, const mjcf::CompilerSpec& model, double pos[3],
+               double quat[4]) {
+  // This frame's own pose, under the settings of the model it was written in.
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(frame.compiler, model);
   math::Copy3(pos, frame.pos.data());
   math::CopyQuat(quat, frame.quat.data());
-  if (const char* err = ResolveOrientation(quat, degree, eulerseq, frame.alt)) {
+  if (const char* err = ResolveOrientation(quat, c.degree, c.eulerseq, frame.alt)) {
     mjcf::ThrowAt(frame.src, std::string("orientation error: ") + err);
   }
 
   // Composed with the enclosing frames.
   if (frame.parent) {
     double ppos[3], pquat[4];
-    FramePose(*frame.parent, degree, eulerseq, ppos, pquat);
+    FramePose(*frame.parent, model, ppos, pquat);
     AccumulateChild(ppos, pquat, pos, quat);
   }
   NormalizeVec(quat, 4);

@@ -19,10 +19,11 @@ double NormalizeVec(double* v, int n);
 const char* ResolveOrientation(double* quat, bool degree, const std::string& eulerseq,
                                const mjcf::Orientation& alt);
 
-// The composed pose of a frame chain (outermost frame first), normalized.
+// The composed pose of a frame chain (outermost frame first), normalized; each frame's
+// angles read under its own model's settings (`model`: this model's).
 // Throws on a bad orientation in any frame.
-void FramePose(const mjcf::FrameSpec& frame, bool degree, const std::string& eulerseq,
-               double pos[3], double quat[4]);
+void FramePose(const mjcf::FrameSpec& frame, const mjcf::CompilerSpec& model, double pos[3],
+               double quat[4]);
 
 // (pos, quat) <- (fpos, fquat) * (pos, quat)
 void AccumulateChild(const double fpos[3], const double fquat[4], double pos[3], double quat[4]);

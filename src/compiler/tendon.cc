@@ -25,7 +25,8 @@ bool Limited(const mjcf::CompilerSpec& c, const mjcf::Source& src, int limited,
 }
 
 // Checks and copies one tendon's scalar fields.
-void TendonFields(const mjcf::CompilerSpec& c, const mjcf::TendonSpec& t, int i, Model* m) {
+void TendonFields(const mjcf::CompilerSpec& model, const mjcf::TendonSpec& t, int i, Model* m) {
+  const mjcf::CompilerSpec& c = mjcf::SettingsOf(t.compiler, model);  // (its own model's)
   m->tendon_limited[i] = Limited(c, t.src, t.limited, t.range, "");
   if (m->tendon_limited[i] && t.range[0] >= t.range[1]) ThrowAt(t.src, "invalid tendon range");
   m->tendon_actfrclimited[i] = Limited(c, t.src, t.actfrclimited, t.actfrcrange, "actuatorfrc");

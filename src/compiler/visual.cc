@@ -281,12 +281,12 @@ std::vector<LightRef> CollectLights(const CompileState& state) {
 }
 
 // Position and unit direction in the body frame, through any enclosing frames.
-void LightPose(const mjcf::CompilerSpec& c, const mjcf::LightSpec& s, double* pos, double* dir) {
+void LightPose(const mjcf::CompilerSpec& model, const mjcf::LightSpec& s, double* pos, double* dir) {
   math::Copy3(pos, s.pos.data());
   math::Copy3(dir, s.dir.data());
   if (s.frame) {
     double fpos[3], fquat[4], unit[4] = {1, 0, 0, 0};
-    FramePose(*s.frame, c.degree, c.eulerseq, fpos, fquat);
+    FramePose(*s.frame, model, fpos, fquat);
     AccumulateChild(fpos, fquat, pos, unit);
     double turned[3];
     math::RotVecQuat(turned, dir, fquat);

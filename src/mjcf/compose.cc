@@ -245,6 +245,28 @@ struct Attachment {
   std::map<const JointSpec*, const JointSpec*> joints;
   std::map<const BodySpec*, const BodySpec*> bodies;
   std::vector<std::pair<const ActuatorSpec*, int>> actuators;  // index here, or -1
+  // The child's <compiler> settings, which its elements keep (those of a model the child
+  // itself attached keep theirs), and the child's frames copied under them.
+  CompilerPtr settings;
+  std::map<const FrameSpec*, FramePtr> frames;
+
+  void Keep(CompilerPtr* own) const {
+    if (!*own) *own = settings;
+  }
+  // A frame chain of the child, copied with the child's settings, ending at `base` (null:
+  // where the child's chain ends).
+  FramePtr Frame(const FramePtr& frame, const FramePtr& base = nullptr) {
+    if (!frame) return base;
+    if (!base) {
+      auto done = frames.find(frame.get());
+      if (done != frames.end()) return done->second;
+    }
+    auto copy = std::make_shared<FrameSpec>(*frame);
+    Keep(&copy->compiler);
+    copy->parent = Frame(frame->parent, base);
+    if (!base) frames[frame.get()] = copy;
+    return copy;
+  }
 
   // Prefixes a name (a reference when `kind` is kObjUnknown, else an element's own).
   void Rename(std::string* name, int kind = kObjUnknown) {
@@ -266,27 +288,45 @@ void RenameLight(LightSpec* light, Attachment* att) {
   att->Rename(&light->texture);
 }
 
-// Renames a copied subtree and maps the child's elements to their copies.
+// Renames a copied subtree, maps the child's elements to their copies, and gives them
+// the child's settings (the body's own frame is the caller's to set).
 void RenameTree(const BodySpec& original, BodySpec* copy, Attachment* att) {
   att->bodies[&original] = copy;
   att->Rename(&copy->src.name, kObjBody);
+  att->Keep(&copy->compiler);
   for (size_t i = 0; i < copy->joints.size(); i++) {
-    att->joints[&original.joints[i]] = &copy->joints[i];
-    att->Rename(&copy->joints[i].src.name, kObjJoint);
+    JointSpec& j = copy->joints[i];
+    att->joints[&original.joints[i]] = &j;
+    att->Rename(&j.src.name, kObjJoint);
+    att->Keep(&j.compiler);
+    j.frame = att->Frame(j.frame);
   }
   for (GeomSpec& g : copy->geoms) {
     att->Rename(&g.src.name, kObjGeom);
     att->Rename(&g.material);
+    att->Keep(&g.compiler);
+    g.frame = att->Frame(g.frame);
   }
   for (SiteSpec& s : copy->sites) {
     att->Rename(&s.src.name, kObjSite);
     att->Rename(&s.material);
+    att->Keep(&s.compiler);
+    s.frame = att->Frame(s.frame);
   }
   for (CameraSpec& c : copy->cameras) {
     att->Rename(&c.src.name, kObjCamera);
     att->Rename(&c.target);
+    att->Keep(&c.compiler);
+    c.frame = att->Frame(c.frame);
   }
-  for (LightSpec& l : copy->lights) RenameLight(&l, att);
+  for (LightSpec& l : copy->lights) {
+    RenameLight(&l, att);
+    att->Keep(&l.compiler);
+    l.frame = att->Frame(l.frame);
+  }
+  for (size_t i = 0; i < copy->bodies.size(); i++) {
+    copy->bodies[i]->frame = att->Frame(copy->bodies[i]->frame);
+  }
   for (size_t i = 0; i < copy->bodies.size(); i++) {
     RenameTree(*original.bodies[i], copy->bodies[i].get(), att);
   }
@@ -299,24 +339,6 @@ const BodySpec* FindBody(const BodySpec& body, const std::string& name) {
     if (const BodySpec* found = FindBody(*child, name)) return found;
   }
   return nullptr;
-}
-
-// A frame chain of the child's world, re-rooted on the attachment frame.
-FramePtr Rebase(const FramePtr& frame, const FramePtr& base) {
-  if (!frame) return base;
-  auto copy = std::make_shared<FrameSpec>(*frame);
-  copy->parent = Rebase(frame->parent, base);
-  return copy;
-}
-
-// The child's bodies are compiled with this model's <compiler> settings, so those
-// that change compiled values must agree.
-bool SameElementSettings(const CompilerSpec& a, const CompilerSpec& b) {
-  return a.autolimits == b.autolimits && a.boundmass == b.boundmass &&
-         a.boundinertia == b.boundinertia && a.balanceinertia == b.balanceinertia &&
-         a.degree == b.degree && a.eulerseq == b.eulerseq &&
-         a.inertiafromgeom == b.inertiafromgeom && a.inertiagrouprange == b.inertiagrouprange &&
-         a.alignfree == b.alignfree;
 }
 
 // A tendon follows when every joint, site and geom on its path came along.
@@ -438,9 +460,7 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
   std::shared_ptr<const ParsedModel> child = found->second;
   const ModelSpec& cs = child->spec;
   CheckAttachDepth(e, *child);
-  if (!SameElementSettings(spec_->compiler, cs.compiler)) {
-    NotSupported(e, "attaching a model whose <compiler> settings differ from this model's");
-  }
+  att.settings = std::make_shared<const CompilerSpec>(cs.compiler);
   if (!cs.active_plugins.empty() || !cs.plugin_instances.empty() || !cs.implicit_instances.empty()) {
     NotSupported(e, "attaching a model that uses plugins");
   }
@@ -466,23 +486,27 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
     att.names[kObjBody].insert("world");
     for (const auto& b : cs.world.bodies) originals.push_back(b.get());
     for (GeomSpec g : cs.world.geoms) {
-      g.frame = Rebase(g.frame, base);
+      g.frame = att.Frame(g.frame, base);
+      att.Keep(&g.compiler);
       att.Rename(&g.src.name, kObjGeom);
       body->geoms.push_back(std::move(g));
     }
     for (SiteSpec s : cs.world.sites) {
-      s.frame = Rebase(s.frame, base);
+      s.frame = att.Frame(s.frame, base);
+      att.Keep(&s.compiler);
       att.Rename(&s.src.name, kObjSite);
       body->sites.push_back(std::move(s));
     }
     for (CameraSpec c : cs.world.cameras) {
-      c.frame = Rebase(c.frame, base);
+      c.frame = att.Frame(c.frame, base);
+      att.Keep(&c.compiler);
       att.Rename(&c.src.name, kObjCamera);
       att.Rename(&c.target);
       body->cameras.push_back(std::move(c));
     }
     for (LightSpec l : cs.world.lights) {
-      l.frame = Rebase(l.frame, base);
+      l.frame = att.Frame(l.frame, base);
+      att.Keep(&l.compiler);
       RenameLight(&l, &att);
       body->lights.push_back(std::move(l));
     }
@@ -490,7 +514,7 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
   for (const BodySpec* original : originals) {
     auto copy = std::make_unique<BodySpec>(*original);
     RenameTree(*original, copy.get(), &att);
-    copy->frame = body_name.empty() ? Rebase(original->frame, base) : base;
+    copy->frame = body_name.empty() ? att.Frame(original->frame, base) : base;
     body->bodies.push_back(std::move(copy));
   }
 
@@ -518,6 +542,7 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
   }
   for (TendonSpec t : cs.tendons) {
     if (!AttachTendon(&t, &att)) continue;
+    att.Keep(&t.compiler);
     att.Rename(&t.src.name, kObjTendon);
     spec_->tendons.push_back(std::move(t));
   }
@@ -531,6 +556,7 @@ void Reader::Attach(const XmlElement& e, BodySpec* body, const FramePtr& frame) 
     bool keep = AttachActuator(&a, &att);
     att.actuators.emplace_back(&original, keep ? static_cast<int>(spec_->actuators.size()) : -1);
     if (!keep) continue;
+    att.Keep(&a.compiler);
     att.Rename(&a.src.name, kObjActuator);
     spec_->actuators.push_back(std::move(a));
   }

@@ -42,6 +42,12 @@ struct Orientation {
   std::array<double, 3> euler = {0, 0, 0};
 };
 
+// The <compiler> settings an element was written under when they are not this model's:
+// an attached model's elements keep their own model's (MuJoCo compiles each element with
+// its origin's settings). Null: this model's (SettingsOf resolves it).
+struct CompilerSpec;
+using CompilerPtr = std::shared_ptr<const CompilerSpec>;
+
 // A <frame> element as written; frames nest through `parent`. Elements inside a
 // frame point at it, and the compiler composes the chain into their poses.
 struct FrameSpec {
@@ -50,6 +56,7 @@ struct FrameSpec {
   std::array<double, 4> quat = {1, 0, 0, 0};
   Orientation alt;
   std::shared_ptr<const FrameSpec> parent;
+  CompilerPtr compiler;
 };
 using FramePtr = std::shared_ptr<const FrameSpec>;
 
@@ -80,6 +87,7 @@ struct JointSpec {
   double frictionloss = 0;
   int align = kAuto;
   FramePtr frame;
+  CompilerPtr compiler;
 };
 
 struct GeomSpec {
@@ -114,6 +122,7 @@ struct GeomSpec {
   std::string material;
   double fitscale = 1;  // scale of a primitive fitted to a mesh
   FramePtr frame;
+  CompilerPtr compiler;
 };
 
 struct SiteSpec {
@@ -128,6 +137,7 @@ struct SiteSpec {
   std::array<double, 4> rgba = {0.5, 0.5, 0.5, 1};
   std::string material;
   FramePtr frame;
+  CompilerPtr compiler;
 };
 
 // A light (MuJoCo's mjsLight): where it sits in its body, where it points, and its colours.
@@ -148,6 +158,7 @@ struct LightSpec {
   std::array<double, 3> specular = {0.3, 0.3, 0.3};
   std::string texture;
   FramePtr frame;
+  CompilerPtr compiler;
 };
 
 // A camera (MuJoCo's mjsCamera). Lengths of the sensor model (sensorsize, focal,
@@ -170,6 +181,7 @@ struct CameraSpec {
   std::array<double, 2> principal = {0, 0};
   std::array<double, 2> principalpixel = {0, 0};
   FramePtr frame;
+  CompilerPtr compiler;
 };
 
 // The plugin instance an element uses (<actuator><plugin>, <sensor><plugin>, a body's
@@ -202,6 +214,7 @@ struct BodySpec {
   double gravcomp = 0;
   int sleep = 0;  // SleepPolicy: auto, never, allowed or init
   FramePtr frame;
+  CompilerPtr compiler;
 
   // <inertial>, if written (ipos[0] is NaN otherwise, as MuJoCo)
   bool explicit_inertial = false;
@@ -246,6 +259,7 @@ struct WrapSpec {
 
 struct TendonSpec {
   Source src;
+  CompilerPtr compiler;
   bool spatial = false;
   double width = 0.003;
   int group = 0;
@@ -268,6 +282,7 @@ struct TendonSpec {
 
 struct ActuatorSpec {
   Source src;
+  CompilerPtr compiler;
   int group = 0;
   int ctrllimited = kAuto;
   int forcelimited = kAuto;
@@ -535,6 +550,11 @@ struct CompilerSpec {
   bool fitaabb = false;  // primitives fitted to a mesh's bounding box, not its inertia box
   LengthRangeSpec lengthrange;
 };
+
+// An element's settings: its own (attached) model's, else this model's.
+inline const CompilerSpec& SettingsOf(const CompilerPtr& own, const CompilerSpec& model) {
+  return own ? *own : model;
+}
 
 // The whole parsed model.
 struct ModelSpec {
