@@ -154,8 +154,8 @@ TEST(Mesh, BadInputNamesTheLine) {
                   {"bad.xml:7:", "inertia should be specified in the mesh asset"});
   ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/><mesh name=\"t\" file=\"box.stl\"/>",
                   "", {"bad.xml:4:", "repeated mesh name 't'"});
-  ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/>",
-                  "<geom type=\"sdf\" mesh=\"t\"/>", {"bad.xml:7:", "sdf geoms are not supported yet"});
+  ExpectMeshError("<mesh name=\"t\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/>", "<geom type=\"sdf\"/>",
+                  {"bad.xml:7:", "an sdf geom needs a mesh"});
 }
 
 }  // namespace

@@ -187,6 +187,8 @@ struct Option {
   int ls_iterations = 50;
   int noslip_iterations = 0;
   int ccd_iterations = 35;
+  int sdf_initpoints = 40;  // starting points of the sdf collider's descents
+  int sdf_iterations = 10;  // gradient steps of each
   int disableflags = 0;
   int enableflags = 0;
   int disableactuator = 0;
@@ -376,6 +378,13 @@ struct Visual {
   X(int, mesh_polymapadr, nmeshvert, 1)            \
   X(int, mesh_polymapnum, nmeshvert, 1)            \
   X(int, mesh_polymap, nmeshpolymap, 1)            \
+  /* signed distance octrees of meshes sdf geoms use (-1: none) */ \
+  X(int, mesh_octadr, nmesh, 1)                    \
+  X(int, mesh_octnum, nmesh, 1)                    \
+  X(int, oct_depth, noct, 1)                       \
+  X(int, oct_child, noct, 8) /* -1: a leaf */      \
+  X(double, oct_aabb, noct, 6) /* centre, half sizes */ \
+  X(double, oct_coeff, noct, 8) /* corner values */ \
   /* mesh normals, float-rounded (wedges and plates: normal and 2 tangents per vertex) */ \
   X(int, mesh_normaladr, nmesh, 1)                 \
   X(int, mesh_normalnum, nmesh, 1)                 \
@@ -640,6 +649,7 @@ struct Visual {
   X(nmeshpoly)   /* polygons of the meshes' hulls */                       \
   X(nmeshpolyvert) /* vertices of all polygons */                          \
   X(nmeshpolymap) /* vertex-to-polygon entries */                          \
+  X(noct)        /* cells of the meshes' signed distance octrees */        \
   X(nmeshnormal) /* normals of all meshes (mesh_normal rows) */           \
   X(nmeshtexcoord) /* texture coordinates of all meshes */                \
   X(nhfield)     /* height fields */                                       \

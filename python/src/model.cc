@@ -108,6 +108,8 @@ void DefineOption(py::module_& m) {
   Scalar(cls, "ls_iterations", &Option::ls_iterations);
   Scalar(cls, "noslip_iterations", &Option::noslip_iterations);
   Scalar(cls, "ccd_iterations", &Option::ccd_iterations);
+  Scalar(cls, "sdf_initpoints", &Option::sdf_initpoints);
+  Scalar(cls, "sdf_iterations", &Option::sdf_iterations);
   Scalar(cls, "disableflags", &Option::disableflags);
   Scalar(cls, "enableflags", &Option::enableflags);
   Scalar(cls, "disableactuator", &Option::disableactuator);

@@ -256,7 +256,7 @@ void CompileSite(const mjcf::CompilerSpec& model, SiteState* site) {
       site->size[1] = site->size[0];
     }
     for (int i = 0; i < 3; i++) site->pos[i] = (s.fromto[i] + s.fromto[i + 3]) / 2;
-    math::QuatZ2Vec(site->quat, vec);
+    ZAxisQuat(site->quat, vec);
   } else if (const char* err = ResolveOrientation(site->quat, c.degree, c.eulerseq, s.alt)) {
     ThrowAt(s.src, std::string("orientation error: ") + err);
   }

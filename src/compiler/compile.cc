@@ -138,6 +138,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   CompileSkins(spec, &state);
   CheckMovingBodies(state);
   CheckHFieldCollisions(spec, state);
+  CheckSdfCollisions(spec, state);
 
   // Sizes, then every array.
   Model m;

@@ -82,6 +82,10 @@ struct MeshState {
   double aamm[6] = {0, 0, 0, 0, 0, 0};  // bounding box (min, max) in the inertial frame
   double boxsz[3] = {0, 0, 0};           // half-sizes of the equivalent inertia box
   double volume = 0;                     // volume, or surface area for shell inertia
+  // The signed distance octree of a mesh an sdf geom uses (mesh_octree.cc): per cell its
+  // level, 8 children (-1: none), box (centre, half sizes) and 8 corner values.
+  std::vector<int> oct_depth, oct_child;
+  std::vector<double> oct_aabb, oct_coeff;
 };
 
 // A compiled height field (hfield.cc): elevations normalized to [0, 1].
@@ -179,6 +183,8 @@ void MakeMeshPolygons(MeshState* mesh);
 // The triangles of a mesh's hull (the graph's face block; the graph must exist).
 const int* HullFaces(const MeshState& mesh);
 void MeshPolygonNormals(MeshState* mesh);
+// The signed distance octree of a compiled mesh (mesh_octree.cc).
+void MakeMeshOctree(MeshState* mesh);
 // Skins (skin.cc): after the tree is flattened (bones name bodies).
 void CompileSkins(const mjcf::ModelSpec& spec, CompileState* state);
 void SkinSizes(const CompileState& state, Model* m);
@@ -189,6 +195,8 @@ void CompileHFields(const mjcf::ModelSpec& spec, CompileState* state);
 void HFieldGeomSize(GeomState* g);
 // Refuses hfield geoms that could collide with a moving geom (no hfield colliders yet).
 void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& state);
+// Refuses hfield geoms that could collide with an sdf geom (no collider yet).
+void CheckSdfCollisions(const mjcf::ModelSpec& spec, const CompileState& state);
 void HFieldSizes(const CompileState& state, Model* m);
 void LayoutHFields(const CompileState& state, Model* m);
 void CompileBodies(CompileState* state);

@@ -127,6 +127,34 @@ void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& stat
   }
 }
 
+void CheckSdfCollisions(const mjcf::ModelSpec& spec, const CompileState& state) {
+  // A height field and an sdf geom: MuJoCo's reference build warns and makes no contacts,
+  // its 3.5.1 release has its own collider, simlab has neither yet: such a pair that
+  // could collide (not welded together and passing contype/conaffinity, or a <pair>) is
+  // refused.
+  for (const GeomState& s : state.geoms) {
+    if (s.spec->type != kGeomSdf) continue;
+    int sweld = state.bodies[s.body].weldid;
+    for (const GeomState& g : state.geoms) {
+      if (g.spec->type != kGeomHfield) continue;
+      bool paired = false;
+      for (const mjcf::PairSpec& p : spec.pairs) {
+        const std::string &a = s.spec->src.name, &b = g.spec->src.name;
+        paired = paired || (!a.empty() && !b.empty() &&
+                            ((p.geom1 == a && p.geom2 == b) || (p.geom1 == b && p.geom2 == a)));
+      }
+      bool can_touch = state.bodies[g.body].weldid != sweld && CanTouch(*s.spec, *g.spec);
+      if (!paired && !can_touch) continue;
+      std::string other = g.spec->src.name.empty()
+                              ? "at line " + std::to_string(g.spec->src.line)
+                              : "'" + g.spec->src.name + "'";
+      ThrowAt(s.spec->src, "collisions between sdf geoms and hfield geoms are not supported "
+                           "yet (the sdf geom can touch geom " + other +
+                           "; set contype and conaffinity to 0)");
+    }
+  }
+}
+
 void HFieldSizes(const CompileState& state, Model* m) {
   m->nhfield = static_cast<int>(state.hfields.size());
   m->nhfielddata = 0;

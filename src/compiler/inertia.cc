@@ -170,7 +170,7 @@ void GeomFromTo(const mjcf::GeomSpec& s, GeomState* g) {
     g->size[1] = g->size[0];
   }
   for (int i = 0; i < 3; i++) g->pos[i] = (s.fromto[i] + s.fromto[i + 3]) / 2;
-  math::QuatZ2Vec(g->quat, vec);
+  ZAxisQuat(g->quat, vec);
 }
 
 void CheckSize(const mjcf::GeomSpec& s, const double* size) {
@@ -192,7 +192,6 @@ void CheckSize(const mjcf::GeomSpec& s, const double* size) {
 void CompileGeom(const mjcf::CompilerSpec& model, bool infer_inertia, GeomState* g) {
   const mjcf::GeomSpec& s = *g->spec;
   const mjcf::CompilerSpec& c = mjcf::SettingsOf(s.compiler, model);
-  if (s.type == kGeomSdf) ThrowAt(s.src, "sdf geoms are not supported yet");
   if (s.condim != 1 && s.condim != 3 && s.condim != 4 && s.condim != 6) {
     ThrowAt(s.src, "condim must be 1, 3, 4 or 6");
   }
@@ -209,13 +208,13 @@ void CompileGeom(const mjcf::CompilerSpec& model, bool infer_inertia, GeomState*
   }
   if (g->mesh) MeshGeomFrame(c, g);
   CheckSize(s, g->size);
-  if (s.type == kGeomMesh) MeshGeomSize(g);
+  if (s.type == kGeomMesh || s.type == kGeomSdf) MeshGeomSize(g);
   if (g->hfield) HFieldGeomSize(g);
 
   // Mass from mass or density, then the principal inertia in the geom frame. A mesh
   // geom has its mesh's volume and the inertia of the mesh's equivalent box; an hfield
   // geom is the box of its size.
-  bool mesh = s.type == kGeomMesh;
+  bool mesh = s.type == kGeomMesh || s.type == kGeomSdf;  // (an sdf geom is its mesh's shape)
   int inertia_type = mesh || s.type == kGeomHfield ? kGeomBox : s.type;
   const double* inertia_size = mesh ? g->mesh->boxsz : g->size;
   if (infer_inertia) {
@@ -255,7 +254,8 @@ double GeomRBound(const GeomState& g) {
     case kGeomCylinder: return std::sqrt(s[0] * s[0] + s[1] * s[1]);
     case kGeomEllipsoid: return std::max(std::max(s[0], s[1]), s[2]);
     case kGeomBox:
-    case kGeomMesh: return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    case kGeomMesh:
+    case kGeomSdf: return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     case kGeomHfield: {
       const std::array<double, 4>& h = g.hfield->spec->size;
       return std::sqrt(h[0] * h[0] + h[1] * h[1] + std::max(h[2] * h[2], h[3] * h[3]));
@@ -330,7 +330,7 @@ void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>
     math::AddScaled3(com, g->pos, g->mass);
   }
   if (body->mass < kEps) ThrowAt(body->spec->src, "body mass is too small to compute the center of mass");
-  math::Scale3(body->ipos, com, 1 / body->mass);
+  for (int k = 0; k < 3; k++) body->ipos[k] = com[k] / body->mass;  // (divided, as MuJoCo)
   for (const GeomState* g : sel) {
     double local[6], d[3];
     GlobalInertia(local, g->inertia, g->quat);

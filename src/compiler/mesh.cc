@@ -444,8 +444,8 @@ std::vector<int> GeomMeshIds(const std::vector<std::string>& names, const Compil
     if (!s.mesh.empty()) {
       id = index.Find(s.mesh);
       if (id < 0) ThrowAt(s.src, "unknown mesh '" + s.mesh + "'");
-    } else if (s.type == kGeomMesh) {
-      ThrowAt(s.src, "a mesh geom needs a mesh");
+    } else if (s.type == kGeomMesh || s.type == kGeomSdf) {
+      ThrowAt(s.src, std::string("a") + (s.type == kGeomSdf ? "n sdf" : " mesh") + " geom needs a mesh");
     }
     ids.push_back(id);
   }
@@ -470,18 +470,21 @@ void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state) {
   }
   std::vector<int> ids = GeomMeshIds(names, *state);
 
-  // A mesh gets its convex hull when a mesh geom can collide with it, or for convex inertia.
-  std::vector<bool> needhull(spec.meshes.size(), false);
+  // A mesh gets its convex hull when a mesh or sdf geom can collide with it, or for convex
+  // inertia; its signed distance octree when an sdf geom uses it.
+  std::vector<bool> needhull(spec.meshes.size(), false), needsdf(spec.meshes.size(), false);
   for (size_t i = 0; i < state->geoms.size(); i++) {
     const mjcf::GeomSpec& s = *state->geoms[i].spec;
-    if (ids[i] < 0 || s.type != kGeomMesh) continue;
+    if (ids[i] < 0 || (s.type != kGeomMesh && s.type != kGeomSdf)) continue;
     if (s.contype || s.conaffinity || InPair(spec, s.src.name)) needhull[ids[i]] = true;
+    if (s.type == kGeomSdf) needsdf[ids[i]] = true;
   }
 
   state->meshes.resize(spec.meshes.size());
   for (size_t i = 0; i < spec.meshes.size(); i++) {
     state->meshes[i].spec = &spec.meshes[i];
     CompileMesh(needhull[i], spec.assets.get(), &state->meshes[i]);
+    if (needsdf[i]) MakeMeshOctree(&state->meshes[i]);
   }
   for (size_t i = 0; i < state->geoms.size(); i++) {
     if (ids[i] < 0) continue;
@@ -546,7 +549,7 @@ void MeshGeomFrame(const mjcf::CompilerSpec& c, GeomState* g) {
   const MeshState& mesh = *g->mesh;
   if (!std::isnan(s.fromto[0])) ThrowAt(s.src, "fromto cannot be used with a mesh geom");
   double center[3] = {0, 0, 0};
-  if (s.type != kGeomMesh) {
+  if (s.type != kGeomMesh && s.type != kGeomSdf) {
     FitPrimitive(c, mesh, g, center);
   } else if (s.shellinertia) {
     ThrowAt(s.src, "for mesh geoms, inertia should be specified in the mesh asset");
@@ -586,6 +589,8 @@ void MeshSizes(const CompileState& state, Model* m) {
     for (const std::vector<int>& p : mesh.polygons) m->nmeshpolyvert += static_cast<int>(p.size());
   }
   m->nmeshpolymap = m->nmeshpolyvert;  // (each polygon vertex maps back to its polygon)
+  m->noct = 0;
+  for (const MeshState& mesh : state.meshes) m->noct += static_cast<int>(mesh.oct_depth.size());
 }
 
 namespace {
@@ -658,6 +663,20 @@ void LayoutMeshes(const CompileState& state, Model* m) {
     m->mesh_names[i] = mesh.spec->src.name;
   }
   LayoutMeshPolygons(state, m);
+
+  // Octrees, one after another.
+  int oct = 0;
+  for (int i = 0; i < m->nmesh; i++) {
+    const MeshState& mesh = state.meshes[i];
+    int n = static_cast<int>(mesh.oct_depth.size());
+    m->mesh_octadr[i] = n ? oct : -1;
+    m->mesh_octnum[i] = n;
+    std::copy(mesh.oct_depth.begin(), mesh.oct_depth.end(), m->oct_depth.begin() + oct);
+    std::copy(mesh.oct_child.begin(), mesh.oct_child.end(), m->oct_child.begin() + 8 * oct);
+    std::copy(mesh.oct_aabb.begin(), mesh.oct_aabb.end(), m->oct_aabb.begin() + 6 * oct);
+    std::copy(mesh.oct_coeff.begin(), mesh.oct_coeff.end(), m->oct_coeff.begin() + 8 * oct);
+    oct += n;
+  }
 }
 
 }  // namespace simlab::compiler

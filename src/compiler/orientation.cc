@@ -25,6 +25,21 @@ double NormalizeVec(double* v, int n) {
   return norm;
 }
 
+void ZAxisQuat(double quat[4], const double vec[3]) {
+  // The axis z x vec (the x axis when vec is along z), the angle between them; vec as
+  // given, unnormalized, as MuJoCo's compiler (mjuu_z2quat) computes it.
+  const double z[3] = {0, 0, 1};
+  math::Cross3(quat + 1, z, vec);
+  double s = NormalizeVec(quat + 1, 3);
+  if (s < 1e-10) {
+    quat[1] = 1;
+    quat[2] = quat[3] = 0;
+  }
+  double angle = math::Atan2(s, vec[2]);
+  quat[0] = math::Cos(angle / 2);
+  for (int k = 1; k < 4; k++) quat[k] *= math::Sin(angle / 2);
+}
+
 // ---------------------------------------------------------------- alternatives
 
 namespace {
@@ -57,7 +72,7 @@ const char* FromXYAxes(double* quat, const std::array<double, 6>& xy) {
 const char* FromZAxis(double* quat, const std::array<double, 3>& za) {
   double z[3] = {za[0], za[1], za[2]};
   if (NormalizeVec(z, 3) < kEps) return "zaxis too small";
-  math::QuatZ2Vec(quat, z);
+  ZAxisQuat(quat, z);
   return nullptr;
 }
 

@@ -30,7 +30,8 @@ using CollideFn = int (*)(const Model& m, const Data& d, Contact* con, int g1, i
 CollideFn CollisionFunction(int type1, int type2);
 // Does `collide` choose the first tangent of its contacts' frames (frame[3..5])? The
 // others write dist, pos and the normal only, and their tangents are left to SetContact.
-// (Only the plane-capsule collider does: the capsule's axis.)
+// (The plane-capsule collider does: the capsule's axis; and the sdf collider, which
+// completes its frames itself, as MuJoCo's does before its driver completes them again.)
 bool ChoosesTangent(CollideFn collide);
 
 // The whole collision stage: d.ncon and d.contact (collision_driver.cc).
@@ -74,6 +75,12 @@ int CollidePlaneConvex(const Model& m, const Data& d, Contact* con, int g1, int 
 // Any two convex geoms by GJK/EPA (MuJoCo's mjc_Convex with its native CCD).
 int CollideConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
                   double margin);
+
+// ------------------------------------------------------------ narrow phase: sdf
+
+// A primitive, mesh or sdf geom (g1) and an sdf geom (g2), through the signed distance
+// fields of both (MuJoCo's mjc_SDF; collision_sdf.cc).
+int CollideSdf(const Model& m, const Data& d, Contact* con, int g1, int g2, double margin);
 
 // ------------------------------------------------------------ narrow phase: height fields
 

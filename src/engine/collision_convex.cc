@@ -181,7 +181,8 @@ ConvexShape MakeShape(const Model& m, const Data& d, int g, double margin) {
     case kGeomEllipsoid: s.support = EllipsoidSupport; break;
     case kGeomCylinder: s.support = CylinderSupport; break;
     case kGeomBox: s.support = BoxSupport; break;
-    case kGeomMesh: {
+    case kGeomMesh:
+    case kGeomSdf: {  // (an sdf geom's convex shape is its mesh's: the plane collider's)
       int mesh = m.geom_dataid[g];
       s.vert = &m.mesh_vert[3 * m.mesh_vertadr[mesh]];
       s.nvert = m.mesh_vertnum[mesh];

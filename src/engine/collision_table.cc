@@ -1,7 +1,8 @@
 // Which narrow-phase function handles which pair of geom types: MuJoCo's table
 // (mjCOLLISIONFUNC), by the types of the two geoms in increasing order. As in MuJoCo,
-// planes and height fields never touch each other or themselves; SDFs have no
-// functions yet, so their pairs make no contacts.
+// planes and height fields never touch each other or themselves. A plane meets an sdf
+// geom as the convex hull of its mesh, as in MuJoCo's reference build (its 3.5.1
+// release skips that pair); hfield-sdf pairs are refused when the model compiles.
 #include "engine/collision.h"
 
 namespace simlab {
@@ -15,29 +16,31 @@ constexpr int kNumGeomTypes = 9;
 const CollideFn kTable[kNumGeomTypes][kNumGeomTypes] = {
     /* plane */ {nullptr, nullptr, CollidePlaneSphere, CollidePlaneCapsule,
                  CollidePlaneConvex, CollidePlaneCylinder, CollidePlaneBox,
-                 CollidePlaneConvex, nullptr},
+                 CollidePlaneConvex, CollidePlaneConvex},
     /* hfield */ {nullptr, nullptr, CollideHFieldConvex, CollideHFieldConvex,
                   CollideHFieldConvex, CollideHFieldConvex, CollideHFieldConvex,
                   CollideHFieldConvex, nullptr},
     /* sphere */ {nullptr, nullptr, CollideSphereSphere, CollideSphereCapsule, CollideConvex,
-                  CollideSphereCylinder, CollideSphereBox, CollideConvex, nullptr},
+                  CollideSphereCylinder, CollideSphereBox, CollideConvex, CollideSdf},
     /* capsule */ {nullptr, nullptr, nullptr, CollideCapsuleCapsule, CollideConvex,
-                   CollideConvex, CollideCapsuleBox, CollideConvex, nullptr},
+                   CollideConvex, CollideCapsuleBox, CollideConvex, CollideSdf},
     /* ellipsoid */ {nullptr, nullptr, nullptr, nullptr, CollideConvex, CollideConvex,
-                     CollideConvex, CollideConvex, nullptr},
+                     CollideConvex, CollideConvex, CollideSdf},
     /* cylinder */ {nullptr, nullptr, nullptr, nullptr, nullptr, CollideConvex,
-                    CollideConvex, CollideConvex, nullptr},
+                    CollideConvex, CollideConvex, CollideSdf},
     /* box */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, CollideBoxBox,
-               CollideConvex, nullptr},
+               CollideConvex, CollideSdf},
     /* mesh */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-                CollideConvex, nullptr},
+                CollideConvex, CollideSdf},
     /* sdf */ {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-               nullptr},
+               CollideSdf},
 };
 
 }  // namespace
 
-bool ChoosesTangent(CollideFn collide) { return collide == CollidePlaneCapsule; }
+bool ChoosesTangent(CollideFn collide) {
+  return collide == CollidePlaneCapsule || collide == CollideSdf;
+}
 
 CollideFn CollisionFunction(int type1, int type2) {
   if (type1 < 0 || type2 < 0 || type1 >= kNumGeomTypes || type2 >= kNumGeomTypes) {

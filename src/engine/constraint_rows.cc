@@ -181,9 +181,9 @@ void WeldRows(const Model& m, Data& d, int eq, double* jac, double* jac1, int* i
 
   // Rotation rows: 0.5 * conj(q1) * (omega0 - omega1) * q0, per dof, times torquescale.
   for (int v = 0; v < nv; v++) {
-    double axis[4] = {0, jac[3 * nv + v], jac[4 * nv + v], jac[5 * nv + v]};
+    double axis[3] = {jac[3 * nv + v], jac[4 * nv + v], jac[5 * nv + v]};
     double tmp[4], rot[4];
-    math::MulQuat(tmp, q1neg, axis);
+    math::MulQuatAxis(tmp, q1neg, axis);
     math::MulQuat(rot, tmp, q0);
     for (int k = 0; k < 3; k++) jac[(3 + k) * nv + v] = 0.5 * rot[1 + k] * torquescale;
   }

@@ -12,10 +12,10 @@ namespace simlab::math {
 // ---------------------------------------------------------------- quaternions
 
 void MatToQuat(double* q, const double* m) {
-  // Pick the largest of the four components to divide by (numerically safest).
-  double trace = m[0] + m[4] + m[8];
-  if (trace > 0) {
-    q[0] = 0.5 * std::sqrt(1 + trace);
+  // Pick the largest of the four components to divide by (numerically safest); sums in
+  // MuJoCo's order (mju_mat2Quat).
+  if (m[0] + m[4] + m[8] > 0) {
+    q[0] = 0.5 * std::sqrt(1 + m[0] + m[4] + m[8]);
     q[1] = 0.25 * (m[7] - m[5]) / q[0];
     q[2] = 0.25 * (m[2] - m[6]) / q[0];
     q[3] = 0.25 * (m[3] - m[1]) / q[0];

@@ -111,6 +111,14 @@ inline double NormalizeQuat(double* q) {
   }
   return norm;
 }
+// r = q * (0, axis): a quaternion times a pure vector, summed as MuJoCo's mju_mulQuatAxis.
+inline void MulQuatAxis(double* r, const double* q, const double* axis) {
+  double w = -q[1] * axis[0] - q[2] * axis[1] - q[3] * axis[2];
+  double x = q[0] * axis[0] + q[2] * axis[2] - q[3] * axis[1];
+  double y = q[0] * axis[1] + q[3] * axis[0] - q[1] * axis[2];
+  double z = q[0] * axis[2] + q[1] * axis[1] - q[2] * axis[0];
+  r[0] = w, r[1] = x, r[2] = y, r[3] = z;
+}
 // r = a * b (Hamilton product)
 inline void MulQuat(double* r, const double* a, const double* b) {
   double w = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];

@@ -83,7 +83,6 @@ void Reader::Option(const XmlElement& e) {
                      "noslip_iterations", "ccd_iterations", "sdf_iterations",
                      "sdf_initpoints", "actuatorgroupdisable"});
   simlab::Option& o = spec_->option;
-  int unused_int = 0;
   e.Number("timestep", &o.timestep);
   e.Number("impratio", &o.impratio);
   e.Number("tolerance", &o.tolerance);
@@ -111,8 +110,8 @@ void Reader::Option(const XmlElement& e) {
   e.Int("ls_iterations", &o.ls_iterations);
   e.Int("noslip_iterations", &o.noslip_iterations);
   e.Int("ccd_iterations", &o.ccd_iterations);
-  e.Int("sdf_iterations", &unused_int);
-  e.Int("sdf_initpoints", &unused_int);
+  e.Int("sdf_iterations", &o.sdf_iterations);
+  e.Int("sdf_initpoints", &o.sdf_initpoints);
 
   // Disabled actuator groups become bits.
   int groups[31];

@@ -14,7 +14,7 @@ THREE.ColorManagement.enabled = false;
 
 // mjtGeom numbers.
 const kPlane = 0, kHfield = 1, kSphere = 2, kCapsule = 3, kEllipsoid = 4, kCylinder = 5,
-  kBox = 6, kMesh = 7;
+  kBox = 6, kMesh = 7, kSdf = 8;
 // mjtJoint numbers of the joints that have one axis.
 const kSlide = 2, kHinge = 3;
 // Metres of arrow per newton (or newton metre); arrows are capped at kMaxArrow.
@@ -81,7 +81,8 @@ function indexedGeometry(positions, indices) {
   return geometry;
 }
 
-// The three.js geometry of geom `g`, or null for types the view does not draw (sdf).
+// The three.js geometry of geom `g` (an sdf geom is drawn as its mesh), or null for
+// types the view does not draw.
 function geomGeometry(model, g, extent) {
   const s = model.geom_size.subarray(3 * g, 3 * g + 3);
   switch (model.geom_type[g]) {
@@ -96,6 +97,7 @@ function geomGeometry(model, g, extent) {
     case kCylinder: return alongZ(new THREE.CylinderGeometry(s[0], s[0], 2 * s[1], 24));
     case kBox: return new THREE.BoxGeometry(2 * s[0], 2 * s[1], 2 * s[2]);
     case kMesh: return meshGeometry(model, model.geom_dataid[g]);
+    case kSdf: return model.geom_dataid[g] >= 0 ? meshGeometry(model, model.geom_dataid[g]) : null;
     default: return null;
   }
 }

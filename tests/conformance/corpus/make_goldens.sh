@@ -81,6 +81,14 @@ MODELS=(
   "tests/conformance/corpus/mujoco/multiccd/multiccd_perf_box.xml 300 50 1e-9 none"
   "tests/conformance/corpus/mujoco/multiccd/multiccd_perf_boxmesh.xml 300 50 1e-9 none"
   "tests/conformance/corpus/mujoco/multiccd/multiccd_stacked_boxes.xml 300 10 1e-9 none"
+  # sdf geoms on meshes (signed distance octrees; mjc_SDF): MuJoCo's two test models with
+  # one (copied into mujoco/sdf/), and simlab's own scenes in sdf/: primitives, sdf
+  # geoms and a mesh geom dropped on sdf geoms and the floor. Equal to MuJoCo to the bit.
+  "tests/conformance/corpus/mujoco/sdf/sdf_testdata_model.xml 200 20 1e-9"
+  "tests/conformance/corpus/mujoco/sdf/sdf_solver_model.xml 200 20 1e-9"
+  "tests/conformance/corpus/sdf/sdf_drops.xml 400 20 1e-9 none"
+  "tests/conformance/corpus/sdf/sdf_pile.xml 600 30 1e-9 none"
+  "tests/conformance/corpus/sdf/sdf_meshsdf.xml 300 30 1e-9 none"
 )
 rm -rf "$OUT/goldens" "$OUT/ctrl"
 mkdir -p "$OUT/goldens" "$OUT/ctrl"
