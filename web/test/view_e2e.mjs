@@ -350,6 +350,31 @@ async function testSkins() {
   }
 }
 
+// sdf geoms (tests/conformance/corpus/sdf/sdf_drops.xml: shapes dropped on a static sdf
+// icosahedron): the sdf geoms are drawn as their meshes, and the falling shapes come to
+// rest on the rock (contacts with it) rather than falling through; a screenshot.
+async function testSdf() {
+  const model = path.join(repoRoot, 'tests/conformance/corpus/sdf/sdf_drops.xml');
+  const { session, page, problems } = await openViewer(model);
+  try {
+    await page.waitForFunction(() => window.lab.sim.time > 0.5, null, { timeout: 30000 });
+    const drawn = await page.evaluate(() => {
+      const type = window.lab.sim.model('geom_type');
+      return window.lab.scene.geoms.filter(({ g }) => type[g] === 8).length;
+    });
+    const onRock = await page.evaluate(() => {
+      const sim = window.lab.sim;
+      return sim.contacts().filter((c) => c.geom1 === 1 || c.geom2 === 1).length;
+    });
+    await page.screenshot({ path: path.join(options.shots, 'view_sdf.png') });
+    check(drawn === 2, `sdf: ${drawn} of 2 sdf geoms drawn as their meshes`);
+    check(onRock > 0, `sdf: ${onRock} contacts with the sdf rock at t > 0.5 s`);
+    check(problems.length === 0, `sdf: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
+  } finally {
+    await session.close();
+  }
+}
+
 async function main() {
   await openBuilds(options);
   fs.mkdirSync(options.shots, { recursive: true });
@@ -358,6 +383,7 @@ async function main() {
     await testModel(file, false);
   }
   await testSkins();
+  await testSdf();
   console.log(`screenshots in ${options.shots}`);
   console.log('PASS');
 }
