@@ -73,7 +73,7 @@ int FindCell(const double* aabb, const int* child, const double p[3], double w[8
              double dw[8][3]) {
   const double eps = 1e-8;
   int cell = 0;
-  for (int guard = 0; guard < 100; guard++) {
+  for (int level = 0; level < 100; level++) {
     double lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
       lo[k] = aabb[6 * cell + k] - aabb[6 * cell + 3 + k];
@@ -81,7 +81,7 @@ int FindCell(const double* aabb, const int* child, const double p[3], double w[8
     }
     bool outside = false;
     for (int k = 0; k < 3; k++) outside = outside || p[k] + eps < lo[k] || p[k] - eps > hi[k];
-    if (outside) continue;  // (as MuJoCo: the same cell is tried again, then given up)
+    if (outside) return -1;  // (cannot happen after IntoBox; MuJoCo stops with an error)
     double c[3];
     for (int k = 0; k < 3; k++) c[k] = (p[k] - lo[k]) / (hi[k] - lo[k]);
     bool leaf = true;

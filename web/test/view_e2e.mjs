@@ -161,7 +161,8 @@ async function checkHistory(page) {
   await page.evaluate(() => document.activeElement.blur());
   await page.keyboard.press('ArrowRight');
   await page.keyboard.press('Space');
-  await page.waitForTimeout(300);
+  // (until it has stepped: a loaded machine draws few frames)
+  await page.waitForFunction((t) => window.lab.sim.time > t, oldest.time + 1.5 * dt, { timeout: 20000 });
   await page.keyboard.press('Space');
   const played = await now();
   check(played.history.back === 0 && played.time > oldest.time && played.history.size < oldest.history.size,
