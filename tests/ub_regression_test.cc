@@ -227,5 +227,32 @@ TEST(UbRegression, HugeGeomOverHeightField) {
   EXPECT_NEAR(d.qacc[0], -9.810049198059374, 1e-9);
 }
 
+// Texture colours outside [0, 1] (found by the fuzzer: a builtin texture's rgb1 of 9):
+// converting 255 * 9 to a byte is undefined in C++ (and in MuJoCo's own conversion), so
+// components saturate at 255 (and 0 below); colours inside [0, 1] convert as MuJoCo's.
+TEST(UbRegression, TextureColoursOutsideTheUnitRange) {
+  Model m = LoadXmlString(R"(
+<mujoco>
+  <asset>
+    <texture name="t" type="cube" builtin="flat" width="4" height="4" rgb1="9 0.5 -2"
+             rgb2="0 0 0"/>
+    <texture name="g" type="2d" builtin="gradient" width="4" height="4" rgb1="3 3 3"
+             rgb2="-1 -1 -1"/>
+  </asset>
+</mujoco>)");
+  ASSERT_EQ(m.ntex, 2);
+  EXPECT_EQ(m.tex_data[0], 255);
+  EXPECT_EQ(m.tex_data[1], 127);
+  EXPECT_EQ(m.tex_data[2], 0);
+  // The gradient's blends of out-of-range colours saturate at both ends (and run under
+  // UBSan in the sanitizer suite).
+  bool low = false, high = false;
+  for (int i = m.tex_adr[1]; i < m.ntexdata; i++) {
+    low = low || m.tex_data[i] == 0;
+    high = high || m.tex_data[i] == 255;
+  }
+  EXPECT_TRUE(low && high);
+}
+
 }  // namespace
 }  // namespace simlab

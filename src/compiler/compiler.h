@@ -15,6 +15,7 @@
 #ifndef SIMLAB_COMPILER_COMPILER_H_
 #define SIMLAB_COMPILER_COMPILER_H_
 
+#include <cstdint>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -215,6 +216,13 @@ void GeomAabb(const GeomState& g, double aabb[6]);
 void GeomFluid(const GeomState& g, double* fluid);
 void CheckMovingBodies(const CompileState& state);
 void LayoutTree(const CompileState& state, Model* m);
+// A colour component in [0, 1] as a byte, truncated as MuJoCo converts it. Components
+// outside [0, 1] (a conversion MuJoCo leaves undefined) saturate; NaN gives 0.
+inline uint8_t ColourByte(double v) {
+  double b = 255 * v;
+  return b >= 255 ? 255 : b > 0 ? static_cast<uint8_t>(b) : 0;
+}
+
 // Textures, materials and lights (visual.cc): textures made before the sizes (their
 // bytes count), the rest laid out with the tree (the lights' tracking offsets come with
 // the cameras', CamLightConstants).

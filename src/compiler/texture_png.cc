@@ -182,7 +182,7 @@ void FillMissingFaces(const mjcf::TextureSpec& s, const bool loaded[6], TextureI
     if (loaded[f]) continue;
     for (size_t p = 0; p < face; p++) {
       for (int k = 0; k < 3; k++) {
-        t->data[3 * (f * face + p) + k] = static_cast<uint8_t>(255 * s.rgb1[k]);
+        t->data[3 * (f * face + p) + k] = ColourByte(s.rgb1[k]);
       }
     }
   }

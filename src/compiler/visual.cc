@@ -31,7 +31,7 @@ using Pixel = std::array<uint8_t, 3>;
 // A colour in [0, 1] as bytes, truncated as MuJoCo converts it.
 Pixel ToBytes(const std::array<double, 3>& rgb) {
   Pixel p;
-  for (int k = 0; k < 3; k++) p[k] = static_cast<uint8_t>(255 * rgb[k]);
+  for (int k = 0; k < 3; k++) p[k] = ColourByte(rgb[k]);
   return p;
 }
 
@@ -57,7 +57,7 @@ Pixel Blend(const std::array<double, 3>& rgb1, const std::array<double, 3>& rgb2
   alpha = std::min(1.0, std::max(0.0, alpha));
   Pixel p;
   for (int k = 0; k < 3; k++) {
-    p[k] = static_cast<uint8_t>(255 * (alpha * rgb1[k] + (1 - alpha) * rgb2[k]));
+    p[k] = ColourByte(alpha * rgb1[k] + (1 - alpha) * rgb2[k]);
   }
   return p;
 }
