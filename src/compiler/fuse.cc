@@ -110,10 +110,8 @@ void AccumulateInertia(const BodyState& other, BodyState* result) {
     double rotated[6], d[3];
     GlobalInertia(rotated, inertia[j], iquat[j]);
     for (int k = 0; k < 3; k++) d[k] = ipos[j][k] - result->ipos[k];
-    const double m = mass[j];
-    const double shift[6] = {m * (d[1] * d[1] + d[2] * d[2]), m * (d[0] * d[0] + d[2] * d[2]),
-                             m * (d[0] * d[0] + d[1] * d[1]), -m * d[0] * d[1], -m * d[0] * d[2],
-                             -m * d[1] * d[2]};
+    double shift[6];
+    OffCenter(shift, mass[j], d);
     for (int k = 0; k < 6; k++) total[k] += rotated[k] + shift[k];
   }
   if (const char* err = FullInertia(result->iquat, result->inertia, total)) {
@@ -142,22 +140,21 @@ FuseTree TreeOf(const CompileState& state) {
   return t;
 }
 
+// Does the geom collide (and so sit in its body's bounding-volume tree)?
+bool Collides(const GeomState& g) { return g.spec->contype || g.spec->conaffinity; }
+
 // The tree MuJoCo builds over body b's colliding geoms as they stand, written over its
 // node pointers: the new tree's leaves overwrite the first places, inner nodes leave
 // what was there, and the list grows by the new tree's size.
 void RebuildNodeGeoms(int b, const CompileState& state, FuseTree* t) {
   std::vector<std::array<double, 6>> boxes;
-  std::vector<int> ids;
+  boxes.reserve(t->geoms[b].size());  // (the geoms below point into it)
+  std::vector<BvhGeom> geoms;
   for (int g : t->geoms[b]) {
     const GeomState& geom = state.geoms[g];
-    if (!geom.spec->contype && !geom.spec->conaffinity) continue;
+    if (!Collides(geom)) continue;
     GeomAabb(geom, boxes.emplace_back().data());
-    ids.push_back(g);
-  }
-  std::vector<BvhGeom> geoms;
-  for (size_t k = 0; k < ids.size(); k++) {
-    const GeomState& geom = state.geoms[ids[k]];
-    geoms.push_back({ids[k], boxes[k].data(), geom.pos, geom.quat});
+    geoms.push_back({g, boxes.back().data(), geom.pos, geom.quat});
   }
   const BodyState& body = state.bodies[b];
   std::vector<int> nodes = BvhNodeGeoms(geoms, body.ipos, body.iquat);
@@ -173,9 +170,8 @@ void FuseIntoParent(int id, CompileState* state, FuseTree* t) {
   BodyState& body = state->bodies[id];
   BodyState& parent = state->bodies[body.parent];
   auto colliding = [&](int b) {
-    return std::count_if(t->geoms[b].begin(), t->geoms[b].end(), [&](int g) {
-      return state->geoms[g].spec->contype || state->geoms[g].spec->conaffinity;
-    });
+    return std::count_if(t->geoms[b].begin(), t->geoms[b].end(),
+                         [&](int g) { return Collides(state->geoms[g]); });
   };
   if (colliding(id) > 0 && colliding(body.parent) > 0) state->fused_bvh_padding++;
   if (t->node_geoms[body.parent].empty()) RebuildNodeGeoms(body.parent, *state, t);
@@ -240,12 +236,11 @@ void Rebuild(const FuseTree& t, CompileState* state) {
     b.geom_num = static_cast<int>(t.geoms[old].size());
     b.site_num = static_cast<int>(t.sites[old].size());
     for (int g : t.node_geoms[old]) b.stale_bvh_nodeid.push_back(g < 0 ? -1 : new_geom[g]);
-    for (int k = 0; k < b.joint_num; k++) joints.push_back(state->joints[joint_begin + k]);
-    for (int g : t.geoms[old]) geoms.push_back(state->geoms[g]);
-    for (int s : t.sites[old]) sites.push_back(state->sites[s]);
-    for (int k = b.joint_begin; k < static_cast<int>(joints.size()); k++) joints[k].body = b.id;
-    for (int k = b.geom_begin; k < static_cast<int>(geoms.size()); k++) geoms[k].body = b.id;
-    for (int k = b.site_begin; k < static_cast<int>(sites.size()); k++) sites[k].body = b.id;
+    for (int k = 0; k < b.joint_num; k++) {
+      joints.emplace_back(state->joints[joint_begin + k]).body = b.id;
+    }
+    for (int g : t.geoms[old]) geoms.emplace_back(state->geoms[g]).body = b.id;
+    for (int s : t.sites[old]) sites.emplace_back(state->sites[s]).body = b.id;
     bodies.push_back(b);
   }
   state->bodies = std::move(bodies);

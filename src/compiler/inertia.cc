@@ -335,10 +335,8 @@ void InertiaFromGeoms(const mjcf::CompilerSpec& c, const std::vector<GeomState*>
     double local[6], d[3];
     GlobalInertia(local, g->inertia, g->quat);
     math::Sub3(d, g->pos, body->ipos);
-    double m = g->mass;
-    double shift[6] = {m * (d[1] * d[1] + d[2] * d[2]), m * (d[0] * d[0] + d[2] * d[2]),
-                       m * (d[0] * d[0] + d[1] * d[1]), -m * d[0] * d[1], -m * d[0] * d[2],
-                       -m * d[1] * d[2]};
+    double shift[6];
+    OffCenter(shift, g->mass, d);
     for (int k = 0; k < 6; k++) total[k] = total[k] + local[k] + shift[k];
   }
   if (const char* err = FullInertia(body->iquat, body->inertia, total)) {

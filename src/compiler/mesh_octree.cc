@@ -41,17 +41,6 @@ struct Cell {
   std::array<double, 6> aamm;    // min x y z, max x y z
 };
 
-// Corners shared between cells: equal coordinates (to the bit, +0 and -0 alike) are one.
-struct CornerKey {
-  Point p;
-  bool operator<(const CornerKey& o) const {
-    for (int k = 0; k < 3; k++) {
-      if (p[k] != o.p[k]) return p[k] < o.p[k];
-    }
-    return false;
-  }
-};
-
 // Does triangle t touch box `aamm`? (Schwarz and Seidel's triangle/box overlap test:
 // the boxes, the triangle's plane, then the three projections of its edges.)
 bool TouchesBox(const Triangle& t, const double aamm[6]) {
@@ -105,7 +94,7 @@ class MeshDistance {
     for (size_t i = 0; i < order.size(); i++) order[i] = static_cast<int>(i);
     nodes_.emplace_back();
     Sphere root;
-    BuildTree(0, &root, &order, 0, static_cast<int>(order.size()));
+    if (!tri_.empty()) BuildTree(0, &root, &order, 0, static_cast<int>(order.size()));
     MakePseudonormals();
   }
 
@@ -441,7 +430,7 @@ class OctreeBuilder {
       Point p = {(j & 1) ? cell.aamm[3] : cell.aamm[0], (j & 2) ? cell.aamm[4] : cell.aamm[1],
                  (j & 4) ? cell.aamm[5] : cell.aamm[2]};
       for (double& x : p) x = x == 0 ? 0.0 : x;  // (-0 is +0)
-      auto [it, added] = corner_ids_.try_emplace(CornerKey{p}, static_cast<int>(corners_.size()));
+      auto [it, added] = corner_ids_.try_emplace(p, static_cast<int>(corners_.size()));
       if (added) corners_.push_back(p);
       cell.corner[j] = it->second;
     }
@@ -567,7 +556,8 @@ class OctreeBuilder {
   std::vector<Triangle> triangles_;
   std::vector<Cell> cells_;
   std::vector<Point> corners_;
-  std::map<CornerKey, int> corner_ids_;
+  // Corners shared between cells: equal coordinates (to the bit, +0 and -0 alike) are one.
+  std::map<Point, int> corner_ids_;
   std::vector<std::vector<int>> hanging_;
 };
 

@@ -25,6 +25,15 @@ double NormalizeVec(double* v, int n) {
   return norm;
 }
 
+void OffCenter(double res[6], double mass, const double d[3]) {
+  res[0] = mass * (d[1] * d[1] + d[2] * d[2]);
+  res[1] = mass * (d[0] * d[0] + d[2] * d[2]);
+  res[2] = mass * (d[0] * d[0] + d[1] * d[1]);
+  res[3] = -mass * d[0] * d[1];
+  res[4] = -mass * d[0] * d[2];
+  res[5] = -mass * d[1] * d[2];
+}
+
 void ZAxisQuat(double quat[4], const double vec[3]) {
   // The axis z x vec (the x axis when vec is along z), the angle between them; vec as
   // given, unnormalized, as MuJoCo's compiler (mjuu_z2quat) computes it.

@@ -39,6 +39,8 @@ const char* FullInertia(double quat[4], double inertia[3], const double full[6])
 
 // global[6] (xx yy zz xy xz yz) of a diagonal inertia in a frame rotated by quat.
 void GlobalInertia(double global[6], const double local[3], const double quat[4]);
+// The inertia (xx yy zz xy xz yz) of point mass `mass` at offset d (MuJoCo's mjuu_offcenter).
+void OffCenter(double res[6], double mass, const double d[3]);
 
 // The rotation taking the z axis to direction `vec` (zaxis, fromto), as MuJoCo's
 // compiler computes it (a half turn about x for -z).

@@ -106,34 +106,39 @@ int FindCell(const double* aabb, const int* child, const double p[3], double w[8
   return -1;
 }
 
+// A mesh's octree in the model: boxes, children, corner values from its first cell.
+struct Octree {
+  const double* aabb;
+  const int* child;
+  const double* coeff;
+};
+Octree OctreeOf(const Model& m, int mesh) {
+  size_t adr = static_cast<size_t>(m.mesh_octadr[mesh]);
+  return {&m.oct_aabb[6 * adr], &m.oct_child[8 * adr], &m.oct_coeff[8 * adr]};
+}
+
 double OctreeDistance(const Model& m, const double p[3], int mesh) {
-  int adr = m.mesh_octadr[mesh];
-  const double* aabb = &m.oct_aabb[6 * static_cast<size_t>(adr)];
-  const int* child = &m.oct_child[8 * static_cast<size_t>(adr)];
-  const double* coeff = &m.oct_coeff[8 * static_cast<size_t>(adr)];
+  const Octree o = OctreeOf(m, mesh);
   double w[8], point[3] = {p[0], p[1], p[2]};
-  double outside = IntoBox(point, aabb);
-  int cell = FindCell(aabb, child, point, w, nullptr);
+  double outside = IntoBox(point, o.aabb);
+  int cell = FindCell(o.aabb, o.child, point, w, nullptr);
   if (cell < 0) return kMaxVal;
   double sdf = 0;
-  for (int j = 0; j < 8; j++) sdf += w[j] * coeff[8 * cell + j];
+  for (int j = 0; j < 8; j++) sdf += w[j] * o.coeff[8 * cell + j];
   return outside > 0 ? sdf + outside : sdf;
 }
 
 // Analytic inside the octree's box, by finite differences outside it.
 void OctreeGradient(const Model& m, double grad[3], const double point[3], int mesh) {
   Zero3(grad);
-  int adr = m.mesh_octadr[mesh];
-  const double* aabb = &m.oct_aabb[6 * static_cast<size_t>(adr)];
-  const int* child = &m.oct_child[8 * static_cast<size_t>(adr)];
-  const double* coeff = &m.oct_coeff[8 * static_cast<size_t>(adr)];
+  const Octree o = OctreeOf(m, mesh);
   double p[3] = {point[0], point[1], point[2]};
-  if (IntoBox(p, aabb) <= 0) {
+  if (IntoBox(p, o.aabb) <= 0) {
     double dw[8][3];
-    int cell = FindCell(aabb, child, p, nullptr, dw);
+    int cell = FindCell(o.aabb, o.child, p, nullptr, dw);
     if (cell < 0) return;
     for (int j = 0; j < 8; j++) {
-      for (int k = 0; k < 3; k++) grad[k] += dw[j][k] * coeff[8 * cell + j];
+      for (int k = 0; k < 3; k++) grad[k] += dw[j][k] * o.coeff[8 * cell + j];
     }
     return;
   }
@@ -363,6 +368,8 @@ void FieldGradient(const SdfPair& s, Field f, double grad[3], const double x[3])
 }
 
 // Gradient descent with backtracking (Armijo) line search; returns the field's value.
+// (Each step starts where the last line search stopped, whose value it already has: the
+// same number MuJoCo computes again there.)
 double Descend(double x[3], const SdfPair& s, Field f, int steps) {
   const double c = .1, rho = .5, alpha_min = 1e-4;
   double value = kMaxVal;
@@ -373,7 +380,7 @@ double Descend(double x[3], const SdfPair& s, Field f, int steps) {
       if (std::isnan(gk) || gk > kMaxVal || gk < -kMaxVal) return kMaxVal;
     }
     double x0[3] = {x[0], x[1], x[2]};
-    double value0 = FieldValue(s, f, x0);
+    double value0 = step > 0 ? value : FieldValue(s, f, x0);
     double alpha = 2.;
     double wolfe = -c * alpha * Dot3(grad, grad);
     do {
@@ -396,10 +403,7 @@ void RelativePose(const double pos1[3], const double quat1[4], const double pos2
   NegQuat(negquat, quat2);
   RotVecQuat(negpos, pos2, negquat);
   for (double& v : negpos) v *= -1;
-  MulQuat(quat12, negquat, quat1);
-  NormalizeQuat(quat12);
-  RotVecQuat(pos12, pos1, negquat);
-  for (int k = 0; k < 3; k++) pos12[k] += negpos[k];
+  MulPose(pos12, quat12, negpos, negquat, pos1, quat1);
   QuatToMat(mat12, quat12);
 }
 
@@ -450,7 +454,8 @@ int CollideSdf(const Model& m, const Data& d, Contact* con, int g1, int g2, doub
   const double* box1 = &m.geom_aabb[6 * g1];
   const double* box2 = &m.geom_aabb[6 * g2];
 
-  // Frames between the two geoms.
+  // Frames between the two geoms (offset2, rotation2: g1 seen from itself, near the
+  // identity, kept because MuJoCo maps the starting points through it).
   double quat1[4], quat2[4], offset2[3], rotation2[9], offset21[3], rotation21[9], offset12[3],
       rotation12[9];
   MatToQuat(quat1, &d.geom_xmat[9 * g1]);

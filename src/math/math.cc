@@ -75,25 +75,6 @@ void QuatIntegrate(double* q, const double* vel, double scale) {
   MulQuat(q, q, qrot);
 }
 
-void QuatZ2Vec(double* q, const double* vec) {
-  SetIdentityQuat(q);
-  double vn[3] = {vec[0], vec[1], vec[2]};
-  if (Normalize3(vn) < kTiny) return;
-  // Rotate z onto vn about z x vn; parallel vectors need no rotation or a half turn.
-  const double z[3] = {0, 0, 1};
-  double axis[3];
-  Cross3(axis, z, vn);
-  double s = Normalize3(axis);
-  if (std::abs(s) < kTiny) {
-    if (Dot3(vn, z) < 0) {
-      q[0] = 0;
-      q[1] = 1;
-    }
-    return;
-  }
-  AxisAngleToQuat(q, axis, math::Atan2(s, Dot3(vn, z)));
-}
-
 // ---------------------------------------------------------------- spatial algebra
 
 void InertCom(double* res, const double* inert, const double* mat, const double* dif,

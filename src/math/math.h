@@ -189,18 +189,18 @@ void QuatToVel(double* vel, const double* q, double dt);
 void SubQuat(double* res, const double* qa, const double* qb);
 // q <- q * exp(vel * scale / 2): integrate a body-frame angular velocity, normalized.
 void QuatIntegrate(double* q, const double* vel, double scale);
-// Minimal rotation that takes vector a to vector b (both nonzero).
-void QuatZ2Vec(double* q, const double* vec);
 
 // ---------------------------------------------------------------- frames
 
-// Compose frames: (pos, quat) = (pos1, quat1) * (pos2, quat2).
+// Compose frames: (pos, quat) = (pos1, quat1) * (pos2, quat2), the quaternion
+// normalized (MuJoCo's mju_mulPose).
 inline void MulPose(double* pos, double* quat, const double* pos1, const double* quat1,
                     const double* pos2, const double* quat2) {
   double p[3], q[4];
   RotVecQuat(p, pos2, quat1);
   Add3(p, p, pos1);
   MulQuat(q, quat1, quat2);
+  NormalizeQuat(q);
   Copy3(pos, p);
   CopyQuat(quat, q);
 }

@@ -49,6 +49,18 @@ async function openViewer(model) {
   return { session, page, problems };
 }
 
+// Opens `model` in the viewer, runs `checks(page)`, then checks that the page logged no
+// errors (named `name`) and closes it.
+async function inViewer(model, name, checks) {
+  const { session, page, problems } = await openViewer(model);
+  try {
+    await checks(page);
+    check(problems.length === 0, `${name}: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
+  } finally {
+    await session.close();
+  }
+}
+
 // Loads, draws, and has a slider per control entry; a screenshot of the page.
 async function checkLoads(page, name) {
   await page.waitForTimeout(700);
@@ -304,8 +316,7 @@ async function checkCameras(page) {
 
 async function testModel(file, interactive) {
   const name = path.basename(file, '.xml');
-  const { session, page, problems } = await openViewer(path.join(options.corpus, file));
-  try {
+  await inViewer(path.join(options.corpus, file), name, async (page) => {
     await checkLoads(page, name);
     if (await page.evaluate(() => window.lab.sim.sizes().nu) > 0) await checkSlider(page, name);
     if (interactive) {
@@ -318,19 +329,14 @@ async function testModel(file, interactive) {
       await checkCameras(page);
     }
     if (name === 'mug') await checkPerturbation(page, 1);
-    check(problems.length === 0, `${name}: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
-  } finally {
-    await session.close();
-  }
+  });
 }
 
 // A model with skins (tests/compiler_models/skins.xml: a sleeve over a swinging arm and
 // hand, a .skn tetrahedron, a triangle on the world): each skin is drawn, its vertices
 // follow the bones (the sleeve moves as the arm swings) and stay finite; a screenshot.
 async function testSkins() {
-  const model = path.join(repoRoot, 'tests/compiler_models/skins.xml');
-  const { session, page, problems } = await openViewer(model);
-  try {
+  await inViewer(path.join(repoRoot, 'tests/compiler_models/skins.xml'), 'skins', async (page) => {
     const sample = () => page.evaluate(() => window.lab.scene.skins.meshes.map(({ mesh }) =>
       Array.from(mesh.geometry.attributes.position.array)));
     await page.waitForTimeout(300);
@@ -345,19 +351,14 @@ async function testSkins() {
     const still = Math.max(...before[2].map((v, k) => Math.abs(v - after[2][k])));
     check(moved > 1e-3 && still === 0,
           `skins: the sleeve follows the swinging arm (moved ${moved.toFixed(3)}), the world's triangle stays (${still})`);
-    check(problems.length === 0, `skins: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
-  } finally {
-    await session.close();
-  }
+  });
 }
 
 // sdf geoms (tests/conformance/corpus/sdf/sdf_drops.xml: shapes dropped on a static sdf
 // icosahedron): the sdf geoms are drawn as their meshes, and the falling shapes come to
 // rest on the rock (contacts with it) rather than falling through; a screenshot.
 async function testSdf() {
-  const model = path.join(repoRoot, 'tests/conformance/corpus/sdf/sdf_drops.xml');
-  const { session, page, problems } = await openViewer(model);
-  try {
+  await inViewer(path.join(repoRoot, 'tests/conformance/corpus/sdf/sdf_drops.xml'), 'sdf', async (page) => {
     await page.waitForFunction(() => window.lab.sim.time > 0.5, null, { timeout: 30000 });
     const drawn = await page.evaluate(() => {
       const type = window.lab.sim.model('geom_type');
@@ -370,10 +371,7 @@ async function testSdf() {
     await page.screenshot({ path: path.join(options.shots, 'view_sdf.png') });
     check(drawn === 2, `sdf: ${drawn} of 2 sdf geoms drawn as their meshes`);
     check(onRock > 0, `sdf: ${onRock} contacts with the sdf rock at t > 0.5 s`);
-    check(problems.length === 0, `sdf: no page errors${problems.length ? `: ${problems.join('; ')}` : ''}`);
-  } finally {
-    await session.close();
-  }
+  });
 }
 
 async function main() {
