@@ -108,8 +108,6 @@ TEST(MjcfErrors, MissingFile) {
 }
 
 TEST(MjcfErrors, NotSupportedYet) {
-  ExpectError("<mujoco>\n<worldbody>\n<geom size=\".1\">\n<plugin plugin=\"p\"/></geom>\n</worldbody>\n</mujoco>",
-              {"bad.xml:4:", "a geom's <plugin>", "not supported yet"});
   ExpectError("<mujoco>\n<equality>\n<flex flex=\"f\"/>\n</equality>\n</mujoco>",
               {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
   ExpectError("<mujoco>\n<option><flag nativeccd=\"disable\"/></option>\n<asset>\n"

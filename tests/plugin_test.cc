@@ -309,9 +309,12 @@ TEST(Plugin, BadSensorAndBodyPluginsAreClearErrors) {
       {"<mujoco><extension><plugin plugin='test.gauge'><instance name='g'/></plugin></extension>"
        "<worldbody><replicate count='2'><body><plugin plugin='test.gauge'/><geom size='.1'/></body></replicate>"
        "</worldbody></mujoco>", {"plugin inside <replicate>", "not supported yet"}},
-      {model("<geom size='.1'><plugin instance='s'/></geom>", ""), {"geom's <plugin>", "not supported yet"}},
+      {model("<geom size='.1'><plugin instance='s'/></geom>", ""),
+       {"<geom>", "plugin 'test.spring' does not support signed distance fields"}},
+      {model("<geom size='.1'><plugin plugin='p'/></geom>", ""), {"plugin 'p' is not declared in <extension>"}},
+      {model("<geom size='.1'><plugin instance='s'/><plugin instance='s'/></geom>", ""), {"a geom has at most one plugin"}},
       {"<mujoco><asset><mesh name='m' vertex='0 0 0 1 0 0 0 1 0 0 0 1'><plugin instance='s'/></mesh></asset></mujoco>",
-       {"mesh's <plugin>", "not supported yet"}},
+       {"<mesh name=\"m\">", "a mesh made by a plugin has no file, vertex, face or builtin"}},
       {model("<geom size='.1'><site/></geom>", ""), {"unknown element <site> in <geom>"}},
   };
   for (const Bad& bad : cases) test_util::ExpectMessageParts(test_util::XmlLoadError(bad.xml), bad.says, bad.xml);

@@ -6,6 +6,11 @@
 //
 //   node tools/sweep_vs_mujoco.mjs --mujoco /work/mujoco-native/src [--only SUBSTRING]
 //        [--steps 200] [--timeout 120] [--out sweep.md] [--simlab build/simlab]
+//        [--native /work/mujoco-oracle-era]
+//
+// --native: native MuJoCo at the oracle's commit with its plugins
+// (tools/native/build_oracle_era.sh) is the reference for the models the npm oracle
+// cannot load (those with plugins), without controls (ctrlgen.mjs cannot load them).
 //
 // A MuJoCo tree comes from `fetch` (github:google-deepmind/mujoco; ../shared/oracle/
 // native/build.sh unpacks one). Nothing here is needed by the tests or CI.
@@ -23,7 +28,7 @@ const oracle = process.env.SIMLAB_ORACLE ? path.resolve(process.env.SIMLAB_ORACL
 // --name value options, with defaults.
 function parseArgs(argv) {
   const opts = { mujoco: null, only: '', steps: 200, timeout: 120, out: null,
-                 simlab: path.join(root, 'build/simlab') };
+                 simlab: path.join(root, 'build/simlab'), native: null };
   for (let i = 0; i < argv.length; i += 2) {
     const name = argv[i].replace(/^--/, '');
     if (!(name in opts)) throw new Error(`unknown option ${argv[i]}`);
@@ -70,10 +75,36 @@ function keyframesOf(model, timeout) {
   }
 }
 
+// Both rollouts made (`ref` and `ours`): the verdict at the tolerance the reference's
+// contacts call for.
+function verdictOf(ref, ours, opts, note) {
+  const contacts = fs.readFileSync(ref, 'utf8').split('\n').some((l) => /"ncon":[1-9]/.test(l));
+  const tol = contacts ? '1e-4' : '1e-6';
+  const compared = run('node', [path.join(oracle, 'compare.mjs'), ref, ours, '--tol', tol], opts.timeout);
+  if (compared.ok) return { verdict: 'agrees', detail: `tol ${tol}${note}` };
+  const fail = compared.out.split('\n').find((l) => l.startsWith('FAIL')) ?? compared.err;
+  return { verdict: 'differs', detail: `tol ${tol}${note}: ${firstLine(fail).replace(/\s+/g, ' ')}` };
+}
+
+// A model the npm oracle cannot load, against native MuJoCo of the oracle's commit.
+function sweepNative(model, opts, work, why) {
+  const ref = path.join(work, 'ref.jsonl'), ours = path.join(work, 'ours.jsonl');
+  const common = ['--steps', String(opts.steps), '--every', '10'];
+  const env = { ...process.env, LD_PRELOAD: path.join(opts.native, 'musl_trig.so') };
+  const reference = spawnSync(path.join(opts.native, 'rollout'), [model, ...common, '--out', ref],
+                              { encoding: 'utf8', timeout: opts.timeout * 1000, env });
+  if (reference.status !== 0) return { verdict: 'MuJoCo does not load', detail: why };
+  const simulated = run(opts.simlab, ['rollout', model, ...common, '--out', ours], opts.timeout);
+  if (simulated.timedOut) return { verdict: 'simlab times out', detail: `over ${opts.timeout} s` };
+  if (!simulated.ok) return { verdict: 'simlab does not load', detail: firstLine(simulated.err) };
+  return verdictOf(ref, ours, opts, ', native reference, no controls');
+}
+
 // One model's verdict: {verdict, detail}.
 function sweepOne(model, opts, work) {
   const ctrl = path.join(work, 'ctrl.csv'), ref = path.join(work, 'ref.jsonl'), ours = path.join(work, 'ours.jsonl');
   const gen = run('node', [path.join(oracle, 'ctrlgen.mjs'), model, '--steps', String(opts.steps), '--out', ctrl], opts.timeout);
+  if (!gen.ok && opts.native) return sweepNative(model, opts, work, firstLine(gen.err));
   if (!gen.ok) return { verdict: 'MuJoCo does not load', detail: firstLine(gen.err) };
   const key = keyframesOf(model, opts.timeout) > 0 ? ['--key', '0'] : [];
   const common = ['--steps', String(opts.steps), '--every', '10', '--ctrl', ctrl, ...key];
@@ -82,12 +113,7 @@ function sweepOne(model, opts, work) {
   const simulated = run(opts.simlab, ['rollout', model, ...common, '--out', ours], opts.timeout);
   if (simulated.timedOut) return { verdict: 'simlab times out', detail: `over ${opts.timeout} s` };
   if (!simulated.ok) return { verdict: 'simlab does not load', detail: firstLine(simulated.err) };
-  const contacts = fs.readFileSync(ref, 'utf8').split('\n').some((l) => /"ncon":[1-9]/.test(l));
-  const tol = contacts ? '1e-4' : '1e-6';
-  const compared = run('node', [path.join(oracle, 'compare.mjs'), ref, ours, '--tol', tol], opts.timeout);
-  if (compared.ok) return { verdict: 'agrees', detail: `tol ${tol}${key.length ? ', key 0' : ''}` };
-  const fail = compared.out.split('\n').find((l) => l.startsWith('FAIL')) ?? compared.err;
-  return { verdict: 'differs', detail: `tol ${tol}: ${firstLine(fail).replace(/\s+/g, ' ')}` };
+  return verdictOf(ref, ours, opts, key.length ? ', key 0' : '');
 }
 
 function main() {

@@ -355,6 +355,7 @@ struct Visual {
   X(double, geom_fluid, ngeom, kNFluid)            \
   X(int, geom_dataid, ngeom, 1)                    \
   X(int, geom_matid, ngeom, 1) /* material, or -1 */ \
+  X(int, geom_plugin, ngeom, 1) /* sdf plugin instance, or -1 */ \
   /* meshes (vertices hold float-rounded values, as MuJoCo stores floats) */ \
   X(int, mesh_vertadr, nmesh, 1)                   \
   X(int, mesh_vertnum, nmesh, 1)                   \

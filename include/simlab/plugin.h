@@ -21,7 +21,19 @@
 //   p.compute = [](const Model& m, Data& d, int instance, int capability) { ... };
 //   simlab::RegisterPlugin(p);
 //
-// MuJoCo's first-party mujoco.pid actuator plugin is registered already.
+// A signed distance field plugin (kPluginSdf) gives an sdf geom its shape:
+//
+//   <extension><plugin plugin="mujoco.sdf.torus">
+//     <instance name="torus"><config key="radius1" value="0.35"/></instance>
+//   </plugin></extension>
+//   <asset><mesh name="torus"><plugin instance="torus"/></mesh></asset>
+//   <geom type="sdf" mesh="torus"><plugin instance="torus"/></geom>
+//
+// The mesh is the field's zero level set (marching cubes in the plugin's box), which
+// gives the geom its mass and bounds; contacts come from the field itself.
+//
+// MuJoCo's first-party plugins are registered already: mujoco.pid and the signed distance
+// fields mujoco.sdf.torus, .bolt, .nut, .gear and .bowl.
 #ifndef SIMLAB_PLUGIN_H_
 #define SIMLAB_PLUGIN_H_
 
@@ -37,7 +49,12 @@
 namespace simlab {
 
 // What a plugin computes (mjtPluginCapabilityBit).
-enum PluginCapability : int { kPluginActuator = 1, kPluginSensor = 2, kPluginPassive = 4 };
+enum PluginCapability : int {
+  kPluginActuator = 1,
+  kPluginSensor = 2,
+  kPluginPassive = 4,
+  kPluginSdf = 8,
+};
 
 struct Plugin {
   std::string name;                     // unique, e.g. "mujoco.pid"
@@ -67,6 +84,15 @@ struct Plugin {
   std::function<void(const Model& m, Data& d, int instance, int capability)> compute;
   // After a step has advanced the state and time.
   std::function<void(const Model& m, Data& d, int instance)> advance;
+
+  // Signed distance fields: the numbers of the attributes when not configured (each
+  // attribute is a number; SdfAttributes reads them); the distance and its gradient at a
+  // point of the geom's frame; the box that holds the shape, centre then half-sizes.
+  std::vector<double> sdf_defaults;
+  std::function<double(const double point[3], const double* attributes)> sdf_distance;
+  std::function<void(double gradient[3], const double point[3], const double* attributes)>
+      sdf_gradient;
+  std::function<void(double aabb[6], const double* attributes)> sdf_aabb;
 };
 
 // A plugin's init refused its instance's configuration (InitPlugins, when a Data is made).
@@ -89,6 +115,16 @@ const Plugin& PluginAt(int slot);
 // Instance `instance`'s value for config key `key`: "" when not given; throws
 // simlab::Error for a key the plugin does not declare (MuJoCo mj_getPluginConfig).
 std::string PluginConfig(const Model& m, int instance, const std::string& key);
+
+// A signed distance field plugin's attribute numbers for its config values (in the
+// plugin's attribute order; "" takes the default); throws simlab::Error for a value that
+// is not a number.
+std::vector<double> SdfAttributes(const Plugin& plugin, const std::vector<std::string>& values);
+
+// Distance and gradient of the field of sdf plugin instance `instance` in Data `d`.
+double SdfPluginDistance(const Model& m, const Data& d, int instance, const double point[3]);
+void SdfPluginGradient(const Model& m, const Data& d, int instance, double gradient[3],
+                       const double point[3]);
 
 }  // namespace simlab
 

@@ -172,6 +172,10 @@ void CompileTrees(const CompileState& state, Model* m);
 void FlattenTree(const mjcf::ModelSpec& spec, CompileState* state);
 // Meshes and the geoms that use them (mesh.cc): before the bodies, which need them.
 void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state);
+// The zero level set of a signed distance field plugin's field, by marching cubes
+// (mesh_level_set.cc).
+struct MeshData;
+MeshData LevelSetMesh(const Plugin& plugin, const std::vector<double>& attributes);
 void MeshSizes(const CompileState& state, Model* m);
 // A geom with a mesh: a primitive type is fitted to it (size), and the geom frame is
 // offset by the mesh's inertial frame. A mesh geom's size is its bounding box.
@@ -284,6 +288,10 @@ int PluginInstanceOf(const mjcf::ModelSpec& spec, const mjcf::Source& user,
                      const mjcf::PluginUse& use, const std::string& kind);
 const Plugin& PluginWith(const Model& m, int instance, int capability, const mjcf::Source& user);
 const mjcf::Source& PluginInstanceSource(const mjcf::ModelSpec& spec, int instance);
+// The signed distance field plugin a mesh or geom (written at `user`) uses, and its
+// instance's attribute numbers.
+const Plugin& SdfPluginOf(const mjcf::ModelSpec& spec, const mjcf::Source& user,
+                          const mjcf::PluginUse& use, std::vector<double>* attributes);
 void CompileKeyframes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 // Sensors (sensor.cc): user numbers per sensor (before allocation), then every sensor,
 // sensordata addresses and the actuator/sensor history buffer layout.

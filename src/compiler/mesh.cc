@@ -392,9 +392,11 @@ void MoveToInertialFrame(MeshState* mesh, const double com[3], const double quat
   math::CopyQuat(mesh->quat, quat);
 }
 
-void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh) {
+// A mesh from its file, attributes or builtin, or given (a plugin's level set).
+void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh,
+                 MeshData* given) {
   const mjcf::MeshSpec& s = *mesh->spec;
-  MeshData data = LoadGeometry(s, assets);
+  MeshData data = given ? std::move(*given) : LoadGeometry(s, assets);
   CheckGeometry(s, data);
   mesh->vert.assign(data.vert.begin(), data.vert.end());
   mesh->face = std::move(data.face);
@@ -420,8 +422,32 @@ void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh)
   ReferenceNormals(s, &mesh->normal);
   double com[3], quat[4];
   MassProperties(mesh, com, quat);
+  if (s.plugin.active) {
+    // A plugin's level set stays in the plugin's frame (MuJoCo does not reorient meshes
+    // made by marching cubes; their inertia keeps the principal moments in eigenvalue
+    // order all the same).
+    com[0] = com[1] = com[2] = 0;
+    quat[0] = 1, quat[1] = quat[2] = quat[3] = 0;
+  }
   MoveToInertialFrame(mesh, com, quat);
   MeshPolygonNormals(mesh);
+}
+
+// The level set of the mesh's signed distance field plugin, which is all its geometry.
+MeshData PluginMesh(const mjcf::ModelSpec& spec, const mjcf::MeshSpec& s) {
+  if (!s.path.empty() || !s.vertex.empty() || !s.face.empty() || s.builtin != mjcf::kMeshBuiltinNone) {
+    ThrowAt(s.src, "a mesh made by a plugin has no file, vertex, face or builtin");
+  }
+  if (s.scale[0] != 1 || s.scale[1] != 1 || s.scale[2] != 1) {
+    ThrowAt(s.src, "attribute scale is not compatible with SDFs in mesh '" + s.src.name + "'");
+  }
+  std::vector<double> attributes;
+  const Plugin& plugin = SdfPluginOf(spec, s.src, s.plugin, &attributes);
+  try {
+    return LevelSetMesh(plugin, attributes);
+  } catch (const Error& e) {
+    ThrowAt(s.src, e.what());
+  }
 }
 
 // ---------------------------------------------------------------- geoms that use meshes
@@ -480,11 +506,16 @@ void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state) {
     if (s.type == kGeomSdf) needsdf[ids[i]] = true;
   }
 
+  // (a plugin's mesh has no octree: contacts come from the plugin's field)
   state->meshes.resize(spec.meshes.size());
   for (size_t i = 0; i < spec.meshes.size(); i++) {
-    state->meshes[i].spec = &spec.meshes[i];
-    CompileMesh(needhull[i], spec.assets.get(), &state->meshes[i]);
-    if (needsdf[i]) MakeMeshOctree(&state->meshes[i]);
+    const mjcf::MeshSpec& s = spec.meshes[i];
+    state->meshes[i].spec = &s;
+    MeshData level_set;
+    if (s.plugin.active) level_set = PluginMesh(spec, s);
+    CompileMesh(needhull[i], spec.assets.get(), &state->meshes[i],
+                s.plugin.active ? &level_set : nullptr);
+    if (needsdf[i] && !s.plugin.active) MakeMeshOctree(&state->meshes[i]);
   }
   for (size_t i = 0; i < state->geoms.size(); i++) {
     if (ids[i] < 0) continue;

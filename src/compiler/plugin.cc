@@ -51,31 +51,48 @@ int PluginInstanceOf(const mjcf::ModelSpec& spec, const mjcf::Source& user, cons
   ThrowAt(user, "unrecognized name '" + use.instance + "' for plugin instance");
 }
 
+namespace {
+
+// The capability in words, for errors.
+const char* CapabilityName(int capability) {
+  return capability == kPluginActuator ? "actuators"
+         : capability == kPluginSensor ? "sensors"
+         : capability == kPluginSdf    ? "signed distance fields"
+                                       : "passive forces";
+}
+
+}  // namespace
+
 const Plugin& PluginWith(const Model& m, int instance, int capability, const mjcf::Source& user) {
   const Plugin& plugin = PluginAt(m.plugin[instance]);
   if (plugin.capabilities & capability) return plugin;
-  const char* what = capability == kPluginActuator ? "actuators"
-                     : capability == kPluginSensor ? "sensors"
-                                                   : "passive forces";
-  ThrowAt(user, "plugin '" + plugin.name + "' does not support " + what);
+  ThrowAt(user, "plugin '" + plugin.name + "' does not support " + CapabilityName(capability));
 }
 
 namespace {
 
-// The instance's config values in the plugin's attribute order, each ended by '\0'.
-std::string FlattenConfig(const mjcf::PluginInstanceSpec& inst, const Plugin& plugin) {
+// The instance's config values in the plugin's attribute order ("" where not given);
+// a key the plugin does not read is an error.
+std::vector<std::string> ConfigValues(const mjcf::PluginInstanceSpec& inst, const Plugin& plugin) {
   for (const auto& [key, value] : inst.config) {
     bool known = false;
     for (const std::string& attribute : plugin.attributes) known = known || attribute == key;
     if (!known) ThrowAt(inst.src, "unrecognized attribute 'plugin:" + key + "' for plugin '" + plugin.name + "'");
   }
-  std::string flat;
+  std::vector<std::string> values;
   for (const std::string& attribute : plugin.attributes) {
+    values.emplace_back();
     for (const auto& [key, value] : inst.config) {
-      if (key == attribute) flat += value;
+      if (key == attribute) values.back() = value;
     }
-    flat += '\0';
   }
+  return values;
+}
+
+// The config values flattened, each ended by '\0'.
+std::string FlattenConfig(const mjcf::PluginInstanceSpec& inst, const Plugin& plugin) {
+  std::string flat;
+  for (const std::string& value : ConfigValues(inst, plugin)) flat += value + '\0';
   return plugin.attributes.empty() ? std::string(1, '\0') : flat;
 }
 
@@ -111,6 +128,14 @@ void CompilePlugins(const mjcf::ModelSpec& spec, const CompileState& state, Mode
     m->body_plugin[i] = PluginInstanceOf(spec, b.src, b.plugin, "body");
     PluginWith(*m, m->body_plugin[i], kPluginPassive, b.src);
   }
+  // Geoms whose shape a signed distance field plugin gives.
+  for (int i = 0; i < m->ngeom; i++) {
+    const mjcf::GeomSpec& g = *state.geoms[i].spec;
+    m->geom_plugin[i] = -1;
+    if (!g.plugin.active) continue;
+    m->geom_plugin[i] = PluginInstanceOf(spec, g.src, g.plugin, "geom");
+    PluginWith(*m, m->geom_plugin[i], kPluginSdf, g.src);
+  }
   // (the state sizes may depend on the actuators)
   for (int i = 0; i < m->nplugin; i++) {
     const Plugin& plugin = PluginAt(m->plugin[i]);
@@ -120,6 +145,23 @@ void CompilePlugins(const mjcf::ModelSpec& spec, const CompileState& state, Mode
     stateadr += m->plugin_statenum[i];
   }
   m->npluginstate = stateadr;
+}
+
+const Plugin& SdfPluginOf(const mjcf::ModelSpec& spec, const mjcf::Source& user,
+                          const mjcf::PluginUse& use, std::vector<double>* attributes) {
+  const mjcf::PluginInstanceSpec& inst = InstanceAt(spec, PluginInstanceOf(spec, user, use, user.tag));
+  int slot = DeclaredPlugin(spec, inst.src, inst.plugin);
+  if (slot < 0) ThrowAt(inst.src, "plugin '" + inst.plugin + "' is not registered");
+  const Plugin& plugin = PluginAt(slot);
+  if (!(plugin.capabilities & kPluginSdf)) {
+    ThrowAt(user, "plugin '" + plugin.name + "' does not support signed distance fields");
+  }
+  try {
+    *attributes = SdfAttributes(plugin, ConfigValues(inst, plugin));
+  } catch (const Error& e) {
+    ThrowAt(inst.src, e.what());
+  }
+  return plugin;
 }
 
 const mjcf::Source& PluginInstanceSource(const mjcf::ModelSpec& spec, int instance) {

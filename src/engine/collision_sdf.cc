@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "engine/collision.h"
+#include "engine/engine.h"
 #include "engine/ray.h"
 #include "math/math.h"
 
@@ -27,11 +28,13 @@ using namespace math;
 enum class Field { kCollision, kIntersection, kMidsurface };
 
 // The two shapes: index 0 is g2 (the sdf), index 1 is g1, whose points are mapped into
-// it by y = relmat x + relpos. `id` is a mesh id for an sdf geom, else the geom id.
+// it by y = relmat x + relpos. `id` is a mesh id for an sdf geom, else the geom id; an
+// sdf geom with a plugin has its field.
 struct SdfPair {
   const Model* m = nullptr;
   const Data* d = nullptr;
   int id[2] = {-1, -1};
+  SdfField field[2];
   int type[2] = {kGeomSdf, kGeomSdf};
   double relpos[3] = {0, 0, 0};
   double relmat[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -157,8 +160,9 @@ void OctreeGradient(const Model& m, double grad[3], const double point[3], int m
 // mjc_SDF): the octree of the mesh numbered as the geom (the reference indexes the mesh
 // arrays by the geom's id; simlab reads them only when that id is a mesh's), else the
 // ray from the point (world frame) towards the world origin: the distance to the mesh
-// along it, or, when the ray leaves past the origin, minus the distance back.
-double MeshRay(const SdfPair& s, int geom, const double x[3], double* reach) {
+// along it, or, when the ray leaves past the origin, minus the distance back. (`first`:
+// only the first ray's parameter, which the gradient reads.)
+double MeshRay(const SdfPair& s, int geom, const double x[3], double* reach, double* first = nullptr) {
   const Data& d = *s.d;
   double a[3], dir[3];
   MulMatVec3(a, &d.geom_xmat[9 * geom], x);
@@ -166,6 +170,7 @@ double MeshRay(const SdfPair& s, int geom, const double x[3], double* reach) {
   for (int k = 0; k < 3; k++) dir[k] = -a[k];
   *reach = Norm3(dir);
   double dist = RayMesh(*s.m, d, geom, a, dir, nullptr);
+  if (first) return *first = dist;
   if (dist > *reach) {
     for (double& v : dir) v = -v;
     return -RayMesh(*s.m, d, geom, a, dir, nullptr);
@@ -196,6 +201,7 @@ double Norm2(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1]); }
 double ShapeDistance(const SdfPair& s, int which, const double x[3]) {
   const Model& m = *s.m;
   int type = s.type[which], id = s.id[which];
+  if (s.field[which].plugin) return s.field[which].Distance(x);
   if (type == kGeomSdf) return OctreeDistance(m, x, id);
   if (type == kGeomMesh) {
     if (MeshOctreeByGeomId(m, id)) return OctreeDistance(m, x, id);
@@ -239,12 +245,17 @@ double ShapeDistance(const SdfPair& s, int which, const double x[3]) {
 void ShapeGradient(double g[3], const SdfPair& s, int which, const double x[3]) {
   const Model& m = *s.m;
   int type = s.type[which], id = s.id[which];
+  if (s.field[which].plugin) {
+    s.field[which].Gradient(g, x);
+    return;
+  }
   if (type == kGeomSdf || (type == kGeomMesh && MeshOctreeByGeomId(m, id))) {
     OctreeGradient(m, g, x, id);
     return;
   }
-  if (type == kGeomMesh) {  // (the reference's: a sign in every direction)
-    double reach, dist = MeshRay(s, id, x, &reach);
+  if (type == kGeomMesh) {  // (the reference's: a sign in every direction, from the first ray)
+    double reach, dist;
+    MeshRay(s, id, x, &reach, &dist);
     double sign = dist > reach ? 1 : -1;
     g[0] = g[1] = g[2] = sign;
     return;
@@ -447,6 +458,32 @@ int AddContact(double* points, Contact* con, const double x[3], const double pos
 
 }  // namespace
 
+namespace {
+
+// The pair view of sdf geom g alone.
+SdfPair SingleSdf(const Model& m, const Data& d, int g) {
+  SdfPair s;
+  s.m = &m;
+  s.d = &d;
+  s.type[0] = kGeomSdf, s.id[0] = m.geom_dataid[g];
+  if (m.geom_plugin[g] >= 0) s.field[0] = SdfFieldOf(d, m.geom_plugin[g]);
+  return s;
+}
+
+}  // namespace
+
+double SdfGeomDistance(const Model& m, const Data& d, int g, const double x[3]) {
+  return ShapeDistance(SingleSdf(m, d, g), 0, x);
+}
+
+void SdfGeomGradient(const Model& m, const Data& d, int g, double gradient[3], const double x[3]) {
+  ShapeGradient(gradient, SingleSdf(m, d, g), 0, x);
+}
+
+double MeshOctreeDistance(const Model& m, int mesh, const double x[3]) {
+  return OctreeDistance(m, x, mesh);
+}
+
 int CollideSdf(const Model& m, const Data& d, Contact* con, int g1, int g2, double margin) {
   (void)margin;  // (MuJoCo's sdf collider takes touching points only)
   const double* pos1 = &d.geom_xpos[3 * g1];
@@ -491,6 +528,8 @@ int CollideSdf(const Model& m, const Data& d, Contact* con, int g1, int g2, doub
   s.d = &d;
   s.type[0] = m.geom_type[g2], s.id[0] = m.geom_dataid[g2];
   s.type[1] = m.geom_type[g1], s.id[1] = m.geom_type[g1] == kGeomSdf ? m.geom_dataid[g1] : g1;
+  if (m.geom_plugin[g2] >= 0) s.field[0] = SdfFieldOf(d, m.geom_plugin[g2]);
+  if (m.geom_type[g1] == kGeomSdf && m.geom_plugin[g1] >= 0) s.field[1] = SdfFieldOf(d, m.geom_plugin[g1]);
   Copy3(s.relpos, offset21);
   std::copy(rotation21, rotation21 + 9, s.relmat);
 

@@ -9,6 +9,7 @@
 
 #include "simlab/data.h"
 #include "simlab/model.h"
+#include "simlab/plugin.h"
 
 namespace simlab {
 
@@ -136,6 +137,14 @@ void PluginActDot(const Model& m, Data& d);
 void PluginActuatorForces(const Model& m, Data& d);
 void PluginPassiveForces(const Model& m, Data& d);
 void PluginAdvance(const Model& m, Data& d);
+// The field of a signed distance field plugin's instance: its plugin and attributes.
+struct SdfField {
+  const Plugin* plugin = nullptr;
+  const double* attributes = nullptr;
+  double Distance(const double x[3]) const { return plugin->sdf_distance(x, attributes); }
+  void Gradient(double g[3], const double x[3]) const { plugin->sdf_gradient(g, x, attributes); }
+};
+SdfField SdfFieldOf(const Data& d, int instance);
 // act_dot, actuator_force, qfrc_actuator (actuation.cc).
 void Actuation(const Model& m, Data& d);
 // The activation after one step of its dynamics, clamped to actrange (actuation.cc).

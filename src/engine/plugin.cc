@@ -3,6 +3,7 @@
 // (plugin_state is kept across it for the plugin's reset to set), actuator act_dot after
 // the built-in dynamics and actuator forces after the built-in ones (both before the
 // force clamps), passive forces at the end of the passive stage, advance after a step.
+#include <cstdlib>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -14,7 +15,8 @@
 
 namespace simlab {
 
-Plugin PidPlugin();  // mujoco.pid (src/plugin/pid.cc)
+Plugin PidPlugin();                    // mujoco.pid (src/plugin/pid.cc)
+std::vector<Plugin> SdfShapePlugins();  // mujoco.sdf.* (src/plugin/sdf_shapes.cc)
 
 namespace {
 
@@ -29,10 +31,45 @@ Registry& TheRegistry() {
   return registry;
 }
 
+// What an instance of a signed distance field plugin keeps: its attribute numbers, and
+// the plugin (registered plugins stay where they are).
+struct SdfInstance : PluginInstanceData {
+  const Plugin* plugin = nullptr;
+  std::vector<double> attributes;
+  std::unique_ptr<PluginInstanceData> Clone() const override {
+    return std::make_unique<SdfInstance>(*this);
+  }
+};
+
+// A signed distance field plugin needs its field and box; its instances read their
+// attributes when a Data is made, and it computes nothing in the pipeline.
+Plugin CompleteSdfPlugin(Plugin plugin, const Plugin* registered) {
+  if (!plugin.sdf_distance || !plugin.sdf_gradient || !plugin.sdf_aabb) {
+    throw Error("sdf plugin '" + plugin.name + "' needs sdf_distance, sdf_gradient and sdf_aabb");
+  }
+  if (plugin.sdf_defaults.size() != plugin.attributes.size()) {
+    throw Error("sdf plugin '" + plugin.name + "' needs a default for each attribute");
+  }
+  if (!plugin.compute) plugin.compute = [](const Model&, Data&, int, int) {};
+  if (!plugin.init) {
+    plugin.init = [registered](const Model& m, Data&, int instance) {
+      auto data = std::make_unique<SdfInstance>();
+      data->plugin = registered;
+      std::vector<std::string> values;
+      for (const std::string& key : registered->attributes) values.push_back(PluginConfig(m, instance, key));
+      data->attributes = SdfAttributes(*registered, values);
+      return std::unique_ptr<PluginInstanceData>(std::move(data));
+    };
+  }
+  return plugin;
+}
+
 // Adds a plugin under a name not taken yet; returns its slot.
 int AddPlugin(const Plugin& plugin) {
   if (plugin.name.empty()) throw Error("a plugin needs a name");
-  if (!plugin.compute) throw Error("plugin '" + plugin.name + "' has no compute");
+  if (!plugin.compute && plugin.capabilities != kPluginSdf) {
+    throw Error("plugin '" + plugin.name + "' has no compute");
+  }
   if ((plugin.capabilities & kPluginSensor) && !plugin.nsensordata) {
     throw Error("sensor plugin '" + plugin.name + "' has no nsensordata");
   }
@@ -45,12 +82,17 @@ int AddPlugin(const Plugin& plugin) {
     if (p->name == plugin.name) throw Error("plugin '" + plugin.name + "' is already registered");
   }
   r.plugins.push_back(std::make_unique<Plugin>(plugin));
+  Plugin* added = r.plugins.back().get();
+  if (plugin.capabilities & kPluginSdf) *added = CompleteSdfPlugin(plugin, added);
   return static_cast<int>(r.plugins.size()) - 1;
 }
 
 void RegisterBuiltins() {
   static std::once_flag once;
-  std::call_once(once, [] { AddPlugin(PidPlugin()); });
+  std::call_once(once, [] {
+    AddPlugin(PidPlugin());
+    for (const Plugin& sdf : SdfShapePlugins()) AddPlugin(sdf);
+  });
 }
 
 // Calls `call(instance, plugin)` for each instance whose plugin has the capability.
@@ -102,6 +144,40 @@ std::string PluginConfig(const Model& m, int instance, const std::string& key) {
     at = end + 1;
   }
   throw Error("plugin '" + plugin.name + "' has no attribute '" + key + "'");
+}
+
+std::vector<double> SdfAttributes(const Plugin& plugin, const std::vector<std::string>& values) {
+  std::vector<double> numbers(plugin.attributes.size());
+  for (size_t k = 0; k < numbers.size(); k++) {
+    const std::string& text = k < values.size() ? values[k] : std::string();
+    if (text.empty()) {
+      numbers[k] = plugin.sdf_defaults[k];
+      continue;
+    }
+    // (a number, as std::stod reads it: leading blanks and trailing text are allowed)
+    char* end = nullptr;
+    numbers[k] = std::strtod(text.c_str(), &end);
+    if (end == text.c_str()) {
+      throw Error("plugin '" + plugin.name + "': invalid attribute value for '" +
+                  plugin.attributes[k] + "': '" + text + "'");
+    }
+  }
+  return numbers;
+}
+
+SdfField SdfFieldOf(const Data& d, int instance) {
+  const auto* data = dynamic_cast<const SdfInstance*>(d.plugin_data.at(instance).data.get());
+  if (!data) throw Error("plugin instance " + std::to_string(instance) + " is not a signed distance field");
+  return {data->plugin, data->attributes.data()};
+}
+
+double SdfPluginDistance(const Model&, const Data& d, int instance, const double point[3]) {
+  return SdfFieldOf(d, instance).Distance(point);
+}
+
+void SdfPluginGradient(const Model&, const Data& d, int instance, double gradient[3],
+                       const double point[3]) {
+  SdfFieldOf(d, instance).Gradient(gradient, point);
 }
 
 // ---------------------------------------------------------------- pipeline hooks

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/collision.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -406,16 +407,29 @@ double RayPrimitive(const double pos[3], const double mat[9], const double size[
   }
 }
 
+namespace {
+
+// The ray in geom g's frame, after clearing the normal; false when it misses the geom's
+// box (geom_size about its frame), as MuJoCo culls mesh and sdf geoms.
+bool RayIntoGeomBox(const Model& m, const Data& d, int g, const double pnt[3], const double vec[3],
+                    double normal[3], double lpnt[3], double lvec[3]) {
+  ClearNormal(normal);
+  const double* xpos = &d.geom_xpos[3 * g];
+  const double* xmat = &d.geom_xmat[9 * g];
+  if (RayBox(xpos, xmat, &m.geom_size[3 * g], pnt, vec, nullptr, nullptr) < 0) return false;
+  ToLocal(xpos, xmat, pnt, vec, lpnt, lvec);
+  return true;
+}
+
+}  // namespace
+
 double RayMesh(const Model& m, const Data& d, int geom, const double pnt[3], const double vec[3],
                double normal[3]) {
-  ClearNormal(normal);
-  const double* xpos = &d.geom_xpos[3 * geom];
+  double lpnt[3], lvec[3], b0[3], b1[3];
+  if (!RayIntoGeomBox(m, d, geom, pnt, vec, normal, lpnt, lvec)) return -1;
   const double* xmat = &d.geom_xmat[9 * geom];
-  if (RayBox(xpos, xmat, &m.geom_size[3 * geom], pnt, vec, nullptr, nullptr) < 0) return -1;
 
   // Every triangle, in the geom frame; the nearest hit wins.
-  double lpnt[3], lvec[3], b0[3], b1[3];
-  ToLocal(xpos, xmat, pnt, vec, lpnt, lvec);
   NormalPlaneBasis(lvec, b0, b1);
   const int mesh = m.geom_dataid[geom];
   const double* vert = &m.mesh_vert[3 * m.mesh_vertadr[mesh]];
@@ -428,6 +442,35 @@ double RayMesh(const Model& m, const Data& d, int geom, const double pnt[3], con
   }
   if (normal && x >= 0) math::MulMatVec3(normal, xmat, local_normal);
   return x;
+}
+
+double RaySdf(const Model& m, const Data& d, int geom, const double pnt[3], const double vec[3],
+              double normal[3]) {
+  double lpnt[3], lvec[3], p[3];
+  if (!RayIntoGeomBox(m, d, geom, pnt, vec, normal, lpnt, lvec)) return -1;
+  const double* xmat = &d.geom_xmat[9 * geom];
+
+  // March along the unit direction by the field's distance, at most 40 times, until
+  // within 1e-7 of the surface (or 1e6 away from it).
+  math::Normalize3(lvec);
+  double total = 0;
+  for (int i = 0; i < 40; i++) {
+    for (int k = 0; k < 3; k++) p[k] = lpnt[k] + lvec[k] * total;
+    double step = std::abs(SdfGeomDistance(m, d, geom, p));
+    total += step;
+    if (step < 1e-7) {
+      if (normal) {
+        for (int k = 0; k < 3; k++) p[k] = lpnt[k] + lvec[k] * total;
+        double local[3];
+        SdfGeomGradient(m, d, geom, local, p);
+        math::Normalize3(local);
+        math::MulMatVec3(normal, xmat, local);
+      }
+      return total;
+    }
+    if (step > 1e6) break;
+  }
+  return -1;
 }
 
 double RayHfield(const Model& m, const Data& d, int geom, const double pnt[3],
@@ -508,6 +551,7 @@ double Ray(const Model& m, const Data& d, const double pnt[3], const double vec[
     switch (m.geom_type[g]) {
       case kGeomMesh: x = RayMesh(m, d, g, pnt, vec, n); break;
       case kGeomHfield: x = RayHfield(m, d, g, pnt, vec, n); break;
+      case kGeomSdf: x = RaySdf(m, d, g, pnt, vec, n); break;
       default:
         x = RayPrimitive(&d.geom_xpos[3 * g], &d.geom_xmat[9 * g], &m.geom_size[3 * g], pnt, vec,
                          m.geom_type[g], n);

@@ -28,7 +28,10 @@ double Ray(const Model& m, const Data& d, const double pnt[3], const double vec[
 // One primitive geom (plane, sphere, capsule, ellipsoid, cylinder, box) at pos/mat.
 double RayPrimitive(const double pos[3], const double mat[9], const double size[3],
                     const double pnt[3], const double vec[3], int type, double normal[3]);
-// One mesh geom (its triangles) and one height-field geom.
+// One mesh geom (its triangles), one height-field geom, and one sdf geom (marching
+// along the ray by its field's distance).
+double RaySdf(const Model& m, const Data& d, int geom, const double pnt[3], const double vec[3],
+              double normal[3]);
 double RayMesh(const Model& m, const Data& d, int geom, const double pnt[3], const double vec[3],
                double normal[3]);
 double RayHfield(const Model& m, const Data& d, int geom, const double pnt[3],

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "engine/collision.h"
 #include "engine/sensor.h"
 #include "engine/stack.h"
 #include "math/math.h"
@@ -83,6 +84,16 @@ double PrimitiveDistance(const Model& m, int g, const double x[3]) {
   }
 }
 
+// The signed distance of any geom the sensor can read: an sdf geom's field, a mesh's
+// octree, or a primitive's function.
+double GeomDistance(const Model& m, const Data& d, int g, const double x[3]) {
+  switch (m.geom_type[g]) {
+    case kGeomSdf: return SdfGeomDistance(m, d, g, x);
+    case kGeomMesh: return MeshOctreeDistance(m, m.geom_dataid[g], x);
+    default: return PrimitiveDistance(m, g, x);
+  }
+}
+
 // ---------------------------------------------------------------- touching geoms
 
 // The geom on the other side of contact k from the weld body, for side 0 (geom1 on the
@@ -150,7 +161,7 @@ void TouchOneGeom(const Model& m, const Data& d, int i, int other, double* chann
     math::Add3(xpos, xpos, geom_pos);
     math::Sub3(rel, xpos, other_pos);
     math::MulMatTVec3(local, other_mat, rel);
-    double dist = PrimitiveDistance(m, other, local);
+    double dist = GeomDistance(m, d, other, local);
     double depth = dist < 0 ? dist : 0;  // MuJoCo's min(dist, 0)
     if (depth == 0) continue;
 
@@ -181,12 +192,13 @@ void TactileSensor(const Model& m, Data& d, int i, double* out) {
   double* channels = nullptr;
 
   // Every geom touching the weld body, once, in the order of the contacts; mesh geoms
-  // have no octree (MuJoCo builds one only for sdf geoms) and are skipped as in MuJoCo.
+  // without an octree (MuJoCo builds one only for meshes of sdf geoms) are skipped as in
+  // MuJoCo.
   for (int k = 0; k < d.ncon; k++) {
     for (int side = 0; side < 2; side++) {
       int other = OtherGeom(m, d, k, side, weld);
       if (other < 0 || SeenBefore(m, d, k, side, weld, other)) continue;
-      if (m.geom_type[other] == kGeomMesh) continue;
+      if (m.geom_type[other] == kGeomMesh && m.mesh_octnum[m.geom_dataid[other]] == 0) continue;
       CheckHasDistance(m, i, other);
       if (!channels) channels = frame.Alloc(dim);
       TouchOneGeom(m, d, i, other, channels);

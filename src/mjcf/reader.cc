@@ -65,12 +65,14 @@ void Reader::NotSupported(const XmlElement& e, const std::string& what) const {
   e.Fail((what.empty() ? "<" + e.tag() + ">" : what) + " is not supported yet");
 }
 
-void Reader::NoChildrenButPlugin(const XmlElement& e) const {
+void Reader::ChildPlugin(const XmlElement& e, PluginUse* use) {
   for (pugi::xml_node n : e.node().children()) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     if (c.tag() != "plugin") Unknown(c);
-    NotSupported(c, "a " + e.tag() + "'s <plugin> (MuJoCo's signed-distance-field collision)");
+    c.CheckAttributes({"plugin", "instance"});
+    if (use->active) c.Fail("a " + e.tag() + " has at most one plugin");
+    ReadPluginUse(c, e.tag(), use);
   }
 }
 
@@ -245,9 +247,9 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     if (world) c.Fail("the world body cannot have joints");
     FreeJoint(c, body, frame);
   } else if (tag == "geom") {
-    NoChildrenButPlugin(c);
     GeomSpec geom = cls->geom;
     ReadGeom(c, &geom, false);
+    ChildPlugin(c, &geom.plugin);
     geom.frame = frame;
     body->geoms.push_back(std::move(geom));
   } else if (tag == "site") {

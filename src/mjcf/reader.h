@@ -55,8 +55,8 @@ class Reader {
   // The element with its file and line (from `origins_` if it was included).
   XmlElement Element(pugi::xml_node node) const;
   [[noreturn]] void NotSupported(const XmlElement& e, const std::string& what = "") const;
-  // A geom or mesh has no child elements but a plugin, which simlab does not support yet.
-  void NoChildrenButPlugin(const XmlElement& e) const;
+  // A geom's or mesh's <plugin> child (its signed distance field), the only child allowed.
+  void ChildPlugin(const XmlElement& e, PluginUse* use);
   [[noreturn]] void Unknown(const XmlElement& e) const;
 
   // sections (reader_sections.cc)

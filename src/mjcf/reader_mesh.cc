@@ -66,7 +66,6 @@ void Reader::ReadMesh(const XmlElement& e, MeshSpec* mesh, bool in_default) cons
     e.CheckAttributes({"name", "class", "content_type", "file", "vertex", "normal", "texcoord",
                        "face", "refpos", "refquat", "scale", "smoothnormal", "maxhullvert",
                        "inertia", "builtin", "params", "material"});
-    NoChildrenButPlugin(e);
     mesh->src = e.src();
   }
 

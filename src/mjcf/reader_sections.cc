@@ -306,6 +306,7 @@ void Reader::Asset(const XmlElement& e) {
       const DefaultClass* cls = FindClass(c, "class");
       MeshSpec mesh = cls ? cls->mesh : classes_.at("main")->mesh;
       ReadMesh(c, &mesh, false);
+      ChildPlugin(c, &mesh.plugin);
       spec_->meshes.push_back(std::move(mesh));
     } else if (c.tag() == "hfield") {
       spec_->hfields.emplace_back();

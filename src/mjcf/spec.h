@@ -90,6 +90,16 @@ struct JointSpec {
   CompilerPtr compiler;
 };
 
+// The plugin instance an element uses (<actuator><plugin>, <sensor><plugin>, a body's,
+// geom's or mesh's <plugin>): the plugin and/or a named instance of it, or its own
+// (implicit) instance, ModelSpec::implicit_instances[implicit_instance], which its
+// <config> children configure.
+struct PluginUse {
+  bool active = false;
+  std::string plugin, instance;
+  int implicit_instance = -1;
+};
+
 struct GeomSpec {
   Source src;
   int type = kGeomSphere;
@@ -121,6 +131,7 @@ struct GeomSpec {
   std::string hfield;
   std::string material;
   double fitscale = 1;  // scale of a primitive fitted to a mesh
+  PluginUse plugin;     // an sdf geom's signed distance field plugin
   FramePtr frame;
   CompilerPtr compiler;
 };
@@ -182,15 +193,6 @@ struct CameraSpec {
   std::array<double, 2> principalpixel = {0, 0};
   FramePtr frame;
   CompilerPtr compiler;
-};
-
-// The plugin instance an element uses (<actuator><plugin>, <sensor><plugin>, a body's
-// <plugin>): the plugin and/or a named instance of it, or its own (implicit) instance,
-// ModelSpec::implicit_instances[implicit_instance], which its <config> children configure.
-struct PluginUse {
-  bool active = false;
-  std::string plugin, instance;
-  int implicit_instance = -1;
 };
 
 struct BodySpec;
@@ -414,6 +416,7 @@ struct MeshSpec {
   int maxhullvert = -1;      // -1: no limit
   int builtin = 0;           // mjtMeshBuiltin (0: none); the compiler makes its vertices
   std::vector<double> params;  // the builtin's parameters
+  PluginUse plugin;  // a signed distance field plugin: the mesh is its zero level set
 };
 
 // A height field asset: a grid of elevations (rows from -y to +y, as MuJoCo stores them).
