@@ -44,7 +44,7 @@ std::string Path(const std::string& relative) { return std::string(SIMLAB_SOURCE
 // (tools/make_hfield_goldens.sh); actuators newer than 3.5.1, from native MuJoCo
 // (tests/conformance/actuators312/make_goldens.sh); MuJoCo's corpus models as they are
 // (tests/conformance/corpus/make_goldens.sh); MuJoCo's models with signed distance field
-// plugins, from native MuJoCo at the oracle's commit (tests/conformance/sdf_plugins/
+// plugins, from native MuJoCo at the oracle's commit (tests/conformance/plugins/
 // make_goldens.sh).
 std::vector<Case> ReadCases() {
   std::vector<Case> cases;
@@ -61,7 +61,7 @@ std::vector<Case> ReadCases() {
                            "tests/conformance/ray_cases.txt",
                            "tests/conformance/hfield_cases.txt",
                            "tests/conformance/actuators312_cases.txt",
-                           "tests/conformance/sdf_plugins_cases.txt"}) {
+                           "tests/conformance/plugins_cases.txt"}) {
     std::ifstream in(Path(list));
     std::string line;
     while (std::getline(in, line)) {

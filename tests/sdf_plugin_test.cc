@@ -2,7 +2,7 @@
 // their fields against native MuJoCo's numbers, the mesh the compiler makes of a field
 // (marching cubes) against MuJoCo's compiled model, rays marching onto a field, and the
 // errors of bad configurations. (Rollouts equal to native MuJoCo's to the bit are the
-// conformance cases of tests/conformance/sdf_plugins/make_goldens.sh.)
+// conformance cases of tests/conformance/plugins/make_goldens.sh.)
 #include <cmath>
 #include <string>
 #include <vector>

@@ -17,6 +17,7 @@ namespace simlab {
 
 Plugin PidPlugin();                    // mujoco.pid (src/plugin/pid.cc)
 std::vector<Plugin> SdfShapePlugins();  // mujoco.sdf.* (src/plugin/sdf_shapes.cc)
+Plugin TouchGridPlugin();               // mujoco.sensor.touch_grid (src/plugin/touch_grid.cc)
 
 namespace {
 
@@ -91,6 +92,7 @@ void RegisterBuiltins() {
   static std::once_flag once;
   std::call_once(once, [] {
     AddPlugin(PidPlugin());
+    AddPlugin(TouchGridPlugin());
     for (const Plugin& sdf : SdfShapePlugins()) AddPlugin(sdf);
   });
 }

@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
-# make_goldens.sh — MuJoCo's models with signed distance field plugins (mujoco.sdf.torus,
-# .bolt, .nut, .gear, .bowl; copied into mujoco/ from MuJoCo's model/plugin/sdf,
-# model/tactile and test/engine/testdata/ray, each naming its source in its first line).
+# make_goldens.sh — MuJoCo's models with its first-party plugins: signed distance fields
+# (mujoco.sdf.torus, .bolt, .nut, .gear, .bowl) and the touch grid sensor
+# (mujoco.sensor.touch_grid); copied into mujoco/ from MuJoCo's model/plugin/sdf,
+# model/plugin/sensor, model/tactile, test/engine/testdata/ray and test/plugin/sensor,
+# each naming its source in its first line.
 # The npm oracle has no plugins, so the reference is native MuJoCo at the oracle's commit
 # with its plugins, built by tools/native/build_oracle_era.sh ($MUJOCO_ORACLE_ERA,
 # default /work/mujoco-oracle-era), its trigonometry musl's as the oracle's (LD_PRELOAD
 # musl_trig.so). Its rollouts equal the npm oracle's to the bit on the models both load
 # (the sdf corpus cases, checked below).
 #
-# Usage:  tests/conformance/sdf_plugins/make_goldens.sh      (from any working directory)
+# Usage:  tests/conformance/plugins/make_goldens.sh      (from any working directory)
 #
 #   Each line of MODELS: a model in mujoco/, the steps, how often to record, the
 #   tolerance, and a control file in ctrl/ (written by hand: ctrlgen.mjs cannot load
 #   these models) or "none". goldens/<name>.jsonl = rollout MODEL --steps N --every E.
-#   Writes tests/conformance/sdf_plugins_cases.txt.
+#   Writes tests/conformance/plugins_cases.txt.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
@@ -22,8 +24,8 @@ ERA="${MUJOCO_ORACLE_ERA:-/work/mujoco-oracle-era}"
   { echo "no $ERA/rollout: run tools/native/build_oracle_era.sh $ERA" >&2; exit 1; }
 rollout() { LD_PRELOAD="$ERA/musl_trig.so" "$ERA/rollout" "$@"; }
 cd "$ROOT"
-OUT=tests/conformance/sdf_plugins
-CASES=tests/conformance/sdf_plugins_cases.txt
+OUT=tests/conformance/plugins
+CASES=tests/conformance/plugins_cases.txt
 MODELS=(
   # three tori falling on a tilted cylinder and each other; a bowl holding three balls;
   # a nut on a bolt; two gears, one driven (ctrl 0.5: they mesh from step ~100)
@@ -41,6 +43,10 @@ MODELS=(
   # touching a gear
   "sdf_ray.xml 300 10 1e-9 none"
   "sdf_tactile.xml 300 50 1e-9 none"
+  # touch grids: 7 x 7 cells of 3 channels under an ellipsoid rolling on a height field
+  # among boxes; a box resting on a floor seen by a 3 x 3 grid of 4 channels
+  "touch_grid.xml 300 10 1e-9 none"
+  "touch_grid_test.xml 300 10 1e-9 none"
 )
 
 # The reference agrees with the npm oracle's goldens of the corpus's sdf scenes.
