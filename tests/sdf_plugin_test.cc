@@ -133,6 +133,7 @@ TEST(SdfPlugin, BadConfigurationsAreClearErrors) {
        {"unrecognized attribute 'plugin:width' for plugin 'mujoco.sdf.torus'"}},
       {OneShape("mujoco.sdf.gear", "<config key='diameter' value='0'/>"), {"too thin for a mesh"}},
       {OneShape("mujoco.sdf.torus", "<config key='radius1' value='nan'/>"), {"too thin for a mesh"}},
+      {OneShape("mujoco.sdf.torus", "<config key='radius1' value='1e300'/>"), {"<mesh name=\"s\">"}},
       {"<mujoco><extension><plugin plugin='mujoco.pid'><instance name='p'/></plugin></extension>"
        "<asset><mesh name='m'><plugin instance='p'/></mesh></asset></mujoco>",
        {"<mesh name=\"m\">", "plugin 'mujoco.pid' does not support signed distance fields"}},

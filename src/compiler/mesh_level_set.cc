@@ -64,7 +64,7 @@ const char* const kCaseTriangles[256] = {
 // The corner each edge starts from, and its axis (edge / 4).
 constexpr int kEdgeCorner[12] = {0, 2, 4, 6, 0, 1, 4, 5, 0, 1, 2, 3};
 
-// A distance in single precision; beyond its range, an infinity (as x86 converts it).
+// A number in single precision; beyond its range, an infinity (as x86 converts it).
 float SingleOf(double v) {
   const double most = std::numeric_limits<float>::max();
   if (v > most) return std::numeric_limits<float>::infinity();
@@ -210,7 +210,7 @@ MeshData LevelSetMesh(const Plugin& plugin, const std::vector<double>& attribute
   data.vert.resize(grid.vert.size());
   for (size_t v = 0; v < grid.vert.size(); v++) {
     int k = static_cast<int>(v % 3);
-    data.vert[v] = static_cast<float>(2 * box[3 + k] * grid.vert[v] / (size[k] - 1) + box[k] - box[3 + k]);
+    data.vert[v] = SingleOf(2 * box[3 + k] * grid.vert[v] / (size[k] - 1) + box[k] - box[3 + k]);
   }
   data.normal = std::move(grid.normal);
   data.face = std::move(grid.face);
