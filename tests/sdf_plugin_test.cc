@@ -4,6 +4,7 @@
 // errors of bad configurations. (Rollouts equal to native MuJoCo's to the bit are the
 // conformance cases of tests/conformance/plugins/make_goldens.sh.)
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,20 @@ std::string OneShape(const std::string& plugin, const std::string& config, const
          "</instance></plugin></extension><asset><mesh name='s'><plugin instance='s'/></mesh>"
          "</asset><worldbody><body pos='0 0 1'><geom type='sdf' mesh='s'><plugin instance='s'/>"
          "</geom></body>" + extra + "</worldbody></mujoco>";
+}
+
+// The state after `steps` steps from rest.
+Data DroppedOnTheFloor(const Model& m, int steps) {
+  Data d = MakeData(m);
+  for (int i = 0; i < steps; i++) Step(m, d);
+  return d;
+}
+
+// The plugin's shape on a free body at height 1 above a floor.
+Model OnAFloor(const std::string& plugin) {
+  std::string xml = OneShape(plugin, "", "<geom type='plane' size='5 5 .1'/>");
+  xml.replace(xml.find("<body pos='0 0 1'>"), 18, "<body pos='0 0 1'><freejoint/>");
+  return LoadXmlString(xml, "floor.xml");
 }
 
 TEST(SdfPlugin, FieldsEqualNativeMuJoCo) {
@@ -110,15 +125,49 @@ TEST(SdfPlugin, RangefinderMarchesOntoTheField) {
 TEST(SdfPlugin, ContactsHoldAShapeOnTheFloor) {
   // A bowl dropped on a plane comes to rest on its rim (the plane collides with the
   // level set's hull), touching the floor.
-  std::string xml = OneShape("mujoco.sdf.bowl", "", "<geom type='plane' size='5 5 .1'/>");
-  xml.replace(xml.find("<body pos='0 0 1'>"), 18, "<body pos='0 0 1'><freejoint/>");
-  Model m = LoadXmlString(xml, "bowl.xml");
-  Data d = MakeData(m);
-  for (int i = 0; i < 1500; i++) Step(m, d);
+  Model m = OnAFloor("mujoco.sdf.bowl");
+  Data d = DroppedOnTheFloor(m, 1500);
   EXPECT_GT(d.ncon, 0);
   EXPECT_LT(std::abs(d.qvel[2]), 1e-2);
   EXPECT_GT(d.qpos[2], 0);
   EXPECT_LT(d.qpos[2], 1.05);
+}
+
+TEST(SdfPlugin, OurOwnFieldRestsOnTheFloor) {
+  // A sphere field of radius r (attribute, default 0.2) registered as a plugin: its
+  // level-set mesh is a sphere, and it comes to rest touching the floor at height r.
+  Plugin ball;
+  ball.name = "test.sdf.ball";
+  ball.capabilities = kPluginSdf;
+  ball.attributes = {"r"};
+  ball.sdf_defaults = {0.2};
+  ball.sdf_distance = [](const double p[3], const double* a) {
+    return std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - a[0];
+  };
+  ball.sdf_gradient = [](double g[3], const double p[3], const double*) {
+    double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    for (int k = 0; k < 3; k++) g[k] = p[k] / n;
+  };
+  ball.sdf_aabb = [](double box[6], const double* a) {
+    box[0] = box[1] = box[2] = 0;
+    box[3] = box[4] = box[5] = a[0] * 1.1;
+  };
+  RegisterPlugin(ball);
+  Model m = OnAFloor("test.sdf.ball");
+  Data d = DroppedOnTheFloor(m, 1500);
+  EXPECT_GT(d.ncon, 0);
+  EXPECT_NEAR(d.qpos[2], 0.2, 5e-3);
+
+  // simlab makes an sdf plugin's instances itself.
+  Plugin own_init = ball;
+  own_init.name = "test.sdf.ball_with_init";
+  own_init.init = [](const Model&, Data&, int) { return std::unique_ptr<PluginInstanceData>(); };
+  try {
+    RegisterPlugin(own_init);
+    ADD_FAILURE() << "an sdf plugin with its own init was registered";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("leave init unset"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SdfPlugin, BadConfigurationsAreClearErrors) {

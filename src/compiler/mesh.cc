@@ -392,11 +392,27 @@ void MoveToInertialFrame(MeshState* mesh, const double com[3], const double quat
   math::CopyQuat(mesh->quat, quat);
 }
 
-// A mesh from its file, attributes or builtin, or given (a plugin's level set).
-void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh,
-                 MeshData* given) {
+// The level set of the mesh's signed distance field plugin, which is all its geometry.
+MeshData PluginMesh(const mjcf::ModelSpec& spec, const mjcf::MeshSpec& s) {
+  if (!s.path.empty() || !s.vertex.empty() || !s.face.empty() || s.builtin != mjcf::kMeshBuiltinNone) {
+    ThrowAt(s.src, "a mesh made by a plugin has no file, vertex, face or builtin");
+  }
+  if (s.scale[0] != 1 || s.scale[1] != 1 || s.scale[2] != 1) {
+    ThrowAt(s.src, "attribute scale is not compatible with SDFs in mesh '" + s.src.name + "'");
+  }
+  std::vector<double> attributes;
+  const Plugin& plugin = SdfPluginOf(spec, s.src, s.plugin, &attributes);
+  try {
+    return LevelSetMesh(plugin, attributes);
+  } catch (const Error& e) {
+    ThrowAt(s.src, e.what());
+  }
+}
+
+// A mesh from its file, attributes or builtin, or its plugin's level set.
+void CompileMesh(const mjcf::ModelSpec& spec, bool needhull, MeshState* mesh) {
   const mjcf::MeshSpec& s = *mesh->spec;
-  MeshData data = given ? std::move(*given) : LoadGeometry(s, assets);
+  MeshData data = s.plugin.active ? PluginMesh(spec, s) : LoadGeometry(s, spec.assets.get());
   CheckGeometry(s, data);
   mesh->vert.assign(data.vert.begin(), data.vert.end());
   mesh->face = std::move(data.face);
@@ -431,23 +447,6 @@ void CompileMesh(bool needhull, const mjcf::AssetFiles* assets, MeshState* mesh,
   }
   MoveToInertialFrame(mesh, com, quat);
   MeshPolygonNormals(mesh);
-}
-
-// The level set of the mesh's signed distance field plugin, which is all its geometry.
-MeshData PluginMesh(const mjcf::ModelSpec& spec, const mjcf::MeshSpec& s) {
-  if (!s.path.empty() || !s.vertex.empty() || !s.face.empty() || s.builtin != mjcf::kMeshBuiltinNone) {
-    ThrowAt(s.src, "a mesh made by a plugin has no file, vertex, face or builtin");
-  }
-  if (s.scale[0] != 1 || s.scale[1] != 1 || s.scale[2] != 1) {
-    ThrowAt(s.src, "attribute scale is not compatible with SDFs in mesh '" + s.src.name + "'");
-  }
-  std::vector<double> attributes;
-  const Plugin& plugin = SdfPluginOf(spec, s.src, s.plugin, &attributes);
-  try {
-    return LevelSetMesh(plugin, attributes);
-  } catch (const Error& e) {
-    ThrowAt(s.src, e.what());
-  }
 }
 
 // ---------------------------------------------------------------- geoms that use meshes
@@ -509,13 +508,9 @@ void CompileMeshes(const mjcf::ModelSpec& spec, CompileState* state) {
   // (a plugin's mesh has no octree: contacts come from the plugin's field)
   state->meshes.resize(spec.meshes.size());
   for (size_t i = 0; i < spec.meshes.size(); i++) {
-    const mjcf::MeshSpec& s = spec.meshes[i];
-    state->meshes[i].spec = &s;
-    MeshData level_set;
-    if (s.plugin.active) level_set = PluginMesh(spec, s);
-    CompileMesh(needhull[i], spec.assets.get(), &state->meshes[i],
-                s.plugin.active ? &level_set : nullptr);
-    if (needsdf[i] && !s.plugin.active) MakeMeshOctree(&state->meshes[i]);
+    state->meshes[i].spec = &spec.meshes[i];
+    CompileMesh(spec, needhull[i], &state->meshes[i]);
+    if (needsdf[i] && !spec.meshes[i].plugin.active) MakeMeshOctree(&state->meshes[i]);
   }
   for (size_t i = 0; i < state->geoms.size(); i++) {
     if (ids[i] < 0) continue;

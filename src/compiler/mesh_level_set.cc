@@ -78,11 +78,14 @@ struct GridMesh {
   std::vector<int> face;
 };
 
-// The field on an nx * ny * nz grid, x fastest.
+// The field on a grid of size[0] * size[1] * size[2] points, x fastest.
 struct Grid {
   std::vector<float> value;
-  int nx = 0, ny = 0, nz = 0;
-  float At(int x, int y, int z) const { return value[(static_cast<size_t>(z) * ny + y) * nx + x]; }
+  int size[3] = {0, 0, 0};
+  size_t Index(int x, int y, int z) const {
+    return (static_cast<size_t>(z) * size[1] + y) * size[0] + x;
+  }
+  float At(int x, int y, int z) const { return value[Index(x, y, z)]; }
 };
 
 // Vertex ids of the edges from the grid points of two z layers (z % 2), per axis.
@@ -157,10 +160,10 @@ void MarchCube(const Grid& g, int x, int y, int z, EdgeVertices* ids, GridMesh* 
 
 GridMesh MarchingCubes(const Grid& g) {
   GridMesh mesh;
-  EdgeVertices ids(g.nx, g.ny);
-  for (int z = 0; z + 1 < g.nz; z++) {
-    for (int y = 0; y + 1 < g.ny; y++) {
-      for (int x = 0; x + 1 < g.nx; x++) MarchCube(g, x, y, z, &ids, &mesh);
+  EdgeVertices ids(g.size[0], g.size[1]);
+  for (int z = 0; z + 1 < g.size[2]; z++) {
+    for (int y = 0; y + 1 < g.size[1]; y++) {
+      for (int x = 0; x + 1 < g.size[0]; x++) MarchCube(g, x, y, z, &ids, &mesh);
     }
   }
   for (size_t i = 0; i < mesh.normal.size(); i += 3) {
@@ -186,21 +189,18 @@ MeshData LevelSetMesh(const Plugin& plugin, const std::vector<double>& attribute
                 std::to_string(box[3]) + " " + std::to_string(box[4]) + " " + std::to_string(box[5]) + ")");
   }
   Grid g;
-  g.nx = static_cast<int>(cells[0]) + 1;
-  g.ny = static_cast<int>(cells[1]) + 1;
-  g.nz = static_cast<int>(cells[2]) + 1;
-  const int size[3] = {g.nx, g.ny, g.nz};
+  for (int k = 0; k < 3; k++) g.size[k] = static_cast<int>(cells[k]) + 1;
+  const int* size = g.size;
   // The grid point of index i along axis k.
   auto coordinate = [&](int k, double i) {
     return box[k] - box[3 + k] + 2 * box[3 + k] * i / (size[k] - 1);
   };
-  g.value.resize(static_cast<size_t>(g.nx) * g.ny * g.nz);
-  for (int i = 0; i < g.nx; i++) {
-    for (int j = 0; j < g.ny; j++) {
-      for (int k = 0; k < g.nz; k++) {
+  g.value.resize(static_cast<size_t>(size[0]) * size[1] * size[2]);
+  for (int i = 0; i < size[0]; i++) {
+    for (int j = 0; j < size[1]; j++) {
+      for (int k = 0; k < size[2]; k++) {
         double p[3] = {coordinate(0, i), coordinate(1, j), coordinate(2, k)};
-        g.value[(static_cast<size_t>(k) * g.ny + j) * g.nx + i] =
-            SingleOf(plugin.sdf_distance(p, attributes.data()));
+        g.value[g.Index(i, j, k)] = SingleOf(plugin.sdf_distance(p, attributes.data()));
       }
     }
   }

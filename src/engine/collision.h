@@ -9,6 +9,7 @@
 #ifndef SIMLAB_ENGINE_COLLISION_H_
 #define SIMLAB_ENGINE_COLLISION_H_
 
+#include "engine/engine.h"
 #include "simlab/data.h"
 #include "simlab/model.h"
 
@@ -81,10 +82,12 @@ int CollideConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
 // A primitive, mesh or sdf geom (g1) and an sdf geom (g2), through the signed distance
 // fields of both (MuJoCo's mjc_SDF; collision_sdf.cc).
 int CollideSdf(const Model& m, const Data& d, Contact* con, int g1, int g2, double margin);
-// The field of sdf geom g at point x of its frame (its plugin's, else its mesh octree's),
-// and its gradient (as MuJoCo's mjc_distance/mjc_gradient of one sdf).
-double SdfGeomDistance(const Model& m, const Data& d, int g, const double x[3]);
-void SdfGeomGradient(const Model& m, const Data& d, int g, double gradient[3], const double x[3]);
+// The field of an sdf geom at point x of its frame: its plugin's (`field`, from
+// SdfFieldOfGeom), else its mesh's octree (`mesh`, its geom_dataid); and its gradient (as
+// MuJoCo's mjc_distance/mjc_gradient of one sdf).
+double SdfGeomDistance(const Model& m, const SdfField& field, int mesh, const double x[3]);
+void SdfGeomGradient(const Model& m, const SdfField& field, int mesh, double gradient[3],
+                     const double x[3]);
 // The signed distance of a mesh with an octree (mesh_octnum > 0) at point x of its frame.
 double MeshOctreeDistance(const Model& m, int mesh, const double x[3]);
 

@@ -160,20 +160,26 @@ void OctreeGradient(const Model& m, double grad[3], const double point[3], int m
 // mjc_SDF): the octree of the mesh numbered as the geom (the reference indexes the mesh
 // arrays by the geom's id; simlab reads them only when that id is a mesh's), else the
 // ray from the point (world frame) towards the world origin: the distance to the mesh
-// along it, or, when the ray leaves past the origin, minus the distance back. (`first`:
-// only the first ray's parameter, which the gradient reads.)
-double MeshRay(const SdfPair& s, int geom, const double x[3], double* reach, double* first = nullptr) {
+// along it, or, when the ray leaves past the origin, minus the distance back.
+
+// The first ray: from point x of the geom's frame (a, in the world) towards the world
+// origin (dir = -a, of length *reach); its parameter at the mesh (-1: none).
+double RayTowardsOrigin(const SdfPair& s, int geom, const double x[3], double a[3], double dir[3],
+                        double* reach) {
   const Data& d = *s.d;
-  double a[3], dir[3];
   MulMatVec3(a, &d.geom_xmat[9 * geom], x);
   for (int k = 0; k < 3; k++) a[k] += d.geom_xpos[3 * geom + k];
   for (int k = 0; k < 3; k++) dir[k] = -a[k];
   *reach = Norm3(dir);
-  double dist = RayMesh(*s.m, d, geom, a, dir, nullptr);
-  if (first) return *first = dist;
-  if (dist > *reach) {
+  return RayMesh(*s.m, d, geom, a, dir, nullptr);
+}
+
+double MeshRay(const SdfPair& s, int geom, const double x[3]) {
+  double a[3], dir[3], reach;
+  double dist = RayTowardsOrigin(s, geom, x, a, dir, &reach);
+  if (dist > reach) {
     for (double& v : dir) v = -v;
-    return -RayMesh(*s.m, d, geom, a, dir, nullptr);
+    return -RayMesh(*s.m, *s.d, geom, a, dir, nullptr);
   }
   return dist;
 }
@@ -201,12 +207,10 @@ double Norm2(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1]); }
 double ShapeDistance(const SdfPair& s, int which, const double x[3]) {
   const Model& m = *s.m;
   int type = s.type[which], id = s.id[which];
-  if (s.field[which].plugin) return s.field[which].Distance(x);
-  if (type == kGeomSdf) return OctreeDistance(m, x, id);
+  if (type == kGeomSdf) return SdfGeomDistance(m, s.field[which], id, x);
   if (type == kGeomMesh) {
     if (MeshOctreeByGeomId(m, id)) return OctreeDistance(m, x, id);
-    double reach;
-    return MeshRay(s, id, x, &reach);
+    return MeshRay(s, id, x);
   }
   const double* size = &m.geom_size[3 * id];
   double a[3], b[3];
@@ -245,18 +249,17 @@ double ShapeDistance(const SdfPair& s, int which, const double x[3]) {
 void ShapeGradient(double g[3], const SdfPair& s, int which, const double x[3]) {
   const Model& m = *s.m;
   int type = s.type[which], id = s.id[which];
-  if (s.field[which].plugin) {
-    s.field[which].Gradient(g, x);
+  if (type == kGeomSdf) {
+    SdfGeomGradient(m, s.field[which], id, g, x);
     return;
   }
-  if (type == kGeomSdf || (type == kGeomMesh && MeshOctreeByGeomId(m, id))) {
+  if (type == kGeomMesh && MeshOctreeByGeomId(m, id)) {
     OctreeGradient(m, g, x, id);
     return;
   }
   if (type == kGeomMesh) {  // (the reference's: a sign in every direction, from the first ray)
-    double reach, dist;
-    MeshRay(s, id, x, &reach, &dist);
-    double sign = dist > reach ? 1 : -1;
+    double a[3], dir[3], reach;
+    double sign = RayTowardsOrigin(s, id, x, a, dir, &reach) > reach ? 1 : -1;
     g[0] = g[1] = g[2] = sign;
     return;
   }
@@ -458,26 +461,17 @@ int AddContact(double* points, Contact* con, const double x[3], const double pos
 
 }  // namespace
 
-namespace {
-
-// The pair view of sdf geom g alone.
-SdfPair SingleSdf(const Model& m, const Data& d, int g) {
-  SdfPair s;
-  s.m = &m;
-  s.d = &d;
-  s.type[0] = kGeomSdf, s.id[0] = m.geom_dataid[g];
-  if (m.geom_plugin[g] >= 0) s.field[0] = SdfFieldOf(d, m.geom_plugin[g]);
-  return s;
+double SdfGeomDistance(const Model& m, const SdfField& field, int mesh, const double x[3]) {
+  return field.plugin ? field.Distance(x) : OctreeDistance(m, x, mesh);
 }
 
-}  // namespace
-
-double SdfGeomDistance(const Model& m, const Data& d, int g, const double x[3]) {
-  return ShapeDistance(SingleSdf(m, d, g), 0, x);
-}
-
-void SdfGeomGradient(const Model& m, const Data& d, int g, double gradient[3], const double x[3]) {
-  ShapeGradient(gradient, SingleSdf(m, d, g), 0, x);
+void SdfGeomGradient(const Model& m, const SdfField& field, int mesh, double gradient[3],
+                     const double x[3]) {
+  if (field.plugin) {
+    field.Gradient(gradient, x);
+  } else {
+    OctreeGradient(m, gradient, x, mesh);
+  }
 }
 
 double MeshOctreeDistance(const Model& m, int mesh, const double x[3]) {
@@ -528,8 +522,8 @@ int CollideSdf(const Model& m, const Data& d, Contact* con, int g1, int g2, doub
   s.d = &d;
   s.type[0] = m.geom_type[g2], s.id[0] = m.geom_dataid[g2];
   s.type[1] = m.geom_type[g1], s.id[1] = m.geom_type[g1] == kGeomSdf ? m.geom_dataid[g1] : g1;
-  if (m.geom_plugin[g2] >= 0) s.field[0] = SdfFieldOf(d, m.geom_plugin[g2]);
-  if (m.geom_type[g1] == kGeomSdf && m.geom_plugin[g1] >= 0) s.field[1] = SdfFieldOf(d, m.geom_plugin[g1]);
+  s.field[0] = SdfFieldOfGeom(m, d, g2);
+  if (m.geom_type[g1] == kGeomSdf) s.field[1] = SdfFieldOfGeom(m, d, g1);
   Copy3(s.relpos, offset21);
   std::copy(rotation21, rotation21 + 9, s.relmat);
 

@@ -145,6 +145,8 @@ struct SdfField {
   void Gradient(double g[3], const double x[3]) const { plugin->sdf_gradient(g, x, attributes); }
 };
 SdfField SdfFieldOf(const Data& d, int instance);
+// Geom g's plugin field, or none (plugin null) for a geom without a plugin.
+SdfField SdfFieldOfGeom(const Model& m, const Data& d, int g);
 // act_dot, actuator_force, qfrc_actuator (actuation.cc).
 void Actuation(const Model& m, Data& d);
 // The activation after one step of its dynamics, clamped to actrange (actuation.cc).

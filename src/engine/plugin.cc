@@ -42,35 +42,34 @@ struct SdfInstance : PluginInstanceData {
   }
 };
 
-// A signed distance field plugin needs its field and box; its instances read their
-// attributes when a Data is made, and it computes nothing in the pipeline.
-Plugin CompleteSdfPlugin(Plugin plugin, const Plugin* registered) {
+// A signed distance field plugin needs its field and box; simlab makes its instances
+// (their attribute numbers, read when a Data is made), and one that only gives a field
+// computes nothing in the pipeline.
+Plugin CompleteSdfPlugin(Plugin plugin) {
   if (!plugin.sdf_distance || !plugin.sdf_gradient || !plugin.sdf_aabb) {
     throw Error("sdf plugin '" + plugin.name + "' needs sdf_distance, sdf_gradient and sdf_aabb");
   }
   if (plugin.sdf_defaults.size() != plugin.attributes.size()) {
     throw Error("sdf plugin '" + plugin.name + "' needs a default for each attribute");
   }
-  if (!plugin.compute) plugin.compute = [](const Model&, Data&, int, int) {};
-  if (!plugin.init) {
-    plugin.init = [registered](const Model& m, Data&, int instance) {
-      auto data = std::make_unique<SdfInstance>();
-      data->plugin = registered;
-      std::vector<std::string> values;
-      for (const std::string& key : registered->attributes) values.push_back(PluginConfig(m, instance, key));
-      data->attributes = SdfAttributes(*registered, values);
-      return std::unique_ptr<PluginInstanceData>(std::move(data));
-    };
-  }
+  if (plugin.init) throw Error("sdf plugin '" + plugin.name + "': simlab makes its instances (leave init unset)");
+  if (!plugin.compute && plugin.capabilities == kPluginSdf) plugin.compute = [](const Model&, Data&, int, int) {};
+  plugin.init = [](const Model& m, Data&, int instance) {
+    auto data = std::make_unique<SdfInstance>();
+    data->plugin = &PluginAt(m.plugin[instance]);
+    std::vector<std::string> values;
+    for (const std::string& key : data->plugin->attributes) values.push_back(PluginConfig(m, instance, key));
+    data->attributes = SdfAttributes(*data->plugin, values);
+    return std::unique_ptr<PluginInstanceData>(std::move(data));
+  };
   return plugin;
 }
 
 // Adds a plugin under a name not taken yet; returns its slot.
-int AddPlugin(const Plugin& plugin) {
+int AddPlugin(const Plugin& given) {
+  const Plugin plugin = (given.capabilities & kPluginSdf) ? CompleteSdfPlugin(given) : given;
   if (plugin.name.empty()) throw Error("a plugin needs a name");
-  if (!plugin.compute && plugin.capabilities != kPluginSdf) {
-    throw Error("plugin '" + plugin.name + "' has no compute");
-  }
+  if (!plugin.compute) throw Error("plugin '" + plugin.name + "' has no compute");
   if ((plugin.capabilities & kPluginSensor) && !plugin.nsensordata) {
     throw Error("sensor plugin '" + plugin.name + "' has no nsensordata");
   }
@@ -83,8 +82,6 @@ int AddPlugin(const Plugin& plugin) {
     if (p->name == plugin.name) throw Error("plugin '" + plugin.name + "' is already registered");
   }
   r.plugins.push_back(std::make_unique<Plugin>(plugin));
-  Plugin* added = r.plugins.back().get();
-  if (plugin.capabilities & kPluginSdf) *added = CompleteSdfPlugin(plugin, added);
   return static_cast<int>(r.plugins.size()) - 1;
 }
 
@@ -171,6 +168,10 @@ SdfField SdfFieldOf(const Data& d, int instance) {
   const auto* data = dynamic_cast<const SdfInstance*>(d.plugin_data.at(instance).data.get());
   if (!data) throw Error("plugin instance " + std::to_string(instance) + " is not a signed distance field");
   return {data->plugin, data->attributes.data()};
+}
+
+SdfField SdfFieldOfGeom(const Model& m, const Data& d, int g) {
+  return m.geom_plugin[g] >= 0 ? SdfFieldOf(d, m.geom_plugin[g]) : SdfField{};
 }
 
 double SdfPluginDistance(const Model&, const Data& d, int instance, const double point[3]) {

@@ -452,17 +452,19 @@ double RaySdf(const Model& m, const Data& d, int geom, const double pnt[3], cons
 
   // March along the unit direction by the field's distance, at most 40 times, until
   // within 1e-7 of the surface (or 1e6 away from it).
+  const SdfField field = SdfFieldOfGeom(m, d, geom);
+  const int mesh = m.geom_dataid[geom];
   math::Normalize3(lvec);
   double total = 0;
   for (int i = 0; i < 40; i++) {
     for (int k = 0; k < 3; k++) p[k] = lpnt[k] + lvec[k] * total;
-    double step = std::abs(SdfGeomDistance(m, d, geom, p));
+    double step = std::abs(SdfGeomDistance(m, field, mesh, p));
     total += step;
     if (step < 1e-7) {
       if (normal) {
         for (int k = 0; k < 3; k++) p[k] = lpnt[k] + lvec[k] * total;
         double local[3];
-        SdfGeomGradient(m, d, geom, local, p);
+        SdfGeomGradient(m, field, mesh, local, p);
         math::Normalize3(local);
         math::MulMatVec3(normal, xmat, local);
       }

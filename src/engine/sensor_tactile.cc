@@ -84,11 +84,11 @@ double PrimitiveDistance(const Model& m, int g, const double x[3]) {
   }
 }
 
-// The signed distance of any geom the sensor can read: an sdf geom's field, a mesh's
-// octree, or a primitive's function.
-double GeomDistance(const Model& m, const Data& d, int g, const double x[3]) {
+// The signed distance of any geom the sensor can read: an sdf geom's field (`field`, its
+// plugin's if it has one), a mesh's octree, or a primitive's function.
+double GeomDistance(const Model& m, const SdfField& field, int g, const double x[3]) {
   switch (m.geom_type[g]) {
-    case kGeomSdf: return SdfGeomDistance(m, d, g, x);
+    case kGeomSdf: return SdfGeomDistance(m, field, m.geom_dataid[g], x);
     case kGeomMesh: return MeshOctreeDistance(m, m.geom_dataid[g], x);
     default: return PrimitiveDistance(m, g, x);
   }
@@ -154,6 +154,7 @@ void TouchOneGeom(const Model& m, const Data& d, int i, int other, double* chann
   const double* geom_mat = &d.geom_xmat[9 * geom];
   const double* other_pos = &d.geom_xpos[3 * other];
   const double* other_mat = &d.geom_xmat[9 * other];
+  const SdfField field = SdfFieldOfGeom(m, d, other);
   for (int j = 0; j < ntaxel; j++) {
     // The taxel in the world, then in the other geom's frame.
     double xpos[3], rel[3], local[3];
@@ -161,7 +162,7 @@ void TouchOneGeom(const Model& m, const Data& d, int i, int other, double* chann
     math::Add3(xpos, xpos, geom_pos);
     math::Sub3(rel, xpos, other_pos);
     math::MulMatTVec3(local, other_mat, rel);
-    double dist = GeomDistance(m, d, other, local);
+    double dist = GeomDistance(m, field, other, local);
     double depth = dist < 0 ? dist : 0;  // MuJoCo's min(dist, 0)
     if (depth == 0) continue;
 

@@ -70,9 +70,7 @@ void Reader::ChildPlugin(const XmlElement& e, PluginUse* use) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     if (c.tag() != "plugin") Unknown(c);
-    c.CheckAttributes({"plugin", "instance"});
-    if (use->active) c.Fail("a " + e.tag() + " has at most one plugin");
-    ReadPluginUse(c, e.tag(), use);
+    ReadOwnPlugin(c, e.tag(), use);
   }
 }
 
@@ -276,9 +274,7 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
   } else if (tag == "replicate") {
     Replicate(c, body, frame, def);
   } else if (tag == "plugin") {
-    c.CheckAttributes({"plugin", "instance"});
-    if (body->plugin.active) c.Fail("a body has at most one plugin");
-    ReadPluginUse(c, "body", &body->plugin);
+    ReadOwnPlugin(c, "body", &body->plugin);
   } else if (tag == "composite" || tag == "flexcomp") {
     NotSupported(c);
   } else {

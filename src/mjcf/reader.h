@@ -132,6 +132,8 @@ class Reader {
   // The instance a plugin element uses (`user` names its kind in messages): a named one,
   // or its own, configured by its <config> children.
   void ReadPluginUse(const XmlElement& e, const std::string& user, PluginUse* use);
+  // The <plugin> child of a body, geom or mesh (`owner`), which has at most one.
+  void ReadOwnPlugin(const XmlElement& e, const std::string& owner, PluginUse* use);
   // <actuator><plugin>: an actuator computed by a plugin.
   void ReadPluginActuator(const XmlElement& e, ActuatorSpec* act);
   // <sensor><plugin>: a sensor computed by a plugin.

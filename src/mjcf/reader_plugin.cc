@@ -79,6 +79,12 @@ void Reader::ReadPluginUse(const XmlElement& e, const std::string& user, PluginU
   use->implicit_instance = static_cast<int>(spec_->implicit_instances.size()) - 1;
 }
 
+void Reader::ReadOwnPlugin(const XmlElement& e, const std::string& owner, PluginUse* use) {
+  e.CheckAttributes({"plugin", "instance"});
+  if (use->active) e.Fail("a " + owner + " has at most one plugin");
+  ReadPluginUse(e, owner, use);
+}
+
 void Reader::ReadPluginActuator(const XmlElement& e, ActuatorSpec* act) {
   ReadActuator(e, act, false);
   ReadPluginUse(e, "actuator", &act->plugin);

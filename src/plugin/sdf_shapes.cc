@@ -28,9 +28,12 @@ double Subtraction(double a, double b) { return Max(a, -b); }
 double Fract(double x) { return x - std::floor(x); }
 double Norm2(double x, double y) { return std::sqrt(x * x + y * y); }
 
+// A shape's distance at a point of its frame, for its attributes.
+using DistanceFunction = double (*)(const double point[3], const double* attributes);
+
 // Forward-difference gradient of `distance` with MuJoCo's step.
-void DifferenceGradient(const std::function<double(const double*, const double*)>& distance,
-                        double gradient[3], const double p[3], const double* attributes) {
+void DifferenceGradient(DistanceFunction distance, double gradient[3], const double p[3],
+                        const double* attributes) {
   const double eps = 1e-8;
   double d0 = distance(p, attributes);
   for (int k = 0; k < 3; k++) {
@@ -192,7 +195,7 @@ double BowlDistance(const double p[3], const double* a) {
 
 Plugin SdfPlugin(const std::string& name, std::vector<std::string> attributes,
                  std::vector<double> defaults,
-                 double (*distance)(const double*, const double*),
+                 DistanceFunction distance,
                  std::function<void(double*, const double*)> aabb_half) {
   Plugin p;
   p.name = name;

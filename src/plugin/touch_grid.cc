@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/engine.h"
+#include "engine/stack.h"
 #include "math/elementary.h"
 #include "math/math.h"
 #include "simlab/plugin.h"
@@ -25,12 +26,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The grid of one instance.
+// The grid of one instance: its channels, columns and rows, their bin edges (azimuth,
+// elevation), and its sensor (-1: none uses it).
 struct TouchGridData : PluginInstanceData {
   int nchannel = 1;
   int size[2] = {0, 0};
-  double fov[2] = {0, 0};
-  double gamma = 0;
+  std::vector<double> xedges, yedges;
+  int sensor = -1;
   std::unique_ptr<PluginInstanceData> Clone() const override {
     return std::make_unique<TouchGridData>(*this);
   }
@@ -88,25 +90,6 @@ void GridSize(const Model& m, int instance, int size[2]) {
   size[1] = static_cast<int>(s[1]);
 }
 
-std::unique_ptr<PluginInstanceData> Init(const Model& m, Data&, int instance) {
-  auto grid = std::make_unique<TouchGridData>();
-  grid->nchannel = Channels(m, instance);
-  GridSize(m, instance, grid->size);
-  std::vector<double> fov = Numbers(m, instance, "fov");
-  if (fov.size() != 2) Refuse(instance, "both horizontal and vertical fields of view must be specified");
-  if (!(fov[0] > 0 && fov[0] <= 180)) Refuse(instance, "fov[0] must be in (0, 180] degrees");
-  if (!(fov[1] > 0 && fov[1] <= 90)) Refuse(instance, "fov[1] must be in (0, 90] degrees");
-  grid->fov[0] = fov[0], grid->fov[1] = fov[1];
-  grid->gamma = Scalar(m, instance, "gamma");
-  if (!(grid->gamma >= 0 && grid->gamma <= 1)) Refuse(instance, "gamma must be in [0, 1]");
-  for (int i = 0; i < m.nsensor; i++) {
-    if (m.sensor_type[i] == kSensPlugin && m.sensor_plugin[i] == instance && m.sensor_objtype[i] != kObjSite) {
-      Refuse(instance, "the sensor must be attached to a site");
-    }
-  }
-  return grid;
-}
-
 // ---------------------------------------------------------------- binning
 
 // Bin edges along one axis: n + 1 even steps over [-1, 1] (accumulated, as MuJoCo's
@@ -150,6 +133,28 @@ int CellOf(const std::vector<double>& xe, const std::vector<double>& ye, double 
   return (yi - 1) * (static_cast<int>(xe.size()) - 1) + (xi - 1);
 }
 
+// ---------------------------------------------------------------- the instance
+
+std::unique_ptr<PluginInstanceData> Init(const Model& m, Data&, int instance) {
+  auto grid = std::make_unique<TouchGridData>();
+  grid->nchannel = Channels(m, instance);
+  GridSize(m, instance, grid->size);
+  std::vector<double> fov = Numbers(m, instance, "fov");
+  if (fov.size() != 2) Refuse(instance, "both horizontal and vertical fields of view must be specified");
+  if (!(fov[0] > 0 && fov[0] <= 180)) Refuse(instance, "fov[0] must be in (0, 180] degrees");
+  if (!(fov[1] > 0 && fov[1] <= 90)) Refuse(instance, "fov[1] must be in (0, 90] degrees");
+  double gamma = Scalar(m, instance, "gamma");
+  if (!(gamma >= 0 && gamma <= 1)) Refuse(instance, "gamma must be in [0, 1]");
+  grid->xedges = BinEdges(grid->size[0], fov[0], gamma);
+  grid->yedges = BinEdges(grid->size[1], fov[1], gamma);
+  for (int i = m.nsensor - 1; i >= 0; i--) {
+    if (m.sensor_type[i] != kSensPlugin || m.sensor_plugin[i] != instance) continue;
+    if (m.sensor_objtype[i] != kObjSite) Refuse(instance, "the sensor must be attached to a site");
+    grid->sensor = i;  // (the first, which MuJoCo's reads)
+  }
+  return grid;
+}
+
 // ---------------------------------------------------------------- the sensor
 
 // Contact i's force and torque in the site's frame, pointing away from the body with the
@@ -182,39 +187,35 @@ void SeenContact(const Model& m, const Data& d, int i, int site, int parent_body
 
 void Compute(const Model& m, Data& d, int instance, int) {
   const auto& grid = static_cast<const TouchGridData&>(*d.plugin_data[instance].data);
-  int id = 0;
-  while (id < m.nsensor && !(m.sensor_type[id] == kSensPlugin && m.sensor_plugin[id] == instance)) id++;
-  if (id == m.nsensor) return;
+  const int id = grid.sensor;
+  if (id < 0) return;
   double* out = &d.sensordata[m.sensor_adr[id]];
   for (int k = 0; k < m.sensor_dim[id]; k++) out[k] = 0;
   int site = m.sensor_objid[id];
   int parent_body = m.body_weldid[m.site_bodyid[site]];
   int parent_weld = m.body_weldid[parent_body];
 
-  // The contacts of the site's weld body, and their cells.
-  std::vector<double> xe = BinEdges(grid.size[0], grid.fov[0], grid.gamma);
-  std::vector<double> ye = BinEdges(grid.size[1], grid.fov[1], grid.gamma);
-  std::vector<int> cells;
-  std::vector<double> forces;  // 6 per contact
+  // The contacts of the site's weld body: 6 force numbers and 2 direction angles each.
+  StackFrame frame(d);
+  double* seen = frame.Alloc(8 * static_cast<size_t>(d.ncon));
+  int n = 0;
   for (int i = 0; i < d.ncon; i++) {
     int w1 = m.body_weldid[m.geom_bodyid[d.contact[i].geom1]];
     int w2 = m.body_weldid[m.geom_bodyid[d.contact[i].geom2]];
     if (w1 != parent_weld && w2 != parent_weld) continue;
-    double f[6], dir[2];
-    SeenContact(m, d, i, site, parent_body, f, dir);
-    cells.push_back(CellOf(xe, ye, dir[0], dir[1]));
-    forces.insert(forces.end(), f, f + 6);
+    SeenContact(m, d, i, site, parent_body, seen + 8 * n, seen + 8 * n + 6);
+    n++;
   }
 
   // Each channel: the sum per cell of its component (a channel all zero adds nothing).
-  int frame = grid.size[0] * grid.size[1];
-  int n = static_cast<int>(cells.size());
+  int cells = grid.size[0] * grid.size[1];
   for (int c = 0; c < grid.nchannel; c++) {
     bool zero = true;
-    for (int i = 0; i < n; i++) zero = zero && forces[6 * i + c] == 0;
+    for (int i = 0; i < n; i++) zero = zero && seen[8 * i + c] == 0;
     if (zero) continue;
     for (int i = 0; i < n; i++) {
-      if (cells[i] >= 0) out[c * frame + cells[i]] += forces[6 * i + c];
+      int cell = CellOf(grid.xedges, grid.yedges, seen[8 * i + 6], seen[8 * i + 7]);
+      if (cell >= 0) out[c * cells + cell] += seen[8 * i + c];
     }
   }
 }
