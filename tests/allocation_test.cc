@@ -51,6 +51,8 @@ TEST(Allocation, SteadySteppingAllocatesNothing) {
   EXPECT_EQ(AllocationsPerRun("tests/models/bench_gantry_holding.xml", 200, 300), 0);
   EXPECT_EQ(AllocationsPerRun("tests/conformance/contact/models/humanoid.xml", 3000, 300), 0);
   EXPECT_EQ(AllocationsPerRun("models/actuator_bench.xml", 100, 300), 0);
+  // A soft box resting on the floor: flex kinematics, edge equality rows, flex contacts.
+  EXPECT_EQ(AllocationsPerRun("../shared/corpus/mujoco/model/flex/softbox.xml", 400, 100), 0);
 }
 
 }  // namespace

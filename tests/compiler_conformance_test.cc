@@ -244,6 +244,14 @@ TEST(CompilerConformance, Equality) { CheckModel("equality", Local("equality.xml
 // geom_fluid: the ellipsoid fluid model's coefficients, added mass and inertia.
 TEST(CompilerConformance, Fluid) { CheckModel("fluid", Local("fluid.xml")); }
 
+// Flexes: every generated flexcomp shape, pins, bending, 3D elasticity, a rigid flexcomp,
+// flexes interpolated from nodes and a <deformable> flex (simlab's model), and MuJoCo's
+// flag (cloth, edge equality).
+TEST(CompilerConformance, Flexes) {
+  CheckModel("flex_shapes", Local("flex/flex_shapes.xml"));
+  CheckModel("flex_flag", Corpus("flex/flag.xml"));
+}
+
 // Cameras: modes, orientations, frames, defaults and intrinsics (cam_* fields).
 TEST(CompilerConformance, Cameras) { CheckModel("cameras", Local("cameras.xml")); }
 // Textures (builtin patterns and PNG files), materials and lights.

@@ -108,8 +108,8 @@ TEST(MjcfErrors, MissingFile) {
 }
 
 TEST(MjcfErrors, NotSupportedYet) {
-  ExpectError("<mujoco>\n<equality>\n<flex flex=\"f\"/>\n</equality>\n</mujoco>",
-              {"bad.xml:3:", "<flex> equality constraints is not supported yet"});
+  ExpectError("<mujoco>\n<equality>\n<flexstrain flex=\"f\"/>\n</equality>\n</mujoco>",
+              {"bad.xml:3:", "<flexstrain> equality constraints is not supported yet"});
   ExpectError("<mujoco>\n<option><flag nativeccd=\"disable\"/></option>\n<asset>\n"
               "<hfield name=\"h\" nrow=\"2\" ncol=\"2\" size=\"1 1 .1 .1\"/>\n</asset>\n<worldbody>\n"
               "<geom name=\"ground\" type=\"hfield\" hfield=\"h\"/>\n"
@@ -307,8 +307,8 @@ TEST(MjcfErrors, SleepPolicies) {
       "sleep_init_island_fail.xml");
 }
 
-// Skins: bad data, bones and files are refused with the skin's line; flexes in
-// <deformable> are not supported yet.
+// Skins: bad data, bones and files are refused with the skin's line; so is a flex without
+// its bodies.
 TEST(MjcfErrors, Skins) {
   auto skin = [](const std::string& attrs, const std::string& bone) {
     return "<mujoco>\n<worldbody><body name=\"b\"><geom size=\".1\"/></body></worldbody>\n"
@@ -337,7 +337,7 @@ TEST(MjcfErrors, Skins) {
   ExpectError(skin("file=\"a.obj\"", ""), {"bad.xml:4:", "unknown skin file type"});
   ExpectError(skin("file=\"missing.skn\"", ""), {"bad.xml:4:", "could not read SKN file"});
   ExpectError("<mujoco>\n<deformable>\n<flex name=\"f\"/>\n</deformable>\n</mujoco>",
-              {"bad.xml:3:", "<flex>", "not supported yet"});
+              {"bad.xml:3:", "<flex name=\"f\">", "missing required attribute 'body'"});
 }
 
 // A truncated .skn file is refused, not read past its end.

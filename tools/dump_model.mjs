@@ -21,7 +21,9 @@ const SIZES = ['nq', 'nv', 'nu', 'na', 'nbody', 'njnt', 'ngeom', 'nsite', 'ntend
   'nkey', 'nM', 'nmocap', 'neq', 'nmesh', 'nmeshvert', 'nmeshface', 'nmeshgraph', 'nmeshnormal', 'ncam',
   'nhfield', 'nhfielddata', 'nbvh', 'nD', 'nlight', 'ntex', 'ntexdata', 'nmat', 'nmeshtexcoord',
   'npair', 'nexclude', 'ntree', 'nB', 'nmeshpoly', 'nmeshpolyvert', 'nmeshpolymap', 'nskin',
-  'nskinvert', 'nskintexvert', 'nskinface', 'nskinbone', 'nskinbonevert'];
+  'nskinvert', 'nskintexvert', 'nskinface', 'nskinbone', 'nskinbonevert',
+  'nflex', 'nflexnode', 'nflexvert', 'nflexedge', 'nflexelem', 'nflexelemdata', 'nflexelemedge',
+  'nflexshelldata', 'nflexevpair', 'nflextexcoord', 'nJfe', 'nJfv'];
 const ARRAYS = [
   'qpos0', 'qpos_spring',
   'body_parentid', 'body_rootid', 'body_weldid', 'body_mocapid', 'body_jntnum', 'body_jntadr',
@@ -81,6 +83,21 @@ const ARRAYS = [
   'eq_data',
   'pair_dim', 'pair_geom1', 'pair_geom2', 'pair_signature', 'pair_solref', 'pair_solimp',
   'pair_margin', 'pair_gap', 'pair_friction', 'exclude_signature',
+  'flex_contype', 'flex_conaffinity', 'flex_condim', 'flex_priority', 'flex_solmix',
+  'flex_solref', 'flex_solimp', 'flex_friction', 'flex_margin', 'flex_gap', 'flex_internal',
+  'flex_selfcollide', 'flex_activelayers', 'flex_passive', 'flex_dim', 'flex_matid',
+  'flex_group', 'flex_interp', 'flex_nodeadr', 'flex_nodenum', 'flex_vertadr', 'flex_vertnum',
+  'flex_edgeadr', 'flex_edgenum', 'flex_elemadr', 'flex_elemnum', 'flex_elemdataadr',
+  'flex_elemedgeadr', 'flex_shellnum', 'flex_shelldataadr', 'flex_evpairadr', 'flex_evpairnum',
+  'flex_texcoordadr', 'flex_nodebodyid', 'flex_vertbodyid', 'flex_vertedgeadr',
+  'flex_vertedgenum', 'flex_vertedge', 'flex_edge', 'flex_edgeflap', 'flex_elem',
+  'flex_elemtexcoord', 'flex_elemedge', 'flex_elemlayer', 'flex_shell', 'flex_evpair',
+  'flex_vert', 'flex_vert0', 'flex_vertmetric', 'flex_node', 'flex_node0', 'flexedge_length0',
+  'flexedge_invweight0', 'flex_radius', 'flex_size', 'flex_stiffness', 'flex_bending',
+  'flex_damping', 'flex_edgestiffness', 'flex_edgedamping', 'flex_edgeequality', 'flex_rigid',
+  'flexedge_rigid', 'flex_centered', 'flex_flatskin', 'flexedge_J_rownnz', 'flexedge_J_rowadr',
+  'flexedge_J_colind', 'flexvert_J_rownnz', 'flexvert_J_rowadr', 'flexvert_J_colind',
+  'flex_rgba', 'flex_texcoord',
 ];
 const OPTIONS = ['timestep', 'impratio', 'tolerance', 'ls_tolerance', 'gravity', 'wind',
   'magnetic', 'density', 'viscosity', 'o_margin', 'o_solref', 'o_solimp', 'o_friction',

@@ -149,6 +149,13 @@ struct TimerStat {
   X(int, ten_wrapnum, ntendon, 1)               \
   X(int, wrap_obj, nwrap, 2)                    \
   X(double, wrap_xpos, nwrap, 6)                \
+  X(double, flexvert_xpos, nflexvert, 3)        \
+  X(double, flexelem_aabb, nflexelem, 6)        \
+  X(double, bvh_aabb_dyn, nbvhdynamic, 6)  /* flex tree boxes: centre, half sizes */ \
+  X(double, flexedge_J, nJfe, 1)                \
+  X(double, flexedge_length, nflexedge, 1)      \
+  X(double, flexvert_J, nJfv, 2)                \
+  X(double, flexvert_length, nflexvert, 2)      \
   X(double, actuator_length, nout, 1)             \
   X(double, actuator_moment, nout, nv)            \
   X(double, crb, nbody, 10)                     \
@@ -158,6 +165,7 @@ struct TimerStat {
   X(double, qLDiagInv, nv, 1)                   \
   /* velocity-dependent */                      \
   X(double, ten_velocity, ntendon, 1)           \
+  X(double, flexedge_velocity, nflexedge, 1)    \
   X(double, actuator_velocity, nout, 1)           \
   X(double, cvel, nbody, 6)                     \
   X(double, cdof_dot, nv, 6)                    \

@@ -91,7 +91,14 @@ enum CtrlInput : int {
 enum CtrlChart : int { kChartExpmap = 1, kChartQuat = 2 };
 
 // Equality constraint types (mjtEq).
-enum EqType : int { kEqConnect = 0, kEqWeld = 1, kEqJoint = 2, kEqTendon = 3 };
+enum EqType : int {
+  kEqConnect = 0, kEqWeld = 1, kEqJoint = 2, kEqTendon = 3, kEqFlex = 4, kEqFlexVert = 5
+};
+
+// Self-collision modes of a flex (mjtFlexSelf).
+enum FlexSelf : int {
+  kFlexSelfNone = 0, kFlexSelfNarrow, kFlexSelfBvh, kFlexSelfSap, kFlexSelfAuto
+};
 
 // Object types (mjtObj), used by name lookup.
 enum ObjType : int {
@@ -274,8 +281,8 @@ struct Visual {
      also hold its meshes' face trees after them */  \
   X(int, bvh_depth, nbvh, 1)                       \
   X(int, bvh_child, nbvh, 2) /* within the body's tree, -1: none */ \
-  X(int, bvh_nodeid, nbvh, 1) /* a leaf's geom, else -1 */ \
-  X(double, bvh_aabb, nbvh, 6) /* centre, half sizes; inertial frame */ \
+  X(int, bvh_nodeid, nbvh, 1) /* a leaf's geom (flexes: element), else -1 */ \
+  X(double, bvh_aabb, nbvhstatic, 6) /* centre, half sizes; inertial frame (bodies' trees) */ \
   /* joints */                                     \
   X(int, jnt_type, njnt, 1)                        \
   X(int, jnt_qposadr, njnt, 1)                     \
@@ -425,6 +432,83 @@ struct Visual {
   X(int, skin_bonebodyid, nskinbone, 1)            \
   X(int, skin_bonevertid, nskinbonevert, 1)        \
   X(double, skin_bonevertweight, nskinbonevert, 1) \
+  /* flexes (MuJoCo's deformables): vertices on bodies joined by elements of dimension \
+     1, 2 or 3 (lines, triangles, tetrahedra), their edges, collision and elasticity */ \
+  X(int, flex_contype, nflex, 1)                   \
+  X(int, flex_conaffinity, nflex, 1)               \
+  X(int, flex_condim, nflex, 1)                    \
+  X(int, flex_priority, nflex, 1)                  \
+  X(double, flex_solmix, nflex, 1)                 \
+  X(double, flex_solref, nflex, kNRef)             \
+  X(double, flex_solimp, nflex, kNImp)             \
+  X(double, flex_friction, nflex, 3)               \
+  X(double, flex_margin, nflex, 1)                 \
+  X(double, flex_gap, nflex, 1)                    \
+  X(int, flex_internal, nflex, 1)                  \
+  X(int, flex_selfcollide, nflex, 1) /* FlexSelf */ \
+  X(int, flex_activelayers, nflex, 1)              \
+  X(int, flex_passive, nflex, 1)                   \
+  X(int, flex_dim, nflex, 1)                       \
+  X(int, flex_matid, nflex, 1)                     \
+  X(int, flex_group, nflex, 1)                     \
+  X(int, flex_interp, nflex, 1) /* 0: vertices; 1, 2: order of the nodes */ \
+  X(int, flex_nodeadr, nflex, 1)                   \
+  X(int, flex_nodenum, nflex, 1)                   \
+  X(int, flex_vertadr, nflex, 1)                   \
+  X(int, flex_vertnum, nflex, 1)                   \
+  X(int, flex_edgeadr, nflex, 1)                   \
+  X(int, flex_edgenum, nflex, 1)                   \
+  X(int, flex_elemadr, nflex, 1)                   \
+  X(int, flex_elemnum, nflex, 1)                   \
+  X(int, flex_elemdataadr, nflex, 1)               \
+  X(int, flex_elemedgeadr, nflex, 1)               \
+  X(int, flex_shellnum, nflex, 1)                  \
+  X(int, flex_shelldataadr, nflex, 1) /* -1: none */ \
+  X(int, flex_evpairadr, nflex, 1)    /* -1: none */ \
+  X(int, flex_evpairnum, nflex, 1)                 \
+  X(int, flex_texcoordadr, nflex, 1)  /* -1: none */ \
+  X(int, flex_nodebodyid, nflexnode, 1)            \
+  X(int, flex_vertbodyid, nflexvert, 1)            \
+  X(int, flex_vertedgeadr, nflexvert, 1)           \
+  X(int, flex_vertedgenum, nflexvert, 1)           \
+  X(int, flex_vertedge, nflexedge, 2)              \
+  X(int, flex_edge, nflexedge, 2)                  \
+  X(int, flex_edgeflap, nflexedge, 2) /* the flap's other two vertices (dim 2), else -1 */ \
+  X(int, flex_elem, nflexelemdata, 1)              \
+  X(int, flex_elemtexcoord, nflexelemdata, 1)      \
+  X(int, flex_elemedge, nflexelemedge, 1)          \
+  X(int, flex_elemlayer, nflexelem, 1)             \
+  X(int, flex_shell, nflexshelldata, 1)            \
+  X(int, flex_evpair, nflexevpair, 2)              \
+  X(double, flex_vert, nflexvert, 3)               \
+  X(double, flex_vert0, nflexvert, 3)              \
+  X(double, flex_vertmetric, nflexvert, 4)         \
+  X(double, flex_node, nflexnode, 3)               \
+  X(double, flex_node0, nflexnode, 3)              \
+  X(double, flexedge_length0, nflexedge, 1)        \
+  X(double, flexedge_invweight0, nflexedge, 1)     \
+  X(double, flex_radius, nflex, 1)                 \
+  X(double, flex_size, nflex, 3)                   \
+  X(double, flex_stiffness, nflexelem, 21)         \
+  X(double, flex_bending, nflexedge, 17)           \
+  X(double, flex_damping, nflex, 1)                \
+  X(double, flex_edgestiffness, nflex, 1)          \
+  X(double, flex_edgedamping, nflex, 1)            \
+  X(int, flex_edgeequality, nflex, 1) /* 0: none, 1: edges, 2: vertices */ \
+  X(int, flex_rigid, nflex, 1)                     \
+  X(int, flexedge_rigid, nflexedge, 1)             \
+  X(int, flex_centered, nflex, 1)                  \
+  X(int, flex_flatskin, nflex, 1)                  \
+  X(int, flex_bvhadr, nflex, 1)                    \
+  X(int, flex_bvhnum, nflex, 1)                    \
+  X(int, flexedge_J_rownnz, nflexedge, 1)          \
+  X(int, flexedge_J_rowadr, nflexedge, 1)          \
+  X(int, flexedge_J_colind, nJfe, 1)               \
+  X(int, flexvert_J_rownnz, nflexvert, 2)          \
+  X(int, flexvert_J_rowadr, nflexvert, 2)          \
+  X(int, flexvert_J_colind, nJfv, 2)               \
+  X(double, flex_rgba, nflex, 4)                   \
+  X(double, flex_texcoord, nflextexcoord, 2)       \
   /* explicit contact pairs and excluded body pairs */ \
   X(int, pair_dim, npair, 1)                       \
   X(int, pair_geom1, npair, 1)                     \
@@ -618,6 +702,7 @@ struct Visual {
   X(mesh, nmesh)              \
   X(hfield, nhfield)          \
   X(skin, nskin)              \
+  X(flex, nflex)              \
   X(light, nlight)            \
   X(tex, ntex)                \
   X(mat, nmat)                \
@@ -661,6 +746,18 @@ struct Visual {
   X(nskinface)   /* triangles of all skins */                              \
   X(nskinbone)   /* bones of all skins */                                  \
   X(nskinbonevert) /* vertex weights of all bones */                       \
+  X(nflex)       /* flexes */                                              \
+  X(nflexnode)   /* nodes of all interpolated flexes */                    \
+  X(nflexvert)   /* vertices of all flexes */                              \
+  X(nflexedge)   /* edges of all flexes */                                 \
+  X(nflexelem)   /* elements of all flexes */                              \
+  X(nflexelemdata) /* element vertex ids of all flexes */                  \
+  X(nflexelemedge) /* element edge ids of all flexes */                    \
+  X(nflexshelldata) /* shell fragment vertex ids of all flexes */          \
+  X(nflexevpair) /* element-vertex collision pairs of all flexes */        \
+  X(nflextexcoord) /* texture coordinates of all flexes */                 \
+  X(nJfe)        /* nonzeros of the sparse flex edge Jacobian */           \
+  X(nJfv)        /* nonzeros of the sparse flex vertex Jacobian */         \
   X(nlight)      /* lights */                                              \
   X(ntex)        /* textures */                                            \
   X(ntexdata)    /* bytes of all textures */                               \
@@ -678,7 +775,9 @@ struct Visual {
   X(nmocap)      /* mocap bodies */                                        \
   X(nmocap3)     /* 3 * nmocap (row width of key_mpos) */                  \
   X(nmocap4)     /* 4 * nmocap (row width of key_mquat) */                 \
-  X(nbvh)        /* bounding volumes of the bodies' geom trees */         \
+  X(nbvh)        /* bounding volumes: the bodies' geom trees, then the flexes' */ \
+  X(nbvhstatic)  /* those of the bodies (boxes in bvh_aabb) */             \
+  X(nbvhdynamic) /* those of the flexes (boxes in Data::bvh_aabb_dyn) */    \
   X(nD)          /* nonzeros of the dof-dof pattern D, 2 nM - nv */        \
   X(nB)          /* nonzeros of the body-dof pattern B */                  \
   X(nM)          /* nonzeros of the inertia matrix in tree layout */       \

@@ -89,7 +89,7 @@ class TreeBuilder {
       nodeid_[index] = begin->geom;
       return index;
     }
-    int axis = LongestSide(aamm);
+    int axis = LongestBoxSide(aamm);
     std::sort(begin, end, [axis](const Element& a, const Element& b) {
       if (a.centre[axis] != b.centre[axis]) return a.centre[axis] < b.centre[axis];
       return a.geom < b.geom;
@@ -116,21 +116,7 @@ class TreeBuilder {
         aamm[3 + k] = std::max(aamm[3 + k], e->aamm[3 + k]);
       }
     }
-    for (int k = 0; k < 3; k++) {
-      if (std::abs(aamm[3 + k] - aamm[k]) < kFlatBox) {
-        aamm[k] -= kFlatBox;
-        aamm[3 + k] += kFlatBox;
-      }
-    }
-  }
-
-  // The longest side, ties (within mjEPS) going to the lower axis.
-  static int LongestSide(const double* aamm) {
-    double edges[3] = {aamm[3] - aamm[0], aamm[4] - aamm[1], aamm[5] - aamm[2]};
-    int axis = 0;
-    if (edges[1] >= edges[0] + kFlatBox) axis = 1;
-    if (edges[2] >= edges[axis] + kFlatBox) axis = 2;
-    return axis;
+    InflateFlatBox(aamm);
   }
 
   std::vector<int>& child_;
@@ -188,10 +174,29 @@ void CompileBodyBvh(Model* m, const CompileState& state) {
   depth.resize(depth.size() + static_cast<size_t>(padding), 0);
   aabb.resize(aabb.size() + 6 * static_cast<size_t>(padding), 0);
   m->nbvh = static_cast<int>(nodeid.size());
+  m->nbvhstatic = m->nbvh;  // (the flexes' trees follow: CompileFlexBvh)
+  m->nbvhdynamic = 0;
   m->bvh_child = std::move(child);
   m->bvh_nodeid = std::move(nodeid);
   m->bvh_depth = std::move(depth);
   m->bvh_aabb = std::move(aabb);
+}
+
+void InflateFlatBox(double aamm[6]) {
+  for (int k = 0; k < 3; k++) {
+    if (std::abs(aamm[3 + k] - aamm[k]) < kFlatBox) {
+      aamm[k] -= kFlatBox;
+      aamm[3 + k] += kFlatBox;
+    }
+  }
+}
+
+int LongestBoxSide(const double aamm[6]) {
+  double edges[3] = {aamm[3] - aamm[0], aamm[4] - aamm[1], aamm[5] - aamm[2]};
+  int axis = 0;
+  if (edges[1] >= edges[0] + kFlatBox) axis = 1;
+  if (edges[2] >= edges[axis] + kFlatBox) axis = 2;
+  return axis;
 }
 
 }  // namespace simlab::compiler

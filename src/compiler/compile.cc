@@ -136,6 +136,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   CompileBodies(&state);
   FuseStaticBodies(spec, &state);
   CompileSkins(spec, &state);
+  CompileFlexes(spec, &state);
   CheckMovingBodies(state);
   CheckHFieldCollisions(spec, state);
   CheckSdfCollisions(spec, state);
@@ -149,6 +150,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   MeshSizes(state, &m);
   HFieldSizes(state, &m);
   SkinSizes(state, &m);
+  FlexSizes(state, &m);
   VisualSizes(spec, state, textures, &m);
   SectionSizes(spec, &m);
   CheckModelBudget(spec, m);
@@ -158,11 +160,13 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   LayoutMeshes(state, &m);
   LayoutHFields(state, &m);
   LayoutSkins(state, &m);
+  LayoutFlexes(spec, state, &m);
   LayoutVisual(spec, state, textures, &m);
   CompileTendons(spec, state, &m);
   CompileEqualities(spec, &m);
   CompileContacts(spec, &m);
   CompileBodyBvh(&m, state);
+  CompileFlexBvh(&m, state);
   CompileActuators(spec, state, &m);
   CompileTrees(state, &m);
   CompilePlugins(spec, state, &m);

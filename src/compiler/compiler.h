@@ -16,6 +16,7 @@
 #define SIMLAB_COMPILER_COMPILER_H_
 
 #include <cstdint>
+#include <array>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -104,6 +105,25 @@ struct SkinState {
   int matid = -1;
 };
 
+// A compiled flex (flex.cc, MuJoCo's mjCFlex::Compile): its vertices' bodies (or -1
+// for an interpolated flex) and world positions at qpos0, its elements (tetrahedra
+// turned outward), edges, flaps, elasticity, shells, element-vertex collision pairs,
+// element layers, and the box of its vertices.
+struct FlexState {
+  const mjcf::FlexSpec* spec = nullptr;
+  int nvert = 0, nnode = 0, nelem = 0, order = 0, matid = -1;
+  bool rigid = false, centered = false, interpolated = false;
+  std::vector<int> vertbodyid, nodebodyid;
+  std::vector<double> vertxpos, nodexpos;
+  std::vector<int> elem, elemedge, elemtexcoord;
+  std::vector<std::array<int, 2>> edge;
+  std::vector<std::array<int, 4>> flaps;
+  std::vector<double> stiffness, bending;
+  std::vector<int> shell, evpair, elemlayer;
+  std::vector<double> vert0;  // vertex positions in the box, on [0, 1]^3
+  double size[3] = {0, 0, 0};
+};
+
 // A geom while compiling (pose in the body frame, mass properties).
 struct GeomState {
   const mjcf::GeomSpec* spec = nullptr;
@@ -148,6 +168,7 @@ struct CompileState {
   std::vector<MeshState> meshes;
   std::vector<HFieldState> hfields;
   std::vector<SkinState> skins;
+  std::vector<FlexState> flexes;
   // Bounding-volume nodes MuJoCo 3.5.1 counts past the bodies' trees after fusing static
   // bodies (its count grows by one for each fusion of two bodies that both had colliding
   // geoms): zero nodes at the end of bvh_*.
@@ -194,6 +215,17 @@ void MakeMeshOctree(MeshState* mesh);
 void CompileSkins(const mjcf::ModelSpec& spec, CompileState* state);
 void SkinSizes(const CompileState& state, Model* m);
 void LayoutSkins(const CompileState& state, Model* m);
+// MuJoCo's rules for a bounding volume's box (min x y z, max x y z), shared by the body
+// and flex trees (bvh.cc): a side flatter than mjEPS grows by mjEPS each way; the split
+// axis is the longest side, ties within mjEPS going to the lower axis.
+void InflateFlatBox(double aamm[6]);
+int LongestBoxSide(const double aamm[6]);
+// Flexes (flex.cc): after the bodies (vertices need their frames at qpos0). The
+// layout needs the equalities (which flexes keep their edges) and the bodies' welds;
+// the constants (sparsity, rest lengths, inverse weights) need the model at qpos0.
+void CompileFlexes(const mjcf::ModelSpec& spec, CompileState* state);
+void FlexSizes(const CompileState& state, Model* m);
+void LayoutFlexes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 // Height fields and the geoms that use them (hfield.cc): before the bodies.
 void CompileHFields(const mjcf::ModelSpec& spec, CompileState* state);
 // An hfield geom's size from its height field (MuJoCo's geom_size for hfields).
@@ -258,6 +290,10 @@ void CompileContacts(const mjcf::ModelSpec& spec, Model* m);
 // (after fusestatic, with MuJoCo's leftovers: see BodyState::stale_bvh_nodeid and
 // CompileState::fused_bvh_padding)
 void CompileBodyBvh(Model* m, const CompileState& state);
+// The flexes' trees over their active elements, after the bodies' (bvh_flex.cc, MuJoCo's
+// mjCFlex::CreateBVH): flex_bvhadr, flex_bvhnum, nbvhdynamic; their boxes move with the
+// flex and live in Data::bvh_aabb_dyn.
+void CompileFlexBvh(Model* m, const CompileState& state);
 // A geom in a body's tree: its id, its box (centre, half sizes) in its frame, and that
 // frame's pose in the body frame.
 struct BvhGeom {
@@ -302,6 +338,15 @@ void ComputeConstants(Model* m);
 // body_simple, body/dof/tendon_invweight0 and stat.meaninertia from a Data at qpos0
 // after the smooth position stage (invweight.cc; called by ComputeConstants).
 void ComputeInvWeights(Model* m, const Data& at_qpos0);
+// Flex constants (flex_constants.cc): the edge and vertex Jacobians' sparsity (before anything at
+// qpos0 runs the flexes), the edges' inverse weights (with the Data at qpos0), and the
+// body sizes (MuJoCo's setStat) the flexes' edges or nodes lengthen.
+void FlexJacobianSparsity(Model* m);
+// Cloths kept by their vertices' metric (flexvert equality) turned, in flex_vert0, so that
+// their first triangle faces z (MuJoCo's mj_alignFlex), after the sparsity.
+void FlexAlignToPlane(Model* m);
+void FlexEdgeInvWeights(Model* m, const Data& at_qpos0);
+void FlexBodySizes(const Model& m, const Data& at_qpos0, std::vector<double>* size);
 // body_simple, and dof_simplenum: how many simple-body dofs run from each dof on
 // (invweight.cc); their rows of M are diagonal (MuJoCo's reduced M).
 void SimpleBodies(Model* m);

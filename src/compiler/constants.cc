@@ -133,6 +133,7 @@ void ComputeStatistics(Model* m, const Data& d) {
       }
     }
   }
+  FlexBodySizes(*m, d, &size);
   if (m->nbody > 1) {
     m->stat.meansize = 0;
     m->stat.meanmass = 0;
@@ -170,8 +171,15 @@ void ComputeConstants(Model* m) {
   ComPos(*m, d);
   SetM0(m, d);
 
-  // Tendon lengths at qpos0 (spring lengths at qpos_spring come last).
+  // Tendon and flex edge lengths at qpos0 (spring lengths at qpos_spring come last),
+  // every flex's edges measured as if it were not rigid.
+  FlexJacobianSparsity(m);
+  FlexAlignToPlane(m);
+  std::vector<int> rigid = m->flex_rigid;
+  std::fill(m->flex_rigid.begin(), m->flex_rigid.end(), 0);
   FwdPositionSmooth(*m, d);
+  m->flex_rigid = rigid;
+  std::copy(d.flexedge_length.begin(), d.flexedge_length.end(), m->flexedge_length0.begin());
   for (int t = 0; t < m->ntendon; t++) m->tendon_length0[t] = d.ten_length[t];
 
   // Actuators: length0, acc0 = |M^-1 moment| and the dampratio damping.
@@ -193,6 +201,7 @@ void ComputeConstants(Model* m) {
   // lengths.
   ComputeStatistics(m, d);
   ComputeInvWeights(m, d);
+  FlexEdgeInvWeights(m, d);
   TendonSpringLengths(m, d);
 }
 

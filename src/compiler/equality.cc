@@ -26,7 +26,7 @@ namespace {
 
 // The objects equalities can name, indexed once for all of them.
 struct EqualityNames {
-  NameIndex joints, tendons, sites, bodies;
+  NameIndex joints, tendons, sites, bodies, flexes;
 };
 
 // The names and kind (for messages) of the objects an equality refers to.
@@ -35,6 +35,8 @@ const NameIndex& ObjectNames(const mjcf::EqualitySpec& eq, const EqualityNames& 
   switch (eq.type) {
     case kEqJoint: *kind = "joint"; return names.joints;
     case kEqTendon: *kind = "tendon"; return names.tendons;
+    case kEqFlex:
+    case kEqFlexVert: *kind = "flex"; return names.flexes;
     default: break;
   }
   if (eq.objtype == kObjSite) {
@@ -60,6 +62,9 @@ void ResolveObjects(const mjcf::EqualitySpec& eq, const EqualityNames& all, int 
         ThrowAt(eq.src, "joint '" + m->jnt_names[id] + "' is not a hinge or a slide");
       }
     }
+  }
+  if ((eq.type == kEqFlex || eq.type == kEqFlexVert) && m->flex_rigid[id1]) {
+    ThrowAt(eq.src, "rigid flex '" + eq.name1 + "' in equality constraint " + std::to_string(i));
   }
   m->eq_obj1id[i] = id1;
   m->eq_obj2id[i] = id2;
@@ -95,7 +100,8 @@ void WeldAtQpos0(const Data& d, int id1, int id2, double* data) {
 
 void CompileEqualities(const mjcf::ModelSpec& spec, Model* m) {
   EqualityNames names = {NameIndex(m->jnt_names), NameIndex(m->tendon_names),
-                         NameIndex(m->site_names), NameIndex(m->body_names)};
+                         NameIndex(m->site_names), NameIndex(m->body_names),
+                         NameIndex(m->flex_names)};
   NameIndex seen;
   for (int i = 0; i < m->neq; i++) {
     const mjcf::EqualitySpec& eq = spec.equalities[i];

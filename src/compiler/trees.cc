@@ -94,7 +94,7 @@ int ActuatorTree(const Model& m, int a) {
 
 // Automatic policies: actuated trees never sleep, nor do trees a tendon couples with
 // stiffness or damping or across more than two trees (an error when the model asked
-// that such a tree sleep); every other automatic tree may.
+// that such a tree sleep), nor do trees of flexes; every other automatic tree may.
 void AutomaticPolicies(const CompileState& state, Model* m) {
   auto never = [m](int tree) {
     if (tree >= 0 && m->tree_sleep_policy[tree] == kSleepAuto) m->tree_sleep_policy[tree] = kSleepAutoNever;
@@ -118,6 +118,16 @@ void AutomaticPolicies(const CompileState& state, Model* m) {
                                                       std::to_string(t) + " " + why + ", sleeping not allowed");
       }
       never(tree);
+    }
+  }
+  // Trees that carry a flex's vertices (or nodes) never sleep.
+  for (int f = 0; f < m->nflex; f++) {
+    bool nodes = m->flex_interp[f] != 0;
+    int begin = nodes ? m->flex_nodeadr[f] : m->flex_vertadr[f];
+    int count = nodes ? m->flex_nodenum[f] : m->flex_vertnum[f];
+    for (int j = begin; j < begin + count; j++) {
+      int body = nodes ? m->flex_nodebodyid[j] : m->flex_vertbodyid[j];
+      if (body >= 0) never(m->body_treeid[body]);
     }
   }
   for (int& policy : m->tree_sleep_policy) {

@@ -926,7 +926,10 @@ int CollideSphereBox(const Model& m, const Data& d, Contact* con, int g1, int g2
 
 int CollideCapsuleBox(const Model& m, const Data& d, Contact* con, int g1, int g2,
                       double margin) {
-  GeomPose capsule = PoseOf(m, d, g1), box = PoseOf(m, d, g2);
+  return CapsuleBoxPoses(con, margin, PoseOf(m, d, g1), PoseOf(m, d, g2));
+}
+
+int CapsuleBoxPoses(Contact* con, double margin, const GeomPose& capsule, const GeomPose& box) {
   LocalSegment seg = SegmentInBox(capsule, box);
   const double* size = box.size;
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/collision.h"
+#include "engine/collision_driver.h"
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/sleep.h"
@@ -29,7 +30,10 @@ namespace {
 bool Enabled(const Model& m, int bit) { return (m.opt.enableflags & bit) != 0; }
 bool Disabled(const Model& m, int bit) { return (m.opt.disableflags & bit) != 0; }
 
+}  // namespace
+
 // ------------------------------------------------------------ contact parameters
+// (shared with the flex collider: collision_driver.h)
 
 // Margin, reference, impedance and friction, or the global overrides (mj_assign*).
 double AssignMargin(const Model& m, double margin) {
@@ -41,58 +45,72 @@ bool BitmaskRejects(int contype1, int conaffinity1, int contype2, int conaffinit
   return !(contype1 & conaffinity2) && !(contype2 & conaffinity1);
 }
 
-// Condim, gap, solref, solimp and 5-d friction of two geoms without an explicit pair:
-// the higher priority geom's, else condim and friction by max, solref/solimp mixed by
-// solmix (solref by min when either is in direct form).
-struct ContactParams {
-  int condim = 3;
-  double gap = 0;
-  double solref[kNRef] = {0, 0};
-  double solreffriction[kNRef] = {0, 0};
-  double solimp[kNImp] = {0, 0, 0, 0, 0};
-  double friction[5] = {0, 0, 0, 0, 0};
-};
+namespace {
 
+// Condim, gap, solref, solimp and 5-d friction of two sides without an explicit pair:
+// the higher priority side's, else condim and friction by max, solref/solimp mixed by
+// solmix (solref by min when either is in direct form).
 double SolMix(double mix1, double mix2) {
   if (mix1 >= kMinVal && mix2 >= kMinVal) return mix1 / (mix1 + mix2);
   if (mix1 < kMinVal && mix2 < kMinVal) return 0.5;
   return mix1 < kMinVal ? 0.0 : 1.0;
 }
 
-ContactParams GeomPairParams(const Model& m, int g1, int g2) {
+// One side's contact properties: a geom's, or a flex's.
+struct Surface {
+  int priority, condim;
+  double gap, solmix;
+  const double* solref;
+  const double* solimp;
+  const double* friction;
+};
+
+Surface SurfaceOf(const Model& m, int g, int f) {
+  if (f >= 0) {
+    return {m.flex_priority[f], m.flex_condim[f], m.flex_gap[f], m.flex_solmix[f],
+            &m.flex_solref[kNRef * f], &m.flex_solimp[kNImp * f], &m.flex_friction[3 * f]};
+  }
+  return {m.geom_priority[g], m.geom_condim[g], m.geom_gap[g], m.geom_solmix[g],
+          &m.geom_solref[kNRef * g], &m.geom_solimp[kNImp * g], &m.geom_friction[3 * g]};
+}
+
+}  // namespace
+
+ContactParams MixedParams(const Model& m, int g1, int g2, int f1, int f2) {
   ContactParams p;
-  p.gap = m.geom_gap[g1] + m.geom_gap[g2];
-  const double* ref1 = &m.geom_solref[kNRef * g1];
-  const double* ref2 = &m.geom_solref[kNRef * g2];
-  const double* imp1 = &m.geom_solimp[kNImp * g1];
-  const double* imp2 = &m.geom_solimp[kNImp * g2];
-  const double* fri1 = &m.geom_friction[3 * g1];
-  const double* fri2 = &m.geom_friction[3 * g2];
+  Surface s1 = SurfaceOf(m, g1, f1), s2 = SurfaceOf(m, g2, f2);
+  p.gap = s1.gap + s2.gap;
   double fri[3];
-  int pri1 = m.geom_priority[g1], pri2 = m.geom_priority[g2];
-  if (pri1 != pri2) {
-    // The higher priority geom decides everything.
-    int g = pri1 > pri2 ? g1 : g2;
-    p.condim = m.geom_condim[g];
-    std::copy_n(&m.geom_solref[kNRef * g], kNRef, p.solref);
-    std::copy_n(&m.geom_solimp[kNImp * g], kNImp, p.solimp);
-    std::copy_n(&m.geom_friction[3 * g], 3, fri);
+  if (s1.priority != s2.priority) {
+    // The higher priority side decides everything.
+    const Surface& s = s1.priority > s2.priority ? s1 : s2;
+    p.condim = s.condim;
+    std::copy_n(s.solref, kNRef, p.solref);
+    std::copy_n(s.solimp, kNImp, p.solimp);
+    std::copy_n(s.friction, 3, fri);
   } else {
     // Same priority: max condim and friction, mixed solver parameters.
-    p.condim = std::max(m.geom_condim[g1], m.geom_condim[g2]);
-    double mix = SolMix(m.geom_solmix[g1], m.geom_solmix[g2]);
-    bool standard = ref1[0] > 0 && ref2[0] > 0;
+    p.condim = std::max(s1.condim, s2.condim);
+    double mix = SolMix(s1.solmix, s2.solmix);
+    bool standard = s1.solref[0] > 0 && s2.solref[0] > 0;
     for (int i = 0; i < kNRef; i++) {
-      p.solref[i] = standard ? mix * ref1[i] + (1 - mix) * ref2[i] : std::min(ref1[i], ref2[i]);
+      p.solref[i] = standard ? mix * s1.solref[i] + (1 - mix) * s2.solref[i]
+                             : std::min(s1.solref[i], s2.solref[i]);
     }
-    for (int i = 0; i < kNImp; i++) p.solimp[i] = mix * imp1[i] + (1 - mix) * imp2[i];
-    for (int i = 0; i < 3; i++) fri[i] = std::max(fri1[i], fri2[i]);
+    for (int i = 0; i < kNImp; i++) p.solimp[i] = mix * s1.solimp[i] + (1 - mix) * s2.solimp[i];
+    for (int i = 0; i < 3; i++) fri[i] = std::max(s1.friction[i], s2.friction[i]);
   }
   // Tangential friction twice, torsional once, rolling twice.
   p.friction[0] = p.friction[1] = fri[0];
   p.friction[2] = fri[1];
   p.friction[3] = p.friction[4] = fri[2];
   return p;
+}
+
+namespace {
+
+ContactParams GeomPairParams(const Model& m, int g1, int g2) {
+  return MixedParams(m, g1, g2, -1, -1);
 }
 
 // The explicit pair's own parameters.
@@ -106,6 +124,8 @@ ContactParams PairParams(const Model& m, int ipair) {
   std::copy_n(&m.pair_friction[5 * ipair], 5, p.friction);
   return p;
 }
+
+}  // namespace
 
 // Parameters of one new contact (mj_setContact), with the global overrides.
 void SetContact(const Model& m, const ContactParams& p, double includemargin, int g1, int g2,
@@ -130,6 +150,15 @@ void SetContact(const Model& m, const ContactParams& p, double includemargin, in
   c->mu = 0;
   std::fill(c->H, c->H + 36, 0.0);
 }
+
+Contact* ContactRoom(Data& d, int n) {
+  if (d.contact.size() < static_cast<size_t>(d.ncon + n)) {
+    d.contact.resize(static_cast<size_t>(d.ncon + n) * 2);
+  }
+  return &d.contact[d.ncon];
+}
+
+namespace {
 
 // ------------------------------------------------------------ geom filters
 
@@ -330,8 +359,19 @@ void CollideUnlessPaired(const Model& m, Data& d, int g1, int g2, int start, int
 
 // ------------------------------------------------------------ broad phase
 
-// Can body b collide with anything?
-bool CanCollide(const Model& m, int b) { return m.body_contype[b] || m.body_conaffinity[b]; }
+// Can body b collide with anything? (bodyflex ids: b >= nbody is flex b - nbody)
+bool CanCollide(const Model& m, int b) {
+  if (b >= m.nbody) return m.flex_contype[b - m.nbody] || m.flex_conaffinity[b - m.nbody];
+  return m.body_contype[b] || m.body_conaffinity[b];
+}
+
+// The contype and conaffinity of a body (its geoms' together) or of a flex.
+int ContypeOf(const Model& m, int b) {
+  return b < m.nbody ? m.body_contype[b] : m.flex_contype[b - m.nbody];
+}
+int ConaffinityOf(const Model& m, int b) {
+  return b < m.nbody ? m.body_conaffinity[b] : m.flex_conaffinity[b - m.nbody];
+}
 
 bool HasPlane(const Model& m, int b) {
   for (int g = m.body_geomadr[b]; g < m.body_geomadr[b] + m.body_geomnum[b]; g++) {
@@ -360,8 +400,15 @@ bool BodyPairFiltered(const Model& m, const int* body_awake, int b1, int b2, boo
   return filterparent && weld1 != 0 && weld2 != 0 && (weld1 == parent2 || weld2 == parent1);
 }
 
-// The principal frame (rows) of the moving geoms' centres: sweep-and-prune runs along
-// its first axis, where the bodies spread most.
+// The number of moving points: geoms not on the world, flex vertices not on the world.
+int MovingPoints(const Model& m) {
+  int count = m.ngeom - m.body_geomnum[0];
+  for (int v = 0; v < m.nflexvert; v++) count += m.flex_vertbodyid[v] != 0;
+  return count;
+}
+
+// The principal frame (rows) of the moving geoms' centres and flex vertices:
+// sweep-and-prune runs along its first axis, where the bodies spread most.
 void PrincipalFrame(const Model& m, const Data& d, double frame[9]) {
   double cen[3] = {0, 0, 0}, cov[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   int count = 0;
@@ -370,14 +417,24 @@ void PrincipalFrame(const Model& m, const Data& d, double frame[9]) {
     math::Add3(cen, cen, &d.geom_xpos[3 * g]);
     count++;
   }
+  for (int v = 0; v < m.nflexvert; v++) {
+    if (!m.flex_vertbodyid[v]) continue;
+    math::Add3(cen, cen, &d.flexvert_xpos[3 * v]);
+    count++;
+  }
   math::Scale3(cen, cen, 1.0 / count);
-  for (int g = 0; g < m.ngeom; g++) {
-    if (!m.geom_bodyid[g]) continue;
+  auto accumulate = [&](const double* point) {
     double dif[3];
-    math::Sub3(dif, &d.geom_xpos[3 * g], cen);
+    math::Sub3(dif, point, cen);
     for (int r = 0; r < 3; r++) {
       for (int c = 0; c < 3; c++) cov[3 * r + c] += dif[r] * dif[c];
     }
+  };
+  for (int g = 0; g < m.ngeom; g++) {
+    if (m.geom_bodyid[g]) accumulate(&d.geom_xpos[3 * g]);
+  }
+  for (int v = 0; v < m.nflexvert; v++) {
+    if (m.flex_vertbodyid[v]) accumulate(&d.flexvert_xpos[3 * v]);
   }
   for (double& x : cov) x *= 1.0 / count;
   double eigval[3], quat[4];
@@ -448,8 +505,8 @@ void BroadPhase(const Model& m, Data& d) {
   std::vector<int>& pairs = d.broadphase.pairs;
   pairs.clear();
   auto add = [&](int b1, int b2) {
-    if (BitmaskRejects(m.body_contype[b1], m.body_conaffinity[b1], m.body_contype[b2],
-                       m.body_conaffinity[b2])) {
+    if (BitmaskRejects(ContypeOf(m, b1), ConaffinityOf(m, b1), ContypeOf(m, b2),
+                       ConaffinityOf(m, b2))) {
       return;
     }
     pairs.push_back((std::min(b1, b2) << 16) + std::max(b1, b2));
@@ -463,23 +520,31 @@ void BroadPhase(const Model& m, Data& d) {
     for (int b2 = 0; b2 < m.nbody; b2++) {
       if (CanCollide(m, b2) && !BodyPairFiltered(m, sleeping, b1, b2, true)) add(b1, b2);
     }
+    for (int f = 0; f < m.nflex; f++) add(b1, m.nbody + f);
   }
-  // Other bodies meet when their boxes overlap in the principal frame of the moving
-  // geoms (there is none when every geom is the world's).
-  if (m.ngeom > m.body_geomnum[0]) {
+  // Other bodies and flexes meet when their boxes overlap in the principal frame of the
+  // moving geoms and flex vertices (there is none when every one is the world's).
+  if (MovingPoints(m) > 0) {
     double frame[9];
     PrincipalFrame(m, d, frame);
     StackFrame scratch(d);
-    double* boxes = scratch.Alloc(6 * static_cast<size_t>(m.nbody));
+    int nbodyflex = m.nbody + m.nflex;
+    double* boxes = scratch.Alloc(6 * static_cast<size_t>(nbodyflex));
     std::vector<int>& bodies = d.broadphase.bodies;
     bodies.clear();
-    for (int b = 1; b < m.nbody; b++) {
+    for (int b = 1; b < nbodyflex; b++) {
       if (!CanCollide(m, b)) continue;
       bodies.push_back(b);
-      BodyBox(m, d, b, frame, &boxes[6 * b], &boxes[6 * b + 3]);
+      if (b < m.nbody) {
+        BodyBox(m, d, b, frame, &boxes[6 * b], &boxes[6 * b + 3]);
+      } else {
+        FlexBox(m, d, b - m.nbody, frame, &boxes[6 * b], &boxes[6 * b + 3]);
+      }
     }
     SweepAndPrune(d.broadphase, boxes, [&](int b1, int b2) {
-      if (!BodyPairFiltered(m, sleeping, b1, b2, false)) add(b1, b2);
+      // (the weld and sleep filters are for body pairs only)
+      bool two_bodies = b1 < m.nbody && b2 < m.nbody;
+      if (!two_bodies || !BodyPairFiltered(m, sleeping, b1, b2, false)) add(b1, b2);
     });
   }
   std::sort(pairs.begin(), pairs.end());
@@ -612,7 +677,10 @@ void CompleteContactFrame(double* frame) {
 
 void Collision(const Model& m, Data& d) {
   d.ncon = 0;
-  if (Disabled(m, kDisableConstraint) || Disabled(m, kDisableContact) || m.nbody < 2) return;
+  if (Disabled(m, kDisableConstraint) || Disabled(m, kDisableContact) ||
+      m.nbody + m.nflex < 2) {
+    return;
+  }
 
   {
     StageTimer timer(d, kTimerColBroad);
@@ -629,10 +697,38 @@ void Collision(const Model& m, Data& d) {
     // Excluded body pairs.
     while (exadr < m.nexclude && m.exclude_signature[exadr] < signature) exadr++;
     if (exadr < m.nexclude && m.exclude_signature[exadr] == signature) continue;
-    CollideBodies(m, d, signature >> 16, signature & 0xFFFF, start, pairadr);
+    int b1 = signature >> 16, b2 = signature & 0xFFFF;
+    if (b2 >= m.nbody) {
+      CollideWithFlex(m, d, b1, b2);
+    } else {
+      CollideBodies(m, d, b1, b2, start, pairadr);
+    }
   }
   // Explicit pairs past the last body pair.
   while (pairadr < m.npair) CollideGeoms(m, d, -1, -1, pairadr++);
+  // Flexes with themselves.
+  CollideFlexSelf(m, d);
+}
+
+bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin) {
+  for (int k = 0; k < 3; k++) {
+    if (aabb1[k] + aabb1[k + 3] + margin < aabb2[k] - aabb2[k + 3]) return true;
+  }
+  for (int k = 0; k < 3; k++) {
+    if (aabb2[k] + aabb2[k + 3] + margin < aabb1[k] - aabb1[k + 3]) return true;
+  }
+  return false;
+}
+
+bool BoxesApartOriented(const double* aabb1, const double* pos1, const double* mat1,
+                        const double* aabb2, const double* pos2, const double* mat2,
+                        double margin, bool from_origins) {
+  // (the world's axes and origin give MuJoCo's numbers for a missing frame exactly)
+  static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  static constexpr double kOrigin[3] = {0, 0, 0};
+  return OrientedBoxesApart(aabb1, pos1 ? pos1 : kOrigin, mat1 ? mat1 : kIdentity, aabb2,
+                            pos2 ? pos2 : kOrigin, mat2 ? mat2 : kIdentity, margin,
+                            from_origins ? Projection::kFromOrigins : Projection::kFromCentres);
 }
 
 }  // namespace simlab

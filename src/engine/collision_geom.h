@@ -40,6 +40,14 @@ inline void PlaneContactAt(Contact& con, const double* normal, const double* poi
   for (int i = 0; i < 3; i++) con.pos[i] = point[i] + normal[i] * (-dist * 0.5);
 }
 
+// Pairs on poses rather than geoms (MuJoCo's mjraw_*), for flex elements made into
+// capsules: a sphere (size[0]) and a capsule (size[0] radius, size[1] half length), two
+// capsules, a capsule and a box. The normal points from the first to the second.
+int SphereCapsulePoses(Contact* con, double margin, const GeomPose& sphere,
+                       const GeomPose& capsule);
+int CapsuleCapsulePoses(Contact* con, double margin, const GeomPose& c1, const GeomPose& c2);
+int CapsuleBoxPoses(Contact* con, double margin, const GeomPose& capsule, const GeomPose& box);
+
 }  // namespace simlab
 
 #endif  // SIMLAB_ENGINE_COLLISION_GEOM_H_

@@ -39,6 +39,12 @@ struct ConvexShape {
   int nvert = 0;
   const int* graph = nullptr;
 
+  // Flex shapes (geom -1): an element (its vertices' positions, 2 to 4 of them) or a
+  // vertex (one), each rounded by `radius` (which includes half the margin).
+  const double* flexpoint[4] = {nullptr, nullptr, nullptr, nullptr};
+  int nflexpoint = 0;
+  double radius = 0;
+
   // Box corner (bits x, y, z) or mesh vertex of the last support point; the mesh search
   // warm-starts from it. meshindex is the last vertex in the hull graph's numbering.
   int vertindex = -1;

@@ -283,9 +283,12 @@ int CollideSphereSphere(const Model& m, const Data& d, Contact* con, int g1, int
 
 int CollideSphereCapsule(const Model& m, const Data& d, Contact* con, int g1, int g2,
                          double margin) {
-  GeomPose sphere = PoseOf(m, d, g1);
-  return SphereSegment(con, margin, sphere.pos, sphere.mat, sphere.size[0],
-                       PoseOf(m, d, g2));
+  return SphereCapsulePoses(con, margin, PoseOf(m, d, g1), PoseOf(m, d, g2));
+}
+
+int SphereCapsulePoses(Contact* con, double margin, const GeomPose& sphere,
+                       const GeomPose& capsule) {
+  return SphereSegment(con, margin, sphere.pos, sphere.mat, sphere.size[0], capsule);
 }
 
 // By where the sphere's centre projects: beside the side (sphere against the nearest
@@ -335,7 +338,10 @@ int CollideSphereCylinder(const Model& m, const Data& d, Contact* con, int g1, i
 // The nearest points of the two segments, as spheres; parallel segments test their ends.
 int CollideCapsuleCapsule(const Model& m, const Data& d, Contact* con, int g1, int g2,
                           double margin) {
-  GeomPose c1 = PoseOf(m, d, g1), c2 = PoseOf(m, d, g2);
+  return CapsuleCapsulePoses(con, margin, PoseOf(m, d, g1), PoseOf(m, d, g2));
+}
+
+int CapsuleCapsulePoses(Contact* con, double margin, const GeomPose& c1, const GeomPose& c2) {
   double axis1[3], axis2[3], apart[3];
   ZAxisOf(c1, axis1);
   ZAxisOf(c2, axis2);

@@ -19,6 +19,9 @@ namespace simlab {
 void MakeConstraint(const Model& m, Data& d);
 // efc_vel and efc_aref (velocity stage).
 void ReferenceConstraint(const Model& m, Data& d);
+// The springs of contacts of passive flexes (exclude 4: no rows) into qfrc_spring: a
+// stiffness of 1e4 along the normal (MuJoCo mj_contactPassive; constraint_rows.cc).
+void PassiveContactForces(const Model& m, Data& d);
 // efc_AR = J M^-1 J^T + diag(R), needed by PGS and noslip (position stage).
 void ProjectConstraint(const Model& m, Data& d);
 // The body of side j (0 or 1) of a connect or weld, in its body or site form.

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "engine/constraint.h"
+#include "engine/contact_bodies.h"
 #include "engine/engine.h"
 #include "engine/rows.h"
 #include "engine/sleep.h"
@@ -221,6 +222,33 @@ void CouplingRow(const Model& m, Data& d, int eq, double* jac, double* jac1, int
   AddDenseRows(m, d, jac, index, &err, 0, 0, 1, kCnstrEquality, eq);
 }
 
+// A flex's edge equality: one row per edge whose ends can move apart, its length's
+// stretch from its length at qpos0, on the edge's sparse Jacobian.
+void FlexEdgeRows(const Model& m, Data& d, int eq) {
+  int f = m.eq_obj1id[eq];
+  int begin = m.flex_edgeadr[f], end = begin + m.flex_edgenum[f];
+  for (int e = begin; e < end; e++) {
+    if (m.flexedge_rigid[e]) continue;
+    double pos = d.flexedge_length[e] - m.flexedge_length0[e];
+    int adr = m.flexedge_J_rowadr[e];
+    AddRows(m, d, &d.flexedge_J[adr], Columns{&m.flexedge_J_colind[adr], m.flexedge_J_rownnz[e]},
+            &pos, 0, 0, 1, kCnstrEquality, eq);
+  }
+}
+
+// A cloth's vertex equality: two rows per vertex, its strain invariants (zero at rest),
+// on the vertex's sparse Jacobian rows.
+void FlexVertexRows(const Model& m, Data& d, int eq) {
+  int f = m.eq_obj1id[eq];
+  int begin = m.flex_vertadr[f], end = begin + m.flex_vertnum[f];
+  for (int row = 2 * begin; row < 2 * end; row++) {
+    double pos = d.flexvert_length[row];
+    int adr = m.flexvert_J_rowadr[row];
+    AddRows(m, d, &d.flexvert_J[adr], Columns{&m.flexvert_J_colind[adr], m.flexvert_J_rownnz[row]},
+            &pos, 0, 0, 1, kCnstrEquality, eq);
+  }
+}
+
 void EqualityRows(const Model& m, Data& d) {
   if ((m.opt.disableflags & kDisableEquality) || m.neq == 0) return;
   StackFrame frame(d);
@@ -236,6 +264,8 @@ void EqualityRows(const Model& m, Data& d) {
     switch (m.eq_type[eq]) {
       case kEqConnect: ConnectRows(m, d, eq, jac, jac1, index); break;
       case kEqWeld: WeldRows(m, d, eq, jac, jac1, index); break;
+      case kEqFlex: FlexEdgeRows(m, d, eq); break;
+      case kEqFlexVert: FlexVertexRows(m, d, eq); break;
       default: CouplingRow(m, d, eq, jac, jac1, index); break;
     }
   }
@@ -340,23 +370,52 @@ void LimitRows(const Model& m, Data& d) {
 
 // ---------------------------------------------------------------- contact rows
 
-// Contact rows in the contact frame: the normal (and tangents for dim > 1) from the
-// translation Jacobian difference at the contact point, torsion and rolling (dim > 3)
-// from the rotation difference. `jac` receives dim x cols.n.
-void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, double* jac,
-                     double* scratch) {
+// The Jacobian at the contact point of side 1's bodies minus side 0's, weighted (a flex
+// element's vertices), into jac1p, jac1r: the first body's Jacobian scaled, the others
+// added scaled, as MuJoCo's mj_jacSum.
+void WeightedContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols,
+                             const ContactSide* sides, double* scratch) {
   int n = cols.n;
   double* jac1p = scratch;
   double* jac2p = jac1p + 3 * n;
   double* jac1r = jac2p + 3 * n;
   double* jac2r = jac1r + 3 * n;
-  int b1 = m.geom_bodyid[c.geom[0]], b2 = m.geom_bodyid[c.geom[1]];
-  bool rotation = c.dim > 3;
-  JacobianOnDofs(m, d, cols.dof, n, jac1p, rotation ? jac1r : nullptr, c.pos, b1);
-  JacobianOnDofs(m, d, cols.dof, n, jac2p, rotation ? jac2r : nullptr, c.pos, b2);
-  for (int k = 0; k < 3 * n; k++) {
-    jac1p[k] = jac2p[k] - jac1p[k];
-    if (rotation) jac1r[k] = jac2r[k] - jac1r[k];
+  bool rotation = c.dim > 3, first = true;
+  for (int k = 0; k < 2; k++) {
+    for (int i = 0; i < sides[k].n; i++) {
+      double w = sides[k].weight[i];  // (signed: side 0 negative)
+      JacobianOnDofs(m, d, cols.dof, n, jac2p, rotation ? jac2r : nullptr, c.pos,
+                     sides[k].body[i]);
+      for (int j = 0; j < 3 * n; j++) {
+        jac1p[j] = first ? jac2p[j] * w : jac1p[j] + w * jac2p[j];
+        if (rotation) jac1r[j] = first ? jac2r[j] * w : jac1r[j] + w * jac2r[j];
+      }
+      first = false;
+    }
+  }
+}
+
+// Contact rows in the contact frame: the normal (and tangents for dim > 1) from the
+// translation Jacobian difference at the contact point, torsion and rolling (dim > 3)
+// from the rotation difference. `jac` receives dim x cols.n.
+void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, double* jac,
+                     double* scratch, const ContactSide* sides) {
+  int n = cols.n;
+  double* jac1p = scratch;
+  double* jac2p = jac1p + 3 * n;
+  double* jac1r = jac2p + 3 * n;
+  double* jac2r = jac1r + 3 * n;
+  if (ContactOnTwoBodies(m, c)) {
+    int b1 = sides[0].body[0], b2 = sides[1].body[0];
+    bool rotation = c.dim > 3;
+    JacobianOnDofs(m, d, cols.dof, n, jac1p, rotation ? jac1r : nullptr, c.pos, b1);
+    JacobianOnDofs(m, d, cols.dof, n, jac2p, rotation ? jac2r : nullptr, c.pos, b2);
+    for (int k = 0; k < 3 * n; k++) {
+      jac1p[k] = jac2p[k] - jac1p[k];
+      if (rotation) jac1r[k] = jac2r[k] - jac1r[k];
+    }
+  } else {
+    WeightedContactJacobian(m, d, c, cols, sides, scratch);
   }
   // Rotate the differences into the contact frame.
   int translation_rows = c.dim > 1 ? 3 : 1;
@@ -371,15 +430,34 @@ void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, do
   }
 }
 
+// The columns of a contact's rows: the dofs of both sides' bodies (`marks`: room for 2 nv,
+// zero, left zero).
+Columns ContactColumns(const Model& m, const ContactSide* sides, int* index, int* marks) {
+  if (sides[0].n == 1 && sides[1].n == 1) {
+    return BodyPairColumns(m, sides[0].body[0], sides[1].body[0], index);
+  }
+  int* chain = marks + m.nv;
+  for (int k = 0; k < 2; k++) {
+    for (int i = 0; i < sides[k].n; i++) {
+      int n = MergedDofChain(m, sides[k].body[i], sides[k].body[i], chain);
+      for (int j = 0; j < n; j++) marks[chain[j]] = 1;
+    }
+  }
+  int n = 0;
+  for (int v = 0; v < m.nv; v++) {
+    if (marks[v]) index[n++] = v;
+    marks[v] = 0;
+  }
+  return Columns{index, n};
+}
+
 // One contact's rows: frictionless (1 row), a pyramid (a pair of opposing edges per
 // friction direction: normal +- mu_k tangent_k) or an elliptic cone (dim rows).
 void ContactRowsOf(const Model& m, Data& d, int i, double* jac, double* edges, double* scratch,
-                   int* index) {
+                   const ContactSide* sides, Columns cols) {
   Contact& c = d.contact[i];
-  Columns cols =
-      BodyPairColumns(m, m.geom_bodyid[c.geom[0]], m.geom_bodyid[c.geom[1]], index);
   int n = cols.n;
-  ContactJacobian(m, d, c, cols, jac, scratch);
+  ContactJacobian(m, d, c, cols, jac, scratch, sides);
   if (c.dim == 1) {
     AddRows(m, d, jac, cols, &c.dist, c.includemargin, 0, 1, kCnstrContactFrictionless, i);
   } else if (m.opt.cone == kConePyramidal) {
@@ -403,26 +481,44 @@ void ContactRowsOf(const Model& m, Data& d, int i, double* jac, double* edges, d
 
 // Rows of every contact not excluded by its gap (MuJoCo mj_instantiateContact).
 void ContactRows(const Model& m, Data& d) {
-  if ((m.opt.disableflags & kDisableContact) || d.ncon == 0 || m.nv == 0) return;
+  if ((m.opt.disableflags & kDisableContact) || d.ncon == 0) return;
+  // Contacts of passive flexes make no rows (MuJoCo marks them while counting rows).
+  for (int i = 0; i < d.ncon && m.nflex > 0; i++) {
+    Contact& c = d.contact[i];
+    if (ContactOnPassiveFlex(m, c)) {
+      c.efc_address = -1;
+      c.exclude = 4;
+    }
+  }
+  if (m.nv == 0) return;
   StackFrame frame(d);
   double* jac = frame.Alloc(6 * static_cast<size_t>(m.nv));
   double* edges = frame.Alloc(2 * static_cast<size_t>(m.nv));
   double* scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
+  int* marks = ints.Ints(2 * static_cast<size_t>(m.nv));
   bool sparse = SparseJacobian(m);
   for (int i = 0; i < d.ncon; i++) {
     Contact& c = d.contact[i];
     if (c.exclude) continue;
-    // A sparse Jacobian skips contacts between bodies that both lack dofs.
-    if (sparse && m.body_weldid[m.geom_bodyid[c.geom[0]]] == 0 &&
-        m.body_weldid[m.geom_bodyid[c.geom[1]]] == 0) {
+    // (a side that is not on bodies, as an interpolated flex's, makes no rows)
+    ContactSide sides[2];
+    if (!ContactSideBodies(m, d, c, 0, true, &sides[0]) ||
+        !ContactSideBodies(m, d, c, 1, true, &sides[1])) {
+      c.efc_address = -1;
+      c.exclude = 3;
+      continue;
+    }
+    // A sparse Jacobian skips contacts between bodies that all lack dofs.
+    Columns cols = ContactColumns(m, sides, index, marks);
+    if (sparse && cols.n == 0) {
       c.efc_address = -1;
       c.exclude = 3;
       continue;
     }
     c.efc_address = d.nefc;
-    ContactRowsOf(m, d, i, jac, edges, scratch, index);
+    ContactRowsOf(m, d, i, jac, edges, scratch, sides, cols);
   }
 }
 
@@ -438,9 +534,16 @@ double CouplingWeight(const Model& m, int eq, int obj) {
 // rotational inverse weights of both bodies; returns its number of rows.
 int ContactDiagApprox(const Model& m, Data& d, int i) {
   const Contact& c = d.contact[d.efc_id[i]];
-  int b1 = m.geom_bodyid[c.geom[0]], b2 = m.geom_bodyid[c.geom[1]];
-  double tran = m.body_invweight0[2 * b1] + m.body_invweight0[2 * b2];
-  double rot = m.body_invweight0[2 * b1 + 1] + m.body_invweight0[2 * b2 + 1];
+  // Both sides' bodies' inverse weights, weighted (a flex element's vertices).
+  double tran = 0, rot = 0;
+  for (int k = 0; k < 2; k++) {
+    ContactSide side;
+    ContactSideBodies(m, d, c, k, false, &side);
+    for (int j = 0; j < side.n; j++) {
+      tran += m.body_invweight0[2 * side.body[j]] * side.weight[j];
+      rot += m.body_invweight0[2 * side.body[j] + 1] * side.weight[j];
+    }
+  }
   double* diag = &d.efc_diagApprox[i];
   if (d.efc_type[i] == kCnstrContactFrictionless) {
     diag[0] = tran;
@@ -475,6 +578,22 @@ void DiagApprox(const Model& m, Data& d) {
                 m.body_invweight0[2 * b0 + rot] + m.body_invweight0[2 * b1 + rot];
           }
           i += rows - 1;
+        } else if (m.eq_type[id] == kEqFlexVert) {
+          // Two rows per vertex, weighed by the vertex body's translational weight.
+          int f = m.eq_obj1id[id];
+          for (int v = m.flex_vertadr[f]; v < m.flex_vertadr[f] + m.flex_vertnum[f]; v++) {
+            double w = m.body_invweight0[2 * m.flex_vertbodyid[v]];
+            d.efc_diagApprox[i++] = w;
+            d.efc_diagApprox[i++] = w;
+          }
+          i--;
+        } else if (m.eq_type[id] == kEqFlex) {
+          // One row per movable edge, weighed by the edge's inverse weight.
+          int f = m.eq_obj1id[id];
+          for (int e = m.flex_edgeadr[f]; e < m.flex_edgeadr[f] + m.flex_edgenum[f]; e++) {
+            if (!m.flexedge_rigid[e]) d.efc_diagApprox[i++] = m.flexedge_invweight0[e];
+          }
+          i--;
         } else {
           diag = CouplingWeight(m, id, m.eq_obj1id[id]);
           if (m.eq_obj2id[id] >= 0) diag += CouplingWeight(m, id, m.eq_obj2id[id]);
@@ -689,6 +808,44 @@ void MakeConstraint(const Model& m, Data& d) {
   if (d.nefc == 0) return;
   DiagApprox(m, d);
   MakeImpedance(m, d);
+}
+
+void PassiveContactForces(const Model& m, Data& d) {
+  if ((m.opt.disableflags & kDisableContact) || d.ncon == 0 || m.nv == 0) return;
+  constexpr double kContactStiffness = 1e4;
+  StackFrame frame(d);
+  double* jac = nullptr;
+  double* scratch = nullptr;
+  int* index = nullptr;
+  int* marks = nullptr;
+  SolverFrame ints(d.solver_scratch);
+  bool sparse = SparseJacobian(m);
+  for (int i = 0; i < d.ncon; i++) {
+    Contact& c = d.contact[i];
+    if (c.exclude != 4) continue;
+    if (!jac) {
+      jac = frame.Alloc(6 * static_cast<size_t>(m.nv));
+      scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
+      index = ints.Ints(m.nv);
+      marks = ints.Ints(2 * static_cast<size_t>(m.nv));
+    }
+    c.efc_address = -1;
+    ContactSide sides[2];
+    if (!ContactSideBodies(m, d, c, 0, true, &sides[0]) ||
+        !ContactSideBodies(m, d, c, 1, true, &sides[1])) {
+      c.exclude = 3;
+      continue;
+    }
+    Columns cols = ContactColumns(m, sides, index, marks);
+    if (sparse && cols.n == 0) {
+      c.exclude = 3;
+      continue;
+    }
+    // The normal row only: a spring pushing the sides apart.
+    ContactJacobian(m, d, c, cols, jac, scratch, sides);
+    double scale = -kContactStiffness * c.dist;
+    for (int k = 0; k < cols.n; k++) d.qfrc_spring[cols.dof[k]] += jac[k] * scale;
+  }
 }
 
 void ReferenceConstraint(const Model& m, Data& d) {

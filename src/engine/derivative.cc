@@ -77,7 +77,25 @@ void ActuatorDerivative(const Model& m, Data& d) {
   }
 }
 
-// Dampers of dofs and tendons, with their actuators' damping: -d(v b(v))/dv.
+// Flex edges' own dampers: -J' b J for each edge that can stretch (its sparse row spread
+// over the dofs).
+void FlexEdgeDampingDerivative(const Model& m, Data& d) {
+  if (m.nflex == 0) return;
+  StackFrame frame(d);
+  double* row = frame.Alloc(m.nv);
+  for (int f = 0; f < m.nflex; f++) {
+    if (m.flex_rigid[f] || m.flex_edgedamping[f] == 0) continue;
+    for (int e = m.flex_edgeadr[f]; e < m.flex_edgeadr[f] + m.flex_edgenum[f]; e++) {
+      if (m.flexedge_rigid[e]) continue;
+      int adr = m.flexedge_J_rowadr[e], n = m.flexedge_J_rownnz[e];
+      for (int j = 0; j < n; j++) row[m.flexedge_J_colind[adr + j]] = d.flexedge_J[adr + j];
+      AddJtBJ(m, d, row, -m.flex_edgedamping[f]);
+      for (int j = 0; j < n; j++) row[m.flexedge_J_colind[adr + j]] = 0;
+    }
+  }
+}
+
+// Dampers of dofs, flex edges and tendons, with their actuators' damping: -d(v b(v))/dv.
 void PassiveDerivative(const Model& m, Data& d) {
   FluidDerivative(m, d);
   if (m.opt.disableflags & kDisableDamper) return;
@@ -86,6 +104,7 @@ void PassiveDerivative(const Model& m, Data& d) {
     double damping = m.dof_damping[v] + ActuatorDamping(m, false, m.dof_jntid[v], poly);
     d.qDeriv[m.D_rowadr[v] + m.D_diag[v]] -= DampingSlope(damping, poly, d.qvel[v]);
   }
+  FlexEdgeDampingDerivative(m, d);
   for (int i = 0; i < m.ntendon; i++) {
     double poly[kNPoly] = {0, 0};
     double damping = m.tendon_damping[i] + ActuatorDamping(m, true, i, poly);

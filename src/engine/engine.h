@@ -35,6 +35,12 @@ void LocalToGlobal(const Data& d, double* xpos, double* xmat, const double* pos,
 void CameraFixedPose(const Model& m, Data& d, int i);
 // Light i's pose as if its mode were fixed (the compiler's offsets at qpos0 start here).
 void LightFixedPose(const Model& m, Data& d, int i);
+// flexvert_xpos, flexelem_aabb, flexedge_length and flexedge_J (flex.cc, MuJoCo mj_flex).
+void FlexKinematics(const Model& m, Data& d);
+// flexedge_velocity = flexedge_J qvel (flex.cc).
+void FlexEdgeVelocity(const Model& m, Data& d);
+// The edges' own springs and dampers into qfrc_spring and qfrc_damper (flex.cc).
+void FlexEdgeSpringDamper(const Model& m, Data& d, bool spring, bool damper);
 // ten_length, ten_J, ten_wrapadr, ten_wrapnum, wrap_obj, wrap_xpos (tendon.cc).
 void Tendon(const Model& m, Data& d);
 // ten_velocity = ten_J qvel (tendon.cc).

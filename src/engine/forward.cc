@@ -2,12 +2,12 @@
 // everything that follows from the current state; Step checks the state, runs Forward,
 // then integrates.
 //
-//   position:     Kinematics, ComPos, CamLight, Tendon, MakeInertia, FactorInertia,
+//   position:     Kinematics, ComPos, CamLight, FlexKinematics, Tendon, MakeInertia, FactorInertia,
 //                 Collision, MakeConstraint, Transmission (adhesion's body transmission
 //                 uses the contact rows), ProjectConstraint; with sleep enabled, sleeping
 //                 trees wake after Kinematics (a changed state), Tendon (a tendon limit),
 //                 Collision (a contact: collide again) and for an equality (sleep.cc)
-//   velocity:     TendonVelocity, ActuatorVelocity, ComVel, Passive,
+//   velocity:     FlexEdgeVelocity, TendonVelocity, ActuatorVelocity, ComVel, Passive,
 //                 ReferenceConstraint, Rne and TendonBias (bias forces)
 //   acceleration: Actuation, SmoothAcceleration, Constraint
 //
@@ -103,6 +103,8 @@ void KinematicsAndInertia(const Model& m, Data& d) {
     if (WakeChanged(m, d)) UpdateSleep(m, d);
     ComPos(m, d);
     CamLight(m, d);
+    FlexKinematics(m, d);
+    FlexBoundingVolumes(m, d);
     Tendon(m, d);
     if (WakeOnTendonLimit(m, d)) UpdateSleep(m, d);
   }
@@ -116,6 +118,7 @@ void FwdVelocity(const Model& m, Data& d) {
   // What the sensors compute on demand is stale from here on.
   d.flg_subtreevel = false;
   d.flg_energyvel = false;
+  FlexEdgeVelocity(m, d);
   TendonVelocity(m, d);
   ActuatorVelocity(m, d);
   ComVel(m, d);

@@ -28,12 +28,24 @@ int RowTrees(const Model& m, const Data& d, int r, int* trees) {
     trees[0] = m.dof_treeid[m.jnt_dofadr[id]];
     return 1;
   }
-  if (type >= kCnstrContactFrictionless) {
+  if (type >= kCnstrContactFrictionless && d.contact[id].geom[0] >= 0 &&
+      d.contact[id].geom[1] >= 0) {
     // The moving side first (the world's tree is -1).
     trees[0] = m.body_treeid[m.geom_bodyid[d.contact[id].geom[0]]];
     trees[1] = m.body_treeid[m.geom_bodyid[d.contact[id].geom[1]]];
     if (trees[0] < 0) std::swap(trees[0], trees[1]);
     return 2;
+  }
+  if (type >= kCnstrContactFrictionless) {
+    // A flex contact: the trees of the row's columns, every stored one with a sparse
+    // Jacobian, the nonzero ones with a dense one (as MuJoCo's treeNext).
+    bool sparse = SparseJacobian(m);
+    int n = 0;
+    for (int k = d.efc_J_rowadr[r]; k < d.efc_J_rowadr[r] + d.efc_J_rownnz[r]; k++) {
+      int tree = m.dof_treeid[d.efc_J_colind[k]];
+      if ((sparse || d.efc_J[k] != 0) && (n == 0 || trees[n - 1] != tree)) trees[n++] = tree;
+    }
+    return n;
   }
   if (type == kCnstrEquality && (m.eq_type[id] == kEqConnect || m.eq_type[id] == kEqWeld)) {
     trees[0] = m.body_treeid[EqualityBody(m, id, 0)];
@@ -92,7 +104,11 @@ void FindIslands(const Model& m, Data& d) {
   // constraint share its trees; each row keeps its first moving tree.
   for (int t = 0; t < ntree; t++) parent[t] = t;
   for (int r = 0; r < d.nefc; r++) {
+    // (except a flex equality's rows, one per edge, each on the trees of its edge)
     bool same = r > 0 && d.efc_type[r] == d.efc_type[r - 1] && d.efc_id[r] == d.efc_id[r - 1];
+    bool flex = d.efc_type[r] == kCnstrEquality &&
+                (m.eq_type[d.efc_id[r]] == kEqFlex || m.eq_type[d.efc_id[r]] == kEqFlexVert);
+    same = same && !flex;
     if (same) {
       first_tree[r] = first_tree[r - 1];
       continue;

@@ -11,7 +11,9 @@
 #include <cmath>
 
 #include "engine/actuator_target.h"
+#include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/flex_elasticity.h"
 #include "engine/rows.h"
 #include "engine/sleep.h"
 
@@ -156,8 +158,17 @@ void PassiveForces(const Model& m, Data& d) {
     }
   }
 
+  // Flexes: their elasticity, then their edges' own springs and dampers.
+  if (m.nflex) {
+    FlexElasticForces(m, d, spring, damper);
+    FlexEdgeSpringDamper(m, d, spring, damper);
+  }
+
   // Tendon springs and dampers.
   for (int i = 0; i < m.ntendon; i++) TendonSpringDamper(m, d, i, spring, damper);
+
+  // Contacts of passive flexes push as springs.
+  if (m.nflex) PassiveContactForces(m, d);
 
   for (int v = 0; v < m.nv; v++) d.qfrc_passive[v] = d.qfrc_spring[v] + d.qfrc_damper[v];
   FluidForces(m, d);

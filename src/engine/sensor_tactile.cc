@@ -98,8 +98,11 @@ double GeomDistance(const Model& m, const SdfField& field, int g, const double x
 
 // The geom on the other side of contact k from the weld body, for side 0 (geom1 on the
 // body: geom2) and side 1 (geom2 on the body: geom1); -1 when that side is not the body.
+// Contacts with a flex (geom -1 on its side) are not read: MuJoCo reads past its arrays
+// there.
 int OtherGeom(const Model& m, const Data& d, int k, int side, int weld) {
   const Contact& c = d.contact[k];
+  if (c.geom1 < 0 || c.geom2 < 0) return -1;
   int mine = side == 0 ? c.geom1 : c.geom2;
   if (m.body_weldid[m.geom_bodyid[mine]] != weld) return -1;
   return side == 0 ? c.geom2 : c.geom1;

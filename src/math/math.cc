@@ -43,11 +43,28 @@ void AxisAngleToQuat(double* q, const double* axis, double angle) {
     SetIdentityQuat(q);
     return;
   }
+
   double s = math::Sin(angle * 0.5);
   q[0] = math::Cos(angle * 0.5);
   q[1] = axis[0] * s;
   q[2] = axis[1] * s;
   q[3] = axis[2] * s;
+}
+
+void QuatZToVec(double* q, const double* vec) {
+  static constexpr double kZ[3] = {0, 0, 1};
+  q[0] = 1;
+  q[1] = q[2] = q[3] = 0;
+  double dir[3] = {vec[0], vec[1], vec[2]}, axis[3];
+  if (Normalize3(dir) < kTiny) return;
+  Cross3(axis, kZ, dir);
+  double sin_angle = Normalize3(axis);
+  // (parallel: nothing to turn, or a half turn about x when opposite)
+  if (std::abs(sin_angle) < kTiny) {
+    if (Dot3(dir, kZ) < 0) q[0] = 0, q[1] = 1;
+    return;
+  }
+  AxisAngleToQuat(q, axis, Atan2(sin_angle, Dot3(dir, kZ)));
 }
 
 void QuatToVel(double* vel, const double* q, double dt) {

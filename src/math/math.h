@@ -183,6 +183,9 @@ inline void QuatToMat(double* m, const double* q) {
 void MatToQuat(double* q, const double* mat);
 // Rotation by `angle` (radians) about the unit axis.
 void AxisAngleToQuat(double* q, const double* axis, double angle);
+// The rotation taking the z axis to vec's direction (MuJoCo mju_quatZ2Vec): identity for
+// a vector too short, 180 degrees about x for -z.
+void QuatZToVec(double* q, const double* vec);
 // The rotation vector (axis * angle) of a unit quaternion, angle in [-pi, pi].
 void QuatToVel(double* vel, const double* q, double dt);
 // qb^-1 qa as a rotation vector: the angular displacement from qb to qa.

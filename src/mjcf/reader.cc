@@ -275,7 +275,9 @@ void Reader::BodyChild(const XmlElement& c, BodySpec* body, const FramePtr& fram
     Replicate(c, body, frame, def);
   } else if (tag == "plugin") {
     ReadOwnPlugin(c, "body", &body->plugin);
-  } else if (tag == "composite" || tag == "flexcomp") {
+  } else if (tag == "flexcomp") {
+    Flexcomp(c, body, def);
+  } else if (tag == "composite") {
     NotSupported(c);
   } else {
     Unknown(c);

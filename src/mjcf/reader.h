@@ -85,8 +85,14 @@ class Reader {
                         const XmlElement& e) const;
   void ReadHField(const XmlElement& e, HFieldSpec* hfield) const;
   void ReadSkin(const XmlElement& e, SkinSpec* skin) const;
-  // the <deformable> section: skins (flexes are not supported yet)
+  // the <deformable> section: skins and flexes
   void Deformable(const XmlElement& e);
+  // flexes (reader_flex.cc) and flexcomps (reader_flex.cc, expanded in reader_flexcomp.cc)
+  void ReadFlex(const XmlElement& e, FlexSpec* flex);
+  void Flexcomp(const XmlElement& e, BodySpec* body, const DefaultClass* def);
+  void FlexcompChildren(const XmlElement& e, struct FlexcompSpec* fc);
+  void MakeFlexcomp(const XmlElement& e, struct FlexcompSpec* fc, BodySpec* body,
+                    const DefaultClass* def);
   void ReadCamera(const XmlElement& e, CameraSpec* cam, bool in_default) const;
   // textures, materials and lights (reader_visual.cc)
   void ReadTexture(const XmlElement& e, TextureSpec* tex) const;

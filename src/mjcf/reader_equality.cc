@@ -1,4 +1,4 @@
-// MJCF reader: the <equality> section (connect, weld, joint and tendon constraints) and
+// MJCF reader: the <equality> section (connect, weld, joint, tendon and flex constraints) and
 // the <equality> element of default classes, which sets active, solref and solimp.
 //
 // Connect and weld name their objects in one of two ways: a body (with an anchor, and
@@ -14,7 +14,8 @@ namespace simlab::mjcf {
 namespace {
 
 const std::initializer_list<Keyword> kEqualityTypes = {
-    {"connect", kEqConnect}, {"weld", kEqWeld}, {"joint", kEqJoint}, {"tendon", kEqTendon}};
+    {"connect", kEqConnect}, {"weld", kEqWeld},   {"joint", kEqJoint},
+    {"tendon", kEqTendon},   {"flex", kEqFlex},   {"flexvert", kEqFlexVert}};
 
 // The attributes every equality element accepts, and those of each kind.
 std::vector<const char*> EqualityAttributes(int type) {
@@ -24,6 +25,8 @@ std::vector<const char*> EqualityAttributes(int type) {
     case kEqConnect: own = {"body1", "body2", "anchor", "site1", "site2"}; break;
     case kEqWeld: own = {"body1", "body2", "relpose", "anchor", "site1", "site2", "torquescale"}; break;
     case kEqJoint: own = {"joint1", "joint2", "polycoef"}; break;
+    case kEqFlex:
+    case kEqFlexVert: own = {"flex"}; break;
     default: own = {"tendon1", "tendon2", "polycoef"}; break;
   }
   attrs.insert(attrs.end(), own.begin(), own.end());
@@ -80,9 +83,7 @@ void Reader::Equality(const XmlElement& e) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     const std::string& tag = c.tag();
-    if (tag == "flex" || tag == "flexvert" || tag == "flexstrain") {
-      NotSupported(c, "<" + tag + "> equality constraints");
-    }
+    if (tag == "flexstrain") NotSupported(c, "<flexstrain> equality constraints");
     if (tag == "distance") c.Fail("distance equality constraints were removed in MuJoCo 2.2.2");
     int type = -1;
     for (const Keyword& k : kEqualityTypes) {
@@ -109,6 +110,8 @@ void Reader::ReadEquality(const XmlElement& e, EqualitySpec* eq, bool in_default
     eq->src = e.src();
     if (eq->type == kEqConnect || eq->type == kEqWeld) {
       ReadBodyOrSites(e, eq);
+    } else if (eq->type == kEqFlex || eq->type == kEqFlexVert) {
+      e.RequiredText("flex", &eq->name1);
     } else {
       ReadCoupling(e, eq);
     }

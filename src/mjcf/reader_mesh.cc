@@ -18,28 +18,6 @@ namespace simlab::mjcf {
 
 namespace {
 
-// Parses a whole token as a float (rounded once, as MuJoCo reads mesh data); false if
-// it is not one.
-bool ParseFloat(const std::string& t, float* out) {
-  errno = 0;
-  char* end = nullptr;
-  *out = std::strtof(t.c_str(), &end);
-  return end != t.c_str() && *end == '\0' && !(errno == ERANGE && std::isinf(*out));
-}
-
-// A list of any length. Vertex coordinates are rounded to single precision once per
-// token, as MuJoCo's float reader does.
-template <typename T>
-std::vector<T> ReadList(const XmlElement& e, const char* name, bool (*parse)(const std::string&, T*)) {
-  std::vector<T> out;
-  for (const std::string& t : e.Tokens(name)) {
-    T value;
-    if (!parse(t, &value)) e.Fail("bad number '" + t + "' in '" + name + "'");
-    out.push_back(value);
-  }
-  return out;
-}
-
 bool IsAbsolute(const std::string& path) { return !path.empty() && path[0] == '/'; }
 
 // `dir` + `rel`, unless `rel` is absolute.

@@ -327,7 +327,7 @@ void Reader::Deformable(const XmlElement& e) {
     if (c.tag() == "skin") {
       ReadSkin(c, &spec_->skins.emplace_back());
     } else if (c.tag() == "flex") {
-      NotSupported(c);
+      ReadFlex(c, &spec_->flexes.emplace_back());
     } else {
       Unknown(c);
     }

@@ -456,6 +456,46 @@ struct SkinSpec {
   std::vector<SkinBoneSpec> bones;
 };
 
+// A flex (MuJoCo's mjsFlex, <deformable><flex> or made by a <flexcomp>): vertices on
+// bodies (one body each, or all in one body, or interpolated from nodes on bodies), and
+// elements of dim+1 vertices each, with their contact and elasticity settings.
+enum FlexElastic2D : int { kElastic2DNone = 0, kElastic2DBend, kElastic2DStretch, kElastic2DBoth };
+
+struct FlexSpec {
+  Source src;
+  // contact
+  int contype = 1, conaffinity = 1, condim = 3, priority = 0;
+  std::array<double, 3> friction = {1, 0.005, 0.0001};
+  double solmix = 1;
+  std::array<double, kNRef> solref = {0.02, 1};
+  std::array<double, kNImp> solimp = {0.9, 0.95, 0.001, 0.5, 2};
+  double margin = 0, gap = 0;
+  bool internal = false;
+  int selfcollide = kFlexSelfAuto;
+  bool vertcollide = false;
+  bool passive = false;
+  int activelayers = 1;
+  // shape and look
+  int dim = 2;
+  double radius = 0.005;
+  int group = 0;
+  std::string material;
+  std::array<float, 4> rgba = {0.5f, 0.5f, 0.5f, 1};
+  bool flatskin = false;
+  // edges and elasticity
+  double edgestiffness = 0, edgedamping = 0;
+  double young = 0, poisson = 0, damping = 0, thickness = -1;
+  int elastic2d = kElastic2DNone;
+  // data: vertex bodies (one, or one per vertex), vertex positions in their bodies'
+  // frames (empty: at the bodies' origins), elements, texture coordinates, and the
+  // bodies and positions of interpolation nodes
+  std::vector<std::string> vertbody, nodebody;
+  std::vector<double> vert, node;
+  std::vector<int> elem, elemtexcoord;
+  std::vector<float> texcoord;
+  int order = 0;  // interpolation order set by a flexcomp (0: from the node count)
+};
+
 // A texture asset (MuJoCo's mjsTexture): a builtin pattern or image files.
 enum TextureType : int { kTexture2D = 0, kTextureCube = 1, kTextureSkybox = 2 };
 enum TextureBuiltin : int { kBuiltinNone = 0, kBuiltinGradient, kBuiltinChecker, kBuiltinFlat };
@@ -580,6 +620,7 @@ struct ModelSpec {
   std::vector<MeshSpec> meshes;
   std::vector<HFieldSpec> hfields;
   std::vector<SkinSpec> skins;
+  std::vector<FlexSpec> flexes;
   std::vector<TextureSpec> textures;
   std::vector<MaterialSpec> materials;
   std::vector<KeySpec> keys;

@@ -87,6 +87,13 @@ bool ParseDouble(const std::string& token, double* out) {
 
 }  // namespace
 
+bool ParseFloat(const std::string& t, float* out) {
+  errno = 0;
+  char* end = nullptr;
+  *out = std::strtof(t.c_str(), &end);
+  return end != t.c_str() && *end == '\0' && !(errno == ERANGE && std::isinf(*out));
+}
+
 bool ParseInt(const std::string& token, int* out) {
   errno = 0;
   char* end = nullptr;

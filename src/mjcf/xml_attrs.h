@@ -88,6 +88,23 @@ class XmlElement {
 // Parses a whole token as an int; false if it is not one or out of range.
 bool ParseInt(const std::string& token, int* out);
 
+// Parses a whole token as a float (rounded once, as MuJoCo reads float data); false if
+// it is not one.
+bool ParseFloat(const std::string& token, float* out);
+
+// A list of any length (empty when the attribute is absent); a bad token fails at e.
+template <typename T>
+std::vector<T> ReadList(const XmlElement& e, const char* name,
+                        bool (*parse)(const std::string&, T*)) {
+  std::vector<T> out;
+  for (const std::string& t : e.Tokens(name)) {
+    T value;
+    if (!parse(t, &value)) e.Fail("bad number '" + t + "' in '" + name + "'");
+    out.push_back(value);
+  }
+  return out;
+}
+
 // Parses the XML text of `file` into `doc` and returns its root element (empty if there
 // is none). A syntax error, or elements nested deeper than MuJoCo's parser allows (see
 // mjcf/limits.h), throw simlab::Error naming the file and line.

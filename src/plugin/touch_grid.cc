@@ -200,6 +200,9 @@ void Compute(const Model& m, Data& d, int instance, int) {
   double* seen = frame.Alloc(8 * static_cast<size_t>(d.ncon));
   int n = 0;
   for (int i = 0; i < d.ncon; i++) {
+    // (contacts with a flex, geom -1 on its side, are skipped: MuJoCo reads past its
+    // arrays there)
+    if (d.contact[i].geom1 < 0 || d.contact[i].geom2 < 0) continue;
     int w1 = m.body_weldid[m.geom_bodyid[d.contact[i].geom1]];
     int w2 = m.body_weldid[m.geom_bodyid[d.contact[i].geom2]];
     if (w1 != parent_weld && w2 != parent_weld) continue;

@@ -88,7 +88,7 @@ class DataViews {
 
 // The Data arrays the 3D view reads every frame.
 const kSceneArrays = ['geom_xpos', 'geom_xmat', 'xanchor', 'xaxis', 'qfrc_actuator', 'xpos', 'xmat',
-  'light_xpos', 'light_xdir', 'cam_xpos', 'cam_xmat', 'subtree_com'];
+  'light_xpos', 'light_xdir', 'cam_xpos', 'cam_xmat', 'subtree_com', 'flexvert_xpos'];
 // Bodies the camera chooser offers to track, at most.
 const kMaxTracked = 40;
 
@@ -309,7 +309,10 @@ class Lab {
       'mesh_facetexcoord', 'skin_vertadr', 'skin_vertnum', 'skin_faceadr', 'skin_facenum',
       'skin_boneadr', 'skin_bonenum', 'skin_vert', 'skin_face', 'skin_bonebindpos', 'skin_bonebindquat',
       'skin_bonebodyid', 'skin_bonevertadr', 'skin_bonevertnum', 'skin_bonevertid',
-      'skin_bonevertweight', 'skin_rgba', 'skin_inflate', 'skin_group', 'skin_matid'];
+      'skin_bonevertweight', 'skin_rgba', 'skin_inflate', 'skin_group', 'skin_matid',
+      'flex_dim', 'flex_vertadr', 'flex_vertnum', 'flex_elemnum', 'flex_elemdataadr', 'flex_elem',
+      'flex_shellnum', 'flex_shelldataadr', 'flex_shell', 'flex_rgba', 'flex_matid', 'flex_group',
+      'flex_flatskin'];
     const model = {};
     for (const name of names) model[name] = this.array('model', name) ?? new Float64Array(0);
     return model;
@@ -836,6 +839,7 @@ class Lab {
       state.xpos = this.dataViews.get('xpos');
       state.xquat = this.dataViews.get('xquat');
     }
+    if (this.sceneModel.flex_dim.length) state.flexvert_xpos = this.dataViews.get('flexvert_xpos');
     return state;
   }
 

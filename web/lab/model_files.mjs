@@ -5,7 +5,7 @@
 //                              including file's folder)
 //   <model file>               XML, a model of its own: relative to the including model's
 //                              folder; its assets use its own folder and <compiler>
-//   <mesh|hfield|skin file>    bytes, in <compiler meshdir> (else assetdir)
+//   <mesh|hfield|skin|flexcomp file>  bytes, in <compiler meshdir> (else assetdir)
 //   <texture file, fileright, fileleft, fileup, filedown, filefront, fileback>
 //                              bytes, in <compiler texturedir> (else assetdir)
 //
@@ -79,7 +79,8 @@ function assetPaths(tags, modelFolder) {
     found.push(modelFolder + folder + file);
   };
   for (const { tag, attrs } of tags) {
-    if ((tag === 'mesh' || tag === 'hfield' || tag === 'skin') && attrs.file) add(attrs.file, folders.mesh);
+    const meshlike = tag === 'mesh' || tag === 'hfield' || tag === 'skin' || tag === 'flexcomp';
+    if (meshlike && attrs.file) add(attrs.file, folders.mesh);
     if (tag === 'texture') {
       for (const name of kTextureAttributes) if (attrs[name]) add(attrs[name], folders.texture);
     }

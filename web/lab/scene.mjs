@@ -1,11 +1,12 @@
 // The lab's 3D view: every geom of a model drawn with three.js from geom_xpos/geom_xmat
-// (and its skins, skins.mjs),
+// (and its skins, skins.mjs, and flexes, flexes.mjs),
 // a camera placed as MuJoCo's free camera (azimuth, elevation, distance, lookat) with
 // mouse orbit, pan and zoom, and overlays for contacts, forces and joint axes.
 import * as THREE from '../node_modules/three/build/three.module.js';
 
 import { SceneLabels } from './labels.mjs';
 import { Lights, Materials } from './materials.mjs';
+import { Flexes } from './flexes.mjs';
 import { Skins } from './skins.mjs';
 
 // Colours as MuJoCo draws them: numbers go to the screen as they are (no sRGB decoding of
@@ -322,6 +323,7 @@ export class LabScene {
       this.geoms.push({ g, mesh });
     }
     this.skins = new Skins(this.scene, model);
+    this.flexes = new Flexes(this.scene, model);
     const sky = this.materials.skybox();
     if (sky) {
       this.scene.background = sky;
@@ -341,6 +343,7 @@ export class LabScene {
     this.cameraState = state;
     for (const { g, mesh } of this.geoms) setPose(mesh, state.geom_xpos, state.geom_xmat, g);
     if (state.xpos) this.skins?.update(state.xpos, state.xquat);
+    this.flexes?.update(state.flexvert_xpos);
     this.lights?.update(state);
     const ncon = state.contacts ? state.contacts.length / state.contactLayout.stride : 0;
     this.drawContacts(toggles.contacts ? state : null, ncon);

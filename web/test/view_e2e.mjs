@@ -374,6 +374,33 @@ async function testSdf() {
   });
 }
 
+// Flexes (MuJoCo's flag.xml, a cloth flapping from one pinned corner, and softbox.xml, a
+// soft box of radial sliders): each flex is drawn from flexvert_xpos, its drawn vertices
+// are the engine's (finite), and the cloth deforms as it moves (its drawn shape is no
+// longer the flat grid it starts as); a screenshot of each.
+async function testFlexes() {
+  for (const [file, name] of [['flex/flag.xml', 'flag'], ['flex/softbox.xml', 'softbox']]) {
+    await inViewer(path.join(options.corpus, file), name, async (page) => {
+      await page.waitForFunction(() => window.lab.sim.time > 0.6, null, { timeout: 60000 });
+      const drawn = await page.evaluate(() => {
+        const lab = window.lab, items = lab.scene.flexes.items;
+        const xpos = lab.sim.data('flexvert_xpos');
+        const position = items.length ? Array.from(items[0].object.geometry.attributes.position.array) : [];
+        const off = Math.max(...position.map((v, k) => Math.abs(v - xpos[k])));
+        // The spread of the drawn vertices along z: a flat horizontal grid has none.
+        const z = position.filter((v, k) => k % 3 === 2);
+        return { count: items.length, n: position.length / 3, off, finite: position.every(Number.isFinite),
+                 zspread: Math.max(...z) - Math.min(...z) };
+      });
+      await page.screenshot({ path: path.join(options.shots, `view_flex_${name}.png`) });
+      check(drawn.count === 1 && drawn.n > 0 && drawn.finite,
+            `${name}: the flex is drawn, ${drawn.n} vertices, all finite`);
+      check(drawn.off < 1e-6, `${name}: drawn vertices are the engine's flexvert_xpos (${drawn.off.toExponential(1)} off)`);
+      if (name === 'flag') check(drawn.zspread > 0.1, `flag: the cloth hangs and folds (z spread ${drawn.zspread.toFixed(2)} m)`);
+    });
+  }
+}
+
 async function main() {
   await openBuilds(options);
   fs.mkdirSync(options.shots, { recursive: true });
@@ -383,6 +410,7 @@ async function main() {
   }
   await testSkins();
   await testSdf();
+  await testFlexes();
   console.log(`screenshots in ${options.shots}`);
   console.log('PASS');
 }

@@ -90,19 +90,5 @@ MODELS=(
   "tests/conformance/corpus/sdf/sdf_pile.xml 600 30 1e-9 none"
   "tests/conformance/corpus/sdf/sdf_meshsdf.xml 300 30 1e-9 none"
 )
-rm -rf "$OUT/goldens" "$OUT/ctrl"
-mkdir -p "$OUT/goldens" "$OUT/ctrl"
-: > "$CASES"
-for line in "${MODELS[@]}"; do
-  read -r model steps every tol controls <<< "$line"
-  name=$(basename "$model" .xml)
-  ctrl=-
-  if [ "${controls:-ctrlgen}" != none ]; then
-    ctrl=$OUT/ctrl/$name.csv
-    node "$ORACLE/ctrlgen.mjs" "$model" --steps "$steps" --out "$ctrl"
-  fi
-  node "$ORACLE/rollout.mjs" "$model" --steps "$steps" --every "$every" \
-    $([ "$ctrl" = - ] || echo --ctrl "$ctrl") --out "$OUT/goldens/$name.jsonl"
-  echo "$model $OUT/goldens/$name.jsonl $steps - $ctrl $tol" >> "$CASES"
-  echo "$name: $(wc -c < "$OUT/goldens/$name.jsonl") bytes"
-done
+source tests/conformance/oracle_goldens.sh
+make_oracle_goldens

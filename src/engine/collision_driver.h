@@ -1,0 +1,55 @@
+// What the collision driver (collision_driver.cc) shares with the flex collider
+// (collision_flex.cc): contact parameters, margins, filters and room in d.contact.
+#ifndef SIMLAB_ENGINE_COLLISION_DRIVER_H_
+#define SIMLAB_ENGINE_COLLISION_DRIVER_H_
+
+#include "engine/collision.h"
+
+namespace simlab {
+
+// Condim, gap, solref, solimp and 5-d friction of a contact (MuJoCo mj_contactParam).
+struct ContactParams {
+  int condim = 3;
+  double gap = 0;
+  double solref[kNRef] = {0, 0};
+  double solreffriction[kNRef] = {0, 0};
+  double solimp[kNImp] = {0, 0, 0, 0, 0};
+  double friction[5] = {0, 0, 0, 0, 0};
+};
+
+// The margin, or the global override's (mj_assignMargin).
+double AssignMargin(const Model& m, double margin);
+// True when neither side's contype meets the other's conaffinity.
+bool BitmaskRejects(int contype1, int conaffinity1, int contype2, int conaffinity2);
+// The parameters of a contact between side 1 (geom g1, or flex f1 when f1 >= 0) and
+// side 2 (g2, or f2): the higher priority side's, else mixed (mj_contactParam).
+ContactParams MixedParams(const Model& m, int g1, int g2, int f1, int f2);
+// Fills in a new contact's ids (geoms g1, g2; flexes, elements and vertices -1) and
+// parameters, with the global overrides, and completes its frame (mj_setContact).
+void SetContact(const Model& m, const ContactParams& p, double includemargin, int g1, int g2,
+                Contact* c);
+// Room for `n` more contacts past d.ncon; returns the first.
+Contact* ContactRoom(Data& d, int n);
+// True when two boxes (centre, half sizes; world axes) are farther apart than margin on
+// some axis (MuJoCo's filterBox).
+bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin);
+// True when oriented boxes are apart (mj_collideOBB; see collision_driver.cc). A null
+// mat is the world's axes, a null pos the origin.
+bool BoxesApartOriented(const double* aabb1, const double* pos1, const double* mat1,
+                        const double* aabb2, const double* pos2, const double* mat2,
+                        double margin, bool from_origins);
+
+// ---------------------------------------------------------------- flexes (collision_flex.cc)
+
+// Collides a body or flex with a flex: bodyflex ids b1 < b2, b2 >= nbody (a flex
+// f = b2 - nbody), as MuJoCo's driver does for such a broad-phase pair.
+void CollideWithFlex(const Model& m, Data& d, int b1, int b2);
+// Every flex's collisions with itself (internal and between its active elements).
+void CollideFlexSelf(const Model& m, Data& d);
+// A flex's box in the rows of `frame`: its vertices' extent grown by radius and margin.
+void FlexBox(const Model& m, const Data& d, int f, const double* frame, double* lo,
+             double* hi);
+
+}  // namespace simlab
+
+#endif  // SIMLAB_ENGINE_COLLISION_DRIVER_H_

@@ -1,0 +1,665 @@
+// Collisions of flexes (MuJoCo's flex parts of mj_collision): with bodies' geoms, with
+// other flexes and with themselves, through the flexes' bounding volume trees.
+//
+// A broad-phase pair of a body (or flex) and a flex is collided by walking both trees
+// (the body's geoms in its inertial frame, the flex's elements in the world, boxes from
+// Data::bvh_aabb_dyn), planes of a static body meeting every flex vertex directly; or,
+// without trees, every geom with every element. The contacts from the trees are then
+// sorted by what they touch, as MuJoCo does.
+//
+// The reference is MuJoCo as the npm oracle runs it (3.5.1 before its commit 8ba68cee3):
+// a pair's flex contacts are not yet thinned to mjMAXCONPAIR (filterFlexContacts).
+//
+// A flex collides with itself when its contype meets its conaffinity: internally
+// (element-vertex pairs the compiler found, and each tetrahedron's vertices against its
+// opposite faces) and between its active elements (by its tree, sweep and prune, or all
+// pairs, per selfcollide). Self-collision ignores margins.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "engine/collision_driver.h"
+#include "engine/collision_flex.h"
+#include "engine/collision_geom.h"
+#include "engine/constraint.h"
+#include "engine/stack.h"
+#include "math/elementary.h"
+#include "math/math.h"
+
+namespace simlab {
+
+namespace {
+
+using math::Dot3;
+
+bool MidphaseDisabled(const Model& m) { return (m.opt.disableflags & kDisableMidphase) != 0; }
+
+// ---------------------------------------------------------------- flex geometry
+
+const double* VertexPos(const Model& m, const Data& d, int f, int v) {
+  return &d.flexvert_xpos[3 * static_cast<size_t>(m.flex_vertadr[f] + v)];
+}
+
+// The vertices (flex numbering) of element e of flex f: dim + 1 of them.
+const int* ElementVertices(const Model& m, int f, int e) {
+  return &m.flex_elem[m.flex_elemdataadr[f] + e * (m.flex_dim[f] + 1)];
+}
+
+// The world box (centre, half sizes) of element e of flex f.
+const double* ElementBox(const Model& m, const Data& d, int f, int e) {
+  return &d.flexelem_aabb[6 * static_cast<size_t>(m.flex_elemadr[f] + e)];
+}
+
+// Does element e take part in collisions? (tetrahedra only in the active layers)
+bool ElementActive(const Model& m, int f, int e) {
+  return m.flex_dim[f] < 3 || m.flex_elemlayer[m.flex_elemadr[f] + e] < m.flex_activelayers[f];
+}
+
+// The body of vertex v of flex f.
+int VertexBody(const Model& m, int f, int v) { return m.flex_vertbodyid[m.flex_vertadr[f] + v]; }
+
+// A line element (vertices vid) as a capsule: centre, axis frame and size (radius, half
+// length) (mj_makeCapsule).
+void EdgeCapsule(const Model& m, const Data& d, int f, const int* vid, double pos[3],
+                 double mat[9], double size[3]) {
+  const double* v1 = VertexPos(m, d, f, vid[0]);
+  const double* v2 = VertexPos(m, d, f, vid[1]);
+  double dif[3];
+  math::Sub3(dif, v1, v2);
+  size[0] = m.flex_radius[f];
+  size[1] = 0.5 * math::Normalize3(dif);
+  size[2] = 0;
+  math::Add3(pos, v1, v2);
+  math::Scale3(pos, pos, 0.5);
+
+  // The rotation taking z to the edge direction (mju_quatZ2Vec, which normalizes again).
+  double quat[4] = {1, 0, 0, 0};
+  static constexpr double kZ[3] = {0, 0, 1};
+  double dir[3] = {dif[0], dif[1], dif[2]}, axis[3];
+  if (math::Normalize3(dir) >= kMinVal) {
+    math::Cross3(axis, kZ, dir);
+    double sin_angle = math::Normalize3(axis);
+    if (std::abs(sin_angle) < kMinVal) {
+      if (Dot3(dir, kZ) < 0) quat[0] = 0, quat[1] = 1;
+    } else {
+      math::AxisAngleToQuat(quat, axis, math::Atan2(sin_angle, Dot3(dir, kZ)));
+    }
+  }
+  math::QuatToMat(mat, quat);
+}
+
+// ---------------------------------------------------------------- recording contacts
+
+// Who touches whom in a contact with a flex.
+struct ContactIds {
+  int geom[2] = {-1, -1};
+  int flex[2] = {-1, -1};
+  int elem[2] = {-1, -1};
+  int vert[2] = {-1, -1};
+};
+
+// Completes the contacts con[0, num) the narrow phase wrote at the end of d.contact and
+// counts them in (mj_setContact for each).
+void Record(const Model& m, Data& d, Contact* con, int num, const ContactParams& p,
+            double includemargin, const ContactIds& ids) {
+  for (int i = 0; i < num; i++) {
+    Contact& c = con[i];
+    SetContact(m, p, includemargin, ids.geom[0], ids.geom[1], &c);
+    for (int k = 0; k < 2; k++) {
+      c.flex[k] = ids.flex[k];
+      c.elem[k] = ids.elem[k];
+      c.vert[k] = ids.vert[k];
+    }
+  }
+  d.ncon += num;
+}
+
+// The object of side k a flex contact is sorted by: its geom, else element, else vertex.
+int SortObject(const Contact& c, int k) {
+  return c.geom[k] >= 0 ? c.geom[k] : (c.elem[k] >= 0 ? c.elem[k] : c.vert[k]);
+}
+
+// Sorts the contacts past `first` by their objects, keeping the order of equals
+// (MuJoCo's contactSort after its midphase).
+void SortFlexContacts(Data& d, int first) {
+  int n = d.ncon - first;
+  if (n < 2) return;
+  Contact* con = d.contact.data() + first;
+  SolverFrame ints(d.solver_scratch);
+  int* order = ints.IntsToWrite(n);
+  for (int i = 0; i < n; i++) order[i] = i;
+  std::sort(order, order + n, [con](int a, int b) {
+    int a0 = SortObject(con[a], 0), b0 = SortObject(con[b], 0);
+    if (a0 != b0) return a0 < b0;
+    int a1 = SortObject(con[a], 1), b1 = SortObject(con[b], 1);
+    return a1 != b1 ? a1 < b1 : a < b;
+  });
+  bool sorted = true;
+  for (int i = 0; i < n && sorted; i++) sorted = order[i] == i;
+  if (sorted) return;
+  Contact* spare = ContactRoom(d, n);
+  con = d.contact.data() + first;
+  std::copy(con, con + n, spare);
+  for (int i = 0; i < n; i++) con[i] = spare[order[i]];
+}
+
+// ---------------------------------------------------------------- narrow phase calls
+
+// Every vertex of flex f against plane geom g (mj_collidePlaneFlex).
+void CollidePlaneFlex(const Model& m, Data& d, int g, int f) {
+  double radius = m.flex_radius[f];
+  const double* pos = &d.geom_xpos[3 * g];
+  const double* mat = &d.geom_xmat[9 * g];
+  double normal[3] = {mat[2], mat[5], mat[8]};
+  double margin = AssignMargin(m, m.geom_margin[g] + m.flex_margin[f]);
+  ContactParams p = MixedParams(m, g, -1, -1, f);
+  ContactIds ids;
+  ids.geom[0] = g;
+  ids.flex[1] = f;
+  for (int i = 0; i < m.flex_vertnum[f]; i++) {
+    const double* v = VertexPos(m, d, f, i);
+    double dif[3];
+    math::Sub3(dif, v, pos);
+    double dist = Dot3(dif, normal);
+    if (dist > margin + radius) continue;
+    Contact* c = ContactRoom(d, 1);
+    c->dist = dist - radius;
+    double along = -c->dist * 0.5 - radius;
+    for (int k = 0; k < 3; k++) c->pos[k] = v[k] + normal[k] * along;
+    math::Copy3(c->frame, normal);
+    math::Zero3(c->frame + 3);
+    ids.vert[1] = i;
+    Record(m, d, c, 1, p, margin - p.gap, ids);
+  }
+}
+
+// Geom g against element e of flex f (mj_collideGeomElem).
+void CollideGeomElem(const Model& m, Data& d, int g, int f, int e) {
+  double margin = AssignMargin(m, m.geom_margin[g] + m.flex_margin[f]);
+  int dim = m.flex_dim[f], type = m.geom_type[g];
+  if (MidphaseDisabled(m)) {
+    // (the midphase's sphere-box test, when there is no midphase)
+    const double* box = ElementBox(m, d, f, e);
+    const double* s = &d.geom_xpos[3 * g];
+    double bound = m.geom_rbound[g] + margin;
+    for (int k = 0; k < 3; k++) {
+      if (s[k] + bound < box[k] - box[k + 3] || s[k] - bound > box[k] + box[k + 3]) return;
+    }
+  }
+  // Not against an element with a vertex on the geom's body.
+  const int* vert = ElementVertices(m, f, e);
+  int body = m.geom_bodyid[g];
+  for (int i = 0; i <= dim; i++) {
+    if (body == VertexBody(m, f, vert[i])) return;
+  }
+
+  Contact* con = ContactRoom(d, kMaxContactPair);
+  GeomPose geom = PoseOf(m, d, g);
+  const double* t[3] = {nullptr, nullptr, nullptr};
+  for (int i = 0; i < 3 && i <= dim; i++) t[i] = VertexPos(m, d, f, vert[i]);
+  double radius = m.flex_radius[f];
+  int num = 0;
+  if (dim == 1 && (type == kGeomSphere || type == kGeomCapsule || type == kGeomBox)) {
+    double pos[3], mat[9], size[3];
+    EdgeCapsule(m, d, f, vert, pos, mat, size);
+    GeomPose capsule{pos, mat, size};
+    if (type == kGeomSphere) {
+      num = SphereCapsulePoses(con, margin, geom, capsule);
+    } else if (type == kGeomCapsule) {
+      num = CapsuleCapsulePoses(con, margin, geom, capsule);
+    } else {
+      // (the box is second there: its normals turned around)
+      num = CapsuleBoxPoses(con, margin, capsule, geom);
+      for (int i = 0; i < num; i++) math::Scale3(con[i].frame, con[i].frame, -1);
+    }
+    for (int i = 0; i < num; i++) math::Zero3(con[i].frame + 3);
+  } else if (type == kGeomHfield) {
+    num = 0;  // height fields against flex elements: not modelled yet
+  } else if (type == kGeomSphere && dim == 2) {
+    num = SphereTriangle(con, margin, geom.pos, geom.size[0], t[0], t[1], t[2], radius);
+  } else if (type == kGeomBox && dim == 2) {
+    num = BoxTriangle(con, margin, geom.pos, geom.mat, geom.size, t[0], t[1], t[2], radius);
+  } else if (type == kGeomCapsule && dim == 2) {
+    num = CapsuleTriangle(con, margin, geom.pos, geom.mat, geom.size, t[0], t[1], t[2], radius);
+  } else if (type != kGeomPlane) {
+    num = ConvexElem(m, d, con, g, -1, -1, -1, f, e, margin);
+  }
+  if (num <= 0) return;
+  ContactParams p = MixedParams(m, g, -1, -1, f);
+  ContactIds ids;
+  ids.geom[0] = g;
+  ids.flex[1] = f;
+  ids.elem[1] = e;
+  Record(m, d, con, num, p, margin - p.gap, ids);
+}
+
+// Element e1 of flex f1 against element e2 of flex f2 (mj_collideElems); no margin or
+// gap within one flex.
+void CollideElems(const Model& m, Data& d, int f1, int e1, int f2, int e2) {
+  double margin = f1 == f2 ? 0 : AssignMargin(m, m.flex_margin[f1] + m.flex_margin[f2]);
+  if (AxisBoxesApart(ElementBox(m, d, f1, e1), ElementBox(m, d, f2, e2), margin)) return;
+  // Not when the elements share a body.
+  int dim1 = m.flex_dim[f1], dim2 = m.flex_dim[f2];
+  const int* vert1 = ElementVertices(m, f1, e1);
+  const int* vert2 = ElementVertices(m, f2, e2);
+  for (int i1 = 0; i1 <= dim1; i1++) {
+    int b1 = VertexBody(m, f1, vert1[i1]);
+    for (int i2 = 0; i2 <= dim2; i2++) {
+      if (b1 >= 0 && b1 == VertexBody(m, f2, vert2[i2])) return;
+    }
+  }
+  Contact* con = ContactRoom(d, kMaxContactPair);
+  int num;
+  if (dim1 == 1 && dim2 == 1) {
+    double pos1[3], mat1[9], size1[3], pos2[3], mat2[9], size2[3];
+    EdgeCapsule(m, d, f1, vert1, pos1, mat1, size1);
+    EdgeCapsule(m, d, f2, vert2, pos2, mat2, size2);
+    num = CapsuleCapsulePoses(con, margin, GeomPose{pos1, mat1, size1}, GeomPose{pos2, mat2, size2});
+    for (int i = 0; i < num; i++) math::Zero3(con[i].frame + 3);
+  } else {
+    num = ConvexElem(m, d, con, -1, f1, e1, -1, f2, e2, margin);
+  }
+  if (num <= 0) return;
+  ContactParams p = MixedParams(m, -1, -1, f1, f2);
+  if (f1 == f2) p.gap = 0;
+  ContactIds ids;
+  ids.flex[0] = f1;
+  ids.flex[1] = f2;
+  ids.elem[0] = e1;
+  ids.elem[1] = e2;
+  Record(m, d, con, num, p, margin - p.gap, ids);
+}
+
+// Vertex v of flex f against its element e (mj_collideElemVert), without margin.
+void CollideElemVert(const Model& m, Data& d, int f, int e, int v) {
+  double margin = AssignMargin(m, m.flex_margin[f]);
+  double radius = m.flex_radius[f];
+  const double* vert = VertexPos(m, d, f, v);
+  const double* box = ElementBox(m, d, f, e);
+  double bound = margin + radius;
+  for (int k = 0; k < 3; k++) {
+    if (box[k] - box[k + 3] > vert[k] + bound || box[k] + box[k + 3] < vert[k] - bound) return;
+  }
+  int dim = m.flex_dim[f];
+  const int* evert = ElementVertices(m, f, e);
+  Contact* con = ContactRoom(d, kMaxContactPair);
+  int num;
+  if (dim == 1) {
+    static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    double pos[3], mat[9], size[3], sphere_size[3] = {radius, 0, 0};
+    EdgeCapsule(m, d, f, evert, pos, mat, size);
+    num = SphereCapsulePoses(con, 0, GeomPose{vert, kIdentity, sphere_size},
+                             GeomPose{pos, mat, size});
+    for (int i = 0; i < num; i++) math::Zero3(con[i].frame + 3);
+  } else if (dim == 2) {
+    num = SphereTriangle(con, 0, vert, radius, VertexPos(m, d, f, evert[0]),
+                         VertexPos(m, d, f, evert[1]), VertexPos(m, d, f, evert[2]), radius);
+  } else {
+    num = ConvexElem(m, d, con, -1, f, -1, v, f, e, 0);
+  }
+  if (num <= 0) return;
+  ContactParams p = MixedParams(m, -1, -1, f, f);
+  ContactIds ids;
+  ids.flex[0] = ids.flex[1] = f;
+  ids.elem[1] = e;
+  ids.vert[0] = v;
+  Record(m, d, con, num, p, 0, ids);
+}
+
+// Vertex v against the plane of face (t0, t1, t2) of a tetrahedron, from inside: a
+// contact when it is less than two radii beyond (planeVertex). Writes pos, frame, dist.
+bool FaceVertex(Contact* c, const double* xpos, double radius, int t0, int t1, int t2, int v) {
+  double e1[3], e2[3], ev[3], normal[3];
+  math::Sub3(e1, xpos + 3 * t1, xpos + 3 * t0);
+  math::Sub3(e2, xpos + 3 * t2, xpos + 3 * t0);
+  math::Sub3(ev, xpos + 3 * v, xpos + 3 * t0);
+  math::Cross3(normal, e1, e2);
+  math::Normalize3(normal);
+  double dist = Dot3(ev, normal);
+  if (dist <= -2 * radius) return false;
+  c->dist = -dist - 2 * radius;
+  math::Scale3(c->frame, normal, -1);
+  math::Zero3(c->frame + 3);
+  for (int k = 0; k < 3; k++) c->pos[k] = xpos[3 * v + k] + normal[k] * (-0.5 * dist);
+  return true;
+}
+
+// A flex's internal collisions (mj_collideFlexInternal): its element-vertex pairs, then
+// (tetrahedra) each vertex against the opposite face, frictionless and without margin.
+void CollideFlexInternal(const Model& m, Data& d, int f) {
+  for (int i = 0; i < m.flex_evpairnum[f]; i++) {
+    const int* ev = &m.flex_evpair[2 * (m.flex_evpairadr[f] + i)];
+    CollideElemVert(m, d, f, ev[0], ev[1]);
+  }
+  if (m.flex_dim[f] != 3) return;
+  ContactParams p = MixedParams(m, -1, -1, f, f);
+  p.condim = 1;
+  const double* xpos = VertexPos(m, d, f, 0);
+  double radius = m.flex_radius[f];
+  static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
+  ContactIds ids;
+  ids.flex[0] = ids.flex[1] = f;
+  for (int e = 0; e < m.flex_elemnum[f]; e++) {
+    const int* t = ElementVertices(m, f, e);
+    ids.elem[0] = e;
+    for (const int* face : kFaces) {
+      Contact* c = ContactRoom(d, 1);
+      if (!FaceVertex(c, xpos, radius, t[face[0]], t[face[1]], t[face[2]], t[face[3]])) continue;
+      ids.vert[1] = t[face[3]];
+      Record(m, d, c, 1, p, 0, ids);
+    }
+  }
+}
+
+// ---------------------------------------------------------------- trees
+
+// One side of a tree walk: a body's tree (static boxes in its inertial frame) or a
+// flex's (boxes in the world, this step's).
+struct TreeSide {
+  int bodyflex, body = -1, flex = -1, adr = 0, num = 0;
+  const double* boxes = nullptr;  // node boxes, 6 per node from the tree's first
+
+  const int* Child(const Model& m, int node) const { return &m.bvh_child[2 * (adr + node)]; }
+  bool Leaf(const Model& m, int node) const {
+    const int* child = Child(m, node);
+    return child[0] < 0 && child[1] < 0;
+  }
+  const double* Box(int node) const { return boxes + 6 * node; }
+};
+
+TreeSide SideOf(const Model& m, const Data& d, int bodyflex) {
+  TreeSide s;
+  s.bodyflex = bodyflex;
+  if (bodyflex < m.nbody) {
+    s.body = bodyflex;
+    s.adr = m.body_bvhadr[bodyflex];
+    s.num = m.body_bvhnum[bodyflex];
+    s.boxes = &m.bvh_aabb[6 * static_cast<size_t>(s.adr)];
+  } else {
+    s.flex = bodyflex - m.nbody;
+    s.adr = m.flex_bvhadr[s.flex];
+    s.num = m.flex_bvhnum[s.flex];
+    s.boxes = &d.bvh_aabb_dyn[6 * static_cast<size_t>(s.adr - m.nbvhstatic)];
+  }
+  return s;
+}
+
+// MuJoCo's "surface" of a node box, taken from its centre and half sizes as if they were
+// its corners; it only decides which tree to open, and so the order of the contacts.
+double OpeningArea(const double* box) {
+  double x = box[3] - box[0], y = box[4] - box[1], z = box[5] - box[2];
+  return x * y + y * z + z * x;
+}
+
+// Two leaves of a body's and a flex's trees: the geom against the element, after the
+// bitmask, sphere-box and oriented box tests (planes are met vertex by vertex instead).
+void BodyFlexLeaves(const Model& m, Data& d, const TreeSide& s1, int node1, const TreeSide& s2,
+                    int node2) {
+  int g = m.bvh_nodeid[s1.adr + node1], e = m.bvh_nodeid[s2.adr + node2], f = s2.flex;
+  double margin = AssignMargin(m, m.geom_margin[g] + m.flex_margin[f]);
+  if (BitmaskRejects(m.geom_contype[g], m.geom_conaffinity[g], m.flex_contype[f],
+                     m.flex_conaffinity[f])) {
+    return;
+  }
+  const double* s = &d.geom_xpos[3 * g];
+  const double* box = s2.Box(node2);
+  double bound = m.geom_rbound[g] + margin;
+  for (int k = 0; k < 3; k++) {
+    if (s[k] + bound < box[k] - box[k + 3] || s[k] - bound > box[k] + box[k + 3]) return;
+  }
+  if (BoxesApartOriented(&m.geom_aabb[6 * g], s, &d.geom_xmat[9 * g], box, nullptr, nullptr,
+                         margin, false)) {
+    return;
+  }
+  if (m.geom_type[g] != kGeomPlane) CollideGeomElem(m, d, g, f, e);
+}
+
+// Do two inner nodes (or an inner node and a leaf) overlap enough to open?
+bool NodesMeet(const Model& m, const Data& d, const TreeSide& s1, int node1, const TreeSide& s2,
+               int node2) {
+  if (s1.body >= 0) {
+    double margin = AssignMargin(m, m.body_margin[s1.body] + m.flex_margin[s2.flex]);
+    return !BoxesApartOriented(s1.Box(node1), &d.xipos[3 * s1.body], &d.ximat[9 * s1.body],
+                               s2.Box(node2), nullptr, nullptr, margin, true);
+  }
+  double margin = AssignMargin(m, m.flex_margin[s1.flex] + m.flex_margin[s2.flex]);
+  return !AxisBoxesApart(s1.Box(node1), s2.Box(node2), margin);
+}
+
+// Walks the trees of bodyflex b1 (a body or flex) and flex b2 together (MuJoCo's
+// mj_collideTree with a flex): pairs of nodes whose boxes are apart are dropped, the
+// larger (by OpeningArea) of two inner nodes or the inner one of a leaf and an inner
+// node is opened; leaf pairs go to the narrow phase. Within one flex (b1 == b2) each
+// node pair is visited once.
+void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
+  if (BitmaskRejects(b1 < m.nbody ? m.body_contype[b1] : m.flex_contype[b1 - m.nbody],
+                     b1 < m.nbody ? m.body_conaffinity[b1] : m.flex_conaffinity[b1 - m.nbody],
+                     m.flex_contype[b2 - m.nbody], m.flex_conaffinity[b2 - m.nbody])) {
+    return;
+  }
+  TreeSide s1 = SideOf(m, d, b1), s2 = SideOf(m, d, b2);
+
+  // A static body's planes meet the flex's vertices directly.
+  if (s1.body >= 0 && m.body_weldid[s1.body] == 0) {
+    for (int g = m.body_geomadr[s1.body]; g < m.body_geomadr[s1.body] + m.body_geomnum[s1.body]; g++) {
+      if (m.geom_type[g] == kGeomPlane) CollidePlaneFlex(m, d, g, s2.flex);
+    }
+  }
+
+  SolverFrame ints(d.solver_scratch);
+  size_t capacity = 2 * static_cast<size_t>(s1.num + s2.num);
+  int* stack = ints.IntsToWrite(capacity);
+  size_t nstack = 1;
+  stack[0] = stack[1] = 0;
+  auto push = [&](int n1, int n2) {
+    if (2 * nstack + 2 > capacity) return;  // (cannot happen: each pop pushes at most two)
+    stack[2 * nstack] = n1;
+    stack[2 * nstack + 1] = n2;
+    nstack++;
+  };
+  while (nstack) {
+    nstack--;
+    int node1 = stack[2 * nstack], node2 = stack[2 * nstack + 1];
+    bool leaf1 = s1.Leaf(m, node1), leaf2 = s2.Leaf(m, node2);
+    if (b1 == b2 && node1 > node2) continue;
+    if (leaf1 && leaf2) {
+      if (s1.body >= 0) {
+        BodyFlexLeaves(m, d, s1, node1, s2, node2);
+      } else {
+        CollideElems(m, d, s1.flex, m.bvh_nodeid[s1.adr + node1], s2.flex,
+                     m.bvh_nodeid[s2.adr + node2]);
+      }
+      continue;
+    }
+    if (!NodesMeet(m, d, s1, node1, s2, node2)) continue;
+    bool open1 = !leaf1 && (leaf2 || OpeningArea(s1.Box(node1)) > OpeningArea(s2.Box(node2)));
+    const int* child = open1 ? s1.Child(m, node1) : s2.Child(m, node2);
+    for (int i = 0; i < 2; i++) {
+      if (child[i] == -1) continue;
+      if (open1) {
+        push(child[i], node2);
+      } else {
+        push(node1, child[i]);
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------- sweep and prune
+
+// One key of the sweep: the value in single precision, mapped to unsigned bits in the
+// same order, then the tie order (2 i, + 1 for an upper end).
+uint64_t SweepKey(double x, int tie) {
+  float f = std::isnan(x) ? std::numeric_limits<float>::infinity() : static_cast<float>(x);
+  if (f == 0) f = 0;
+  uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+  return (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(tie);
+}
+
+// The active elements of flex f against each other by sweep and prune along the longest
+// side of the flex's box (mj_collideFlexSAP), in the order the sweep finds them.
+void CollideFlexSweep(const Model& m, Data& d, int f) {
+  SolverFrame ints(d.solver_scratch);
+  int* active = ints.IntsToWrite(std::max(m.flex_elemnum[f], 1));
+  int n = 0;
+  for (int e = 0; e < m.flex_elemnum[f]; e++) {
+    if (ElementActive(m, f, e)) active[n++] = e;
+  }
+  if (n < 2) return;
+  const double* root = &d.bvh_aabb_dyn[6 * static_cast<size_t>(m.flex_bvhadr[f] - m.nbvhstatic)];
+  int axis = (root[3] > root[4] && root[3] > root[5]) ? 0 : (root[4] > root[5] ? 1 : 2);
+  int other[2] = {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2};
+  long max_pairs = std::min(static_cast<long>(n) * (n - 1) / 2, 1000000L);
+
+  std::vector<uint64_t>& ends = d.broadphase.ends;
+  std::vector<int>& open = d.broadphase.open;
+  ends.clear();
+  for (int i = 0; i < n; i++) {
+    const double* box = ElementBox(m, d, f, active[i]);
+    ends.push_back(SweepKey(box[axis] - box[axis + 3], 2 * i));
+    ends.push_back(SweepKey(box[axis] + box[axis + 3], 2 * i + 1));
+  }
+  std::sort(ends.begin(), ends.end());
+  open.clear();
+  long npairs = 0;
+  for (uint64_t end : ends) {
+    int id = static_cast<int>((end & 0xFFFFFFFFu) >> 1);
+    if (end & 1) {
+      auto it = std::find(open.begin(), open.end(), id);
+      if (it != open.end()) open.erase(it);
+      continue;
+    }
+    const double* box2 = ElementBox(m, d, f, active[id]);
+    for (size_t j = 0; j < open.size(); j++) {
+      const double* box1 = ElementBox(m, d, f, active[open[j]]);
+      bool apart = false;
+      for (int k : other) {
+        apart = apart || box1[k] - box1[k + 3] > box2[k] + box2[k + 3] ||
+                box2[k] - box2[k + 3] > box1[k] + box1[k + 3];
+      }
+      if (apart) continue;
+      CollideElems(m, d, f, active[open[j]], f, active[id]);
+      if (++npairs >= max_pairs) return;
+    }
+    open.push_back(id);
+  }
+}
+
+// A flex's active elements against each other, per its selfcollide mode.
+void CollideFlexElements(const Model& m, Data& d, int f) {
+  int mode = m.flex_selfcollide[f];
+  bool tree = !MidphaseDisabled(m) && mode != kFlexSelfNarrow && m.flex_bvhadr[f] >= 0;
+  if (tree) {
+    if (mode == kFlexSelfBvh || (mode == kFlexSelfAuto && m.flex_dim[f] == 3)) {
+      CollideTreesWithFlex(m, d, m.nbody + f, m.nbody + f);
+    } else {
+      CollideFlexSweep(m, d, f);
+    }
+    return;
+  }
+  for (int e1 = 0; e1 < m.flex_elemnum[f]; e1++) {
+    if (!ElementActive(m, f, e1)) continue;
+    for (int e2 = e1 + 1; e2 < m.flex_elemnum[f]; e2++) {
+      if (ElementActive(m, f, e2)) CollideElems(m, d, f, e1, f, e2);
+    }
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- entry points
+
+void FlexBox(const Model& m, const Data& d, int f, const double* frame, double* lo,
+             double* hi) {
+  for (int i = 0; i < m.flex_vertnum[f]; i++) {
+    const double* x = VertexPos(m, d, f, i);
+    for (int k = 0; k < 3; k++) {
+      double c = Dot3(frame + 3 * k, x);
+      lo[k] = i == 0 ? c : std::min(lo[k], c);
+      hi[k] = i == 0 ? c : std::max(hi[k], c);
+    }
+  }
+  bool override = (m.opt.enableflags & kEnableOverride) != 0;
+  double bound = m.flex_radius[f] + (override ? 0.5 * m.opt.o_margin : m.flex_margin[f]);
+  for (int k = 0; k < 3; k++) {
+    lo[k] -= bound;
+    hi[k] += bound;
+  }
+}
+
+void CollideWithFlex(const Model& m, Data& d, int b1, int b2) {
+  int nbody = m.nbody, f2 = b2 - nbody;
+  bool body1 = b1 < nbody;
+  int bvh1 = body1 ? m.body_bvhadr[b1] : m.flex_bvhadr[b1 - nbody];
+  int first = d.ncon;
+  if (!MidphaseDisabled(m) && bvh1 >= 0 && m.flex_bvhadr[f2] >= 0) {
+    CollideTreesWithFlex(m, d, b1, b2);
+    SortFlexContacts(d, first);
+    return;
+  }
+  if (!body1) {
+    // Every element of one flex with every element of the other.
+    int f1 = b1 - nbody;
+    for (int e1 = 0; e1 < m.flex_elemnum[f1]; e1++) {
+      for (int e2 = 0; e2 < m.flex_elemnum[f2]; e2++) CollideElems(m, d, f1, e1, f2, e2);
+    }
+    return;
+  }
+  // Every geom of the body with every element (planes with every vertex).
+  for (int g = m.body_geomadr[b1]; g < m.body_geomadr[b1] + m.body_geomnum[b1]; g++) {
+    if (BitmaskRejects(m.geom_contype[g], m.geom_conaffinity[g], m.flex_contype[f2],
+                       m.flex_conaffinity[f2])) {
+      continue;
+    }
+    if (m.geom_type[g] == kGeomPlane) {
+      CollidePlaneFlex(m, d, g, f2);
+    } else {
+      for (int e = 0; e < m.flex_elemnum[f2]; e++) CollideGeomElem(m, d, g, f2, e);
+    }
+  }
+}
+
+void CollideFlexSelf(const Model& m, Data& d) {
+  for (int f = 0; f < m.nflex; f++) {
+    if (m.flex_rigid[f] || !(m.flex_contype[f] & m.flex_conaffinity[f])) continue;
+    if (m.flex_internal[f]) CollideFlexInternal(m, d, f);
+    if (m.flex_selfcollide[f] != kFlexSelfNone) CollideFlexElements(m, d, f);
+  }
+}
+
+void FlexBoundingVolumes(const Model& m, Data& d) {
+  if (MidphaseDisabled(m)) return;
+  for (int f = 0; f < m.nflex; f++) {
+    int adr = m.flex_bvhadr[f], num = m.flex_bvhnum[f];
+    if (adr < 0) continue;
+    double* boxes = &d.bvh_aabb_dyn[6 * static_cast<size_t>(adr - m.nbvhstatic)];
+    // Leaves: their elements' boxes; then every inner node from its children, children
+    // coming after their parents.
+    for (int i = 0; i < num; i++) {
+      int e = m.bvh_nodeid[adr + i];
+      if (e >= 0) std::copy_n(ElementBox(m, d, f, e), 6, boxes + 6 * i);
+    }
+    for (int i = num - 1; i >= 0; i--) {
+      if (m.bvh_nodeid[adr + i] >= 0) continue;
+      const int* child = &m.bvh_child[2 * (adr + i)];
+      const double* a = boxes + 6 * child[0];
+      const double* b = boxes + 6 * child[1];
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; k++) {
+        lo[k] = std::min(a[k] - a[k + 3], b[k] - b[k + 3]);
+        hi[k] = std::max(a[k] + a[k + 3], b[k] + b[k + 3]);
+      }
+      for (int k = 0; k < 3; k++) {
+        boxes[6 * i + k] = 0.5 * (hi[k] + lo[k]);
+        boxes[6 * i + k + 3] = 0.5 * (hi[k] - lo[k]);
+      }
+    }
+  }
+}
+
+}  // namespace simlab

@@ -1,0 +1,339 @@
+// Elastic forces of flexes (see flex_elasticity.h), in MuJoCo's order of operations.
+//
+// Bending (triangle flexes): each inner edge's flap (v0 v1 the edge, v2 v3 the opposite
+// vertices) pulls its four vertices by -B x - b16 n, with B the compiler's 4x4 operator
+// over the vertex positions x and n the gradients of the flap's volume (the curved
+// reference); its damping is -damping B qvel.
+//
+// Elements: each edge's squared elongation (plus Rayleigh damping, the change of its
+// squared length over the last step times damping / timestep) drives the element's
+// vertices through the compiler's edge metric: f = -sum metric[a][b] elong[a] grad[b],
+// grad[b] the gradient of edge b's squared length over two.
+//
+// Interpolated flexes: the nodes in their corotated frame, displaced from their reference
+// positions, feel K displacement (and damping K velocity), rotated back to the world.
+#include "engine/flex_elasticity.h"
+
+#include <cmath>
+
+#include "engine/engine.h"
+#include "engine/sensor.h"
+#include "engine/stack.h"
+#include "math/dot.h"
+#include "math/math.h"
+
+namespace simlab {
+
+namespace {
+
+// Each edge of a triangle ([0]) and a tetrahedron ([1]) as its two local vertices, in the
+// order of flex_elemedge (the compiler's kFlexElemEdges).
+constexpr int kElemEdges[2][6][2] = {{{1, 2}, {2, 0}, {0, 1}, {0, 0}, {0, 0}, {0, 0}},
+                                     {{0, 1}, {1, 2}, {2, 0}, {2, 3}, {0, 3}, {1, 3}}};
+
+// Numbers per element in flex_stiffness, per edge in flex_bending.
+constexpr int kStiffnessSize = 21;
+constexpr int kBendingSize = 17;
+
+// A body that is a simple point mass (three slide joints, MuJoCo's body_simple 2) takes a
+// vertex force on its dofs directly.
+constexpr int kSimplePointMass = 2;
+
+// r = q v q*, also computed for a zero v (MuJoCo's inline variant, which keeps the signs
+// of zero that math::RotVecQuat's shortcut would not).
+void RotateAlways(double* r, const double* v, const double* q) {
+  if (q[0] == 1 && q[1] == 0 && q[2] == 0 && q[3] == 0) return math::Copy3(r, v);
+  double t[3] = {q[0] * v[0] + q[2] * v[2] - q[3] * v[1],
+                 q[0] * v[1] + q[3] * v[0] - q[1] * v[2],
+                 q[0] * v[2] + q[1] * v[1] - q[2] * v[0]};
+  r[0] = v[0] + 2 * (q[2] * t[2] - q[3] * t[1]);
+  r[1] = v[1] + 2 * (q[3] * t[0] - q[1] * t[2]);
+  r[2] = v[2] + 2 * (q[1] * t[1] - q[2] * t[0]);
+}
+
+// The deformation gradient (row-major 3x3) at p of the nodes' positions (MuJoCo's
+// mju_defGradient).
+void DeformationGradient(double mat[9], const double p[3], const double* nodes, int order) {
+  for (int k = 0; k < 9; k++) mat[k] = 0;
+  int node = 0;
+  for (int i = 0; i <= order; i++) {
+    for (int j = 0; j <= order; j++) {
+      for (int k = 0; k <= order; k++) {
+        double g[3];
+        FlexShapeGradient(g, p, i, j, k, order);
+        for (int r = 0; r < 3; r++) {
+          for (int c = 0; c < 3; c++) mat[3 * r + c] += nodes[3 * node + r] * g[c];
+        }
+        node++;
+      }
+    }
+  }
+}
+
+// Refines quat toward the rotation nearest `mat` (Mueller et al., "A robust method to
+// extract the rotational part of deformations"; MuJoCo's mju_mat2Rot): at most 500 steps,
+// until the correcting rotation is below 1e-9 radians.
+void NearestRotation(double quat[4], const double mat[9]) {
+  for (int iter = 0; iter < 500; iter++) {
+    // The correcting rotation: sum of rot_col x mat_col over the sum of their dots.
+    double rot[9];
+    math::QuatToMat(rot, quat);
+    double cross[3][3], dot[3];
+    for (int c = 0; c < 3; c++) {
+      double rot_col[3] = {rot[c], rot[3 + c], rot[6 + c]};
+      double mat_col[3] = {mat[c], mat[3 + c], mat[6 + c]};
+      math::Cross3(cross[c], rot_col, mat_col);
+      dot[c] = math::Dot3(rot_col, mat_col);
+    }
+    double omega[3];
+    for (int k = 0; k < 3; k++) omega[k] = cross[0][k] + cross[1][k] + cross[2][k];
+    math::Scale3(omega, omega, 1.0 / (std::abs(dot[0] + dot[1] + dot[2]) + math::kTiny));
+    double angle = math::Normalize3(omega);
+    if (angle < 1e-9) break;
+
+    // Apply it on the left.
+    double step[4];
+    math::AxisAngleToQuat(step, omega, angle);
+    math::MulQuat(quat, step, quat);
+    math::NormalizeQuat(quat);
+  }
+}
+
+// Thin-plate bending of triangle flex f: each inner edge's flap.
+void BendingForces(const Model& m, Data& d, int f, bool spring, bool damper) {
+  const double* xpos = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
+  const int* bodyid = &m.flex_vertbodyid[m.flex_vertadr[f]];
+  for (int edge = m.flex_edgeadr[f]; edge < m.flex_edgeadr[f] + m.flex_edgenum[f]; edge++) {
+    int v[4] = {m.flex_edge[2 * edge], m.flex_edge[2 * edge + 1], m.flex_edgeflap[2 * edge],
+                m.flex_edgeflap[2 * edge + 1]};
+    if (v[3] == -1) continue;
+    const double* b = &m.flex_bending[kBendingSize * edge];
+
+    // Forces of the curved reference: gradients of the flap's volume.
+    double ed[3][3], frc[4][3];
+    for (int k = 0; k < 3; k++) math::Sub3(ed[k], xpos + 3 * v[k + 1], xpos + 3 * v[0]);
+    math::Cross3(frc[1], ed[1], ed[2]);
+    math::Cross3(frc[2], ed[2], ed[0]);
+    math::Cross3(frc[3], ed[0], ed[1]);
+    for (int x = 0; x < 3; x++) frc[0][x] = -(frc[1][x] + frc[2][x] + frc[3][x]);
+
+    // B x + b16 frc, and B qvel (the vertices' dofs are world translations).
+    int dofadr[4];
+    for (int i = 0; i < 4; i++) dofadr[i] = m.body_dofadr[bodyid[v[i]]];
+    double spring_force[12] = {}, damper_force[12] = {};
+    for (int i = 0; i < 4; i++) {
+      for (int x = 0; x < 3; x++) {
+        for (int j = 0; j < 4; j++) {
+          if (spring) spring_force[3 * i + x] += b[4 * i + j] * xpos[3 * v[j] + x];
+          if (damper) damper_force[3 * i + x] += b[4 * i + j] * d.qvel[dofadr[j] + x];
+        }
+        if (spring) spring_force[3 * i + x] += b[16] * frc[i][x];
+      }
+    }
+
+    // Into the vertices' dofs.
+    for (int i = 0; i < 4; i++) {
+      int body = bodyid[v[i]];
+      for (int x = 0; x < m.body_dofnum[body]; x++) {
+        int dof = m.body_dofadr[body] + x;
+        if (spring) d.qfrc_spring[dof] -= spring_force[3 * i + x];
+        if (damper) d.qfrc_damper[dof] -= damper_force[3 * i + x] * m.flex_damping[f];
+      }
+    }
+  }
+}
+
+// Linear elasticity of interpolated flex f in its corotated frame.
+void InterpolatedForces(const Model& m, Data& d, int f, bool spring, bool damper) {
+  int nnode = m.flex_nodenum[f], ndof = 3 * nnode;
+  const int* bodyid = &m.flex_nodebodyid[m.flex_nodeadr[f]];
+  const double* xpos0 = &m.flex_node0[3 * m.flex_nodeadr[f]];
+  const double* k = &m.flex_stiffness[kStiffnessSize * m.flex_elemadr[f]];
+  StackFrame frame(d);
+  double* xpos = frame.Alloc(ndof);
+  double* displacement = frame.Alloc(ndof);
+  double* vel = frame.Alloc(ndof);
+  double* frc = frame.Alloc(ndof);
+  double* dmp = frame.Alloc(ndof);
+
+  // Corotated state and displacement from the reference.
+  double quat[4] = {1, 0, 0, 0};
+  FlexInterpState(m, d, f, xpos, vel, quat);
+  for (int i = 0; i < ndof; i++) displacement[i] = xpos[i] - xpos0[i];
+
+  // Forces in the corotated frame (k holds minus the stiffness).
+  if (spring) math::MulMatVec(frc, k, displacement, ndof, ndof);
+  if (damper) math::MulMatVec(dmp, k, vel, ndof, ndof);
+
+  // Back to the world, onto the node bodies' dofs (a node off its body's origin through
+  // the body's Jacobian at the node's corotated position, as MuJoCo applies it).
+  const double no_torque[3] = {0, 0, 0};
+  math::NegQuat(quat, quat);
+  for (int i = 0; i < nnode; i++) {
+    double qfrc[3], qdmp[3];
+    RotateAlways(qfrc, frc + 3 * i, quat);
+    RotateAlways(qdmp, dmp + 3 * i, quat);
+    math::Scale3(qdmp, qdmp, m.flex_damping[f]);
+    int body = bodyid[i], dofadr = m.body_dofadr[body];
+    if (m.flex_centered[f]) {
+      for (int x = 0; x < 3; x++) {
+        if (spring) d.qfrc_spring[dofadr + x] += qfrc[x];
+        if (damper) d.qfrc_damper[dofadr + x] += qdmp[x];
+      }
+    } else {
+      if (spring) ApplyForceTorque(m, d, qfrc, no_torque, xpos + 3 * i, body, d.qfrc_spring.data());
+      if (damper) ApplyForceTorque(m, d, qdmp, no_torque, xpos + 3 * i, body, d.qfrc_damper.data());
+    }
+  }
+}
+
+// Squared edge lengths' half gradients of one element: for edge e, grad[e][0] on its first
+// vertex and grad[e][1] = -grad[e][0] on its second.
+void SquaredLengthGradients(double grad[6][2][3], const double* xpos, const int* vert,
+                            const int edges[6][2], int nedge) {
+  for (int e = 0; e < nedge; e++) {
+    const double* x0 = xpos + 3 * vert[edges[e][0]];
+    const double* x1 = xpos + 3 * vert[edges[e][1]];
+    math::Sub3(grad[e][0], x0, x1);
+    math::Sub3(grad[e][1], x1, x0);
+  }
+}
+
+// The local forces (3 per vertex) of element t of flex f, whose edges are flex edges
+// edgeadr + edge_ids[e]: the metric times the edges' elongations.
+void ElementForce(const Model& m, const Data& d, int edgeadr, const double* metric21,
+                  const double* xpos, const int* vert, const int* edge_ids, int dim,
+                  double damping_rate, double force[12]) {
+  const int(*edges)[2] = kElemEdges[dim - 2];
+  int nedge = dim == 2 ? 3 : 6;
+  double grad[6][2][3];
+  SquaredLengthGradients(grad, xpos, vert, edges, nedge);
+
+  // Elongation of each edge's square, with Rayleigh damping (Kharevych et al.,
+  // "Geometric, variational integrators for computer animation", section 5.2).
+  double timestep = m.opt.timestep;
+  double elongation[6];
+  for (int e = 0; e < nedge; e++) {
+    int edge = edgeadr + edge_ids[e];
+    double length = d.flexedge_length[edge], rest = m.flexedge_length0[edge];
+    double previous = length - d.flexedge_velocity[edge] * timestep;
+    elongation[e] = length * length - rest * rest +
+                   (length * length - previous * previous) * damping_rate;
+  }
+
+  // The metric from its upper triangle.
+  double metric[36];
+  int id = 0;
+  for (int a = 0; a < nedge; a++) {
+    for (int b = a; b < nedge; b++) {
+      metric[nedge * a + b] = metric21[id];
+      metric[nedge * b + a] = metric21[id++];
+    }
+  }
+
+  // f -= elongation[a] metric[a][b] grad[b] on edge b's two vertices.
+  for (int k = 0; k < 12; k++) force[k] = 0;
+  for (int a = 0; a < nedge; a++) {
+    for (int b = 0; b < nedge; b++) {
+      for (int i = 0; i < 2; i++) {
+        for (int x = 0; x < 3; x++) {
+          force[3 * edges[b][i] + x] -= elongation[a] * grad[b][i][x] * metric[nedge * a + b];
+        }
+      }
+    }
+  }
+}
+
+// Element elasticity of flex f (triangles or tetrahedra), into qfrc_spring.
+void ElementForces(const Model& m, Data& d, int f) {
+  int dim = m.flex_dim[f], nedge = dim == 2 ? 3 : 6, nvert = m.flex_vertnum[f];
+  const int* elem = &m.flex_elem[m.flex_elemdataadr[f]];
+  const int* elemedge = &m.flex_elemedge[m.flex_elemedgeadr[f]];
+  const double* xpos = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
+  const double* k = &m.flex_stiffness[kStiffnessSize * m.flex_elemadr[f]];
+  double damping_rate = m.opt.timestep > 0 ? m.flex_damping[f] / m.opt.timestep : 0;
+  StackFrame frame(d);
+  double* qfrc = frame.Alloc(3 * nvert);
+
+  // Sum the elements' forces per vertex.
+  for (int t = 0; t < m.flex_elemnum[f]; t++) {
+    const int* vert = elem + (dim + 1) * t;
+    double force[12];
+    ElementForce(m, d, m.flex_edgeadr[f], k + kStiffnessSize * t, xpos, vert,
+                 elemedge + nedge * t, dim, damping_rate, force);
+    for (int i = 0; i <= dim; i++) {
+      for (int x = 0; x < 3; x++) qfrc[3 * vert[i] + x] += force[3 * i + x];
+    }
+  }
+
+  // Onto the dofs: directly for point masses, through the Jacobian for pinned vertices.
+  const int* bodyid = &m.flex_vertbodyid[m.flex_vertadr[f]];
+  const double no_torque[3] = {0, 0, 0};
+  for (int v = 0; v < nvert; v++) {
+    int body = bodyid[v];
+    if (m.body_simple[body] != kSimplePointMass) {
+      ApplyForceTorque(m, d, qfrc + 3 * v, no_torque, xpos + 3 * v, body, d.qfrc_spring.data());
+    } else {
+      for (int x = 0; x < m.body_dofnum[body]; x++) {
+        d.qfrc_spring[m.body_dofadr[body] + x] += qfrc[3 * v + x];
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void FlexInterpState(const Model& m, const Data& d, int f, double* xpos, double* vel,
+                     double quat[4]) {
+  int nnode = m.flex_nodenum[f], nodeadr = m.flex_nodeadr[f];
+  const int* bodyid = &m.flex_nodebodyid[nodeadr];
+
+  // World positions and velocities of the nodes: body origins, or points of the bodies.
+  for (int i = 0; i < nnode; i++) {
+    int body = bodyid[i];
+    if (m.flex_centered[f]) {
+      math::Copy3(xpos + 3 * i, &d.xpos[3 * body]);
+      if (vel) math::Copy3(vel + 3 * i, &d.qvel[m.body_dofadr[body]]);
+    } else {
+      math::MulMatVec3(xpos + 3 * i, &d.xmat[9 * body], &m.flex_node[3 * (nodeadr + i)]);
+      math::Add3(xpos + 3 * i, xpos + 3 * i, &d.xpos[3 * body]);
+      if (vel) {
+        double screw[6];
+        ObjectVelocity(m, d, kObjBody, body, screw, false);
+        math::Copy3(vel + 3 * i, screw + 3);
+      }
+    }
+  }
+
+  // The rotation of the deformation gradient at the centre, inverted.
+  const double centre[3] = {0.5, 0.5, 0.5};
+  double mat[9];
+  DeformationGradient(mat, centre, xpos, m.flex_interp[f]);
+  NearestRotation(quat, mat);
+  math::NegQuat(quat, quat);
+
+  // Into the corotated frame, positions about the centre.
+  for (int i = 0; i < nnode; i++) {
+    math::RotVecQuat(xpos + 3 * i, xpos + 3 * i, quat);
+    math::Add3(xpos + 3 * i, xpos + 3 * i, centre);
+    if (vel) math::RotVecQuat(vel + 3 * i, vel + 3 * i, quat);
+  }
+}
+
+void FlexElasticForces(const Model& m, Data& d, bool spring, bool damper) {
+  for (int f = 0; f < m.nflex; f++) {
+    int dim = m.flex_dim[f];
+    if (dim == 1 || m.flex_rigid[f]) continue;
+
+    // Bending first, then the elements (a flex without stiffness has none).
+    if (dim == 2) BendingForces(m, d, f, spring, damper);
+    if (m.flex_stiffness[kStiffnessSize * m.flex_elemadr[f]] == 0) continue;
+    if (m.flex_interp[f]) {
+      InterpolatedForces(m, d, f, spring, damper);
+    } else {
+      ElementForces(m, d, f);
+    }
+  }
+}
+
+}  // namespace simlab

@@ -1,0 +1,55 @@
+// Elastic forces of flexes (the flex part of MuJoCo's mj_springdamper, engine_passive.c):
+// thin-plate bending of triangle flexes, the edge-metric elasticity of triangle and
+// tetrahedron elements with its Rayleigh damping, and the linear elasticity of flexes
+// interpolated from nodes in their corotated frame.
+#ifndef SIMLAB_ENGINE_FLEX_ELASTICITY_H_
+#define SIMLAB_ENGINE_FLEX_ELASTICITY_H_
+
+#include "simlab/data.h"
+#include "simlab/model.h"
+
+namespace simlab {
+
+// Adds every flex's elastic forces into qfrc_spring and its damping into qfrc_damper, as
+// MuJoCo does after the joint springs and dof dampers and before the flex edges' own
+// spring-dampers (spring, damper: those forces are enabled). As in MuJoCo the element
+// forces, damping included, go to qfrc_spring whatever the flags. Reads flexvert_xpos,
+// flexedge_length, flexedge_velocity (and for interpolated flexes xpos, xmat, cvel,
+// subtree_com, cdof); takes up to 15 * flex_nodenum or 3 * flex_vertnum doubles of the
+// Data stack, plus what ApplyForceTorque takes, for vertices of bodies that are not
+// simple point masses.
+void FlexElasticForces(const Model& m, Data& d, bool spring, bool damper);
+
+// The nodes of interpolated flex f in its corotated frame (MuJoCo's mj_flexInterpState):
+// their world positions (and, if vel is not null, velocities) rotated by quat, the
+// inverse of the rotation nearest the deformation gradient at the box's centre (found by
+// iterating from the quat given, normally the identity), positions shifted by (.5 .5 .5).
+// xpos and vel hold 3 * flex_nodenum numbers.
+void FlexInterpState(const Model& m, const Data& d, int f, double* xpos, double* vel,
+                     double quat[4]);
+
+// Shape function i (0..order) of a flex interpolated with order 1 or 2 along one axis at
+// s, and its derivative (MuJoCo's phi and dphi; the compiler's stiffness uses them too).
+inline double FlexShape(double s, int i, int order) {
+  if (order == 1) return i == 0 ? 1 - s : s;
+  if (i == 0) return 2 * s * s - 3 * s + 1;
+  if (i == 1) return 4 * (s - s * s);
+  return 2 * s * s - s;
+}
+inline double FlexShapeSlope(double s, int i, int order) {
+  if (order == 1) return i == 0 ? -1 : 1;
+  if (i == 0) return 4 * s - 3;
+  if (i == 1) return 4 * (1 - 2 * s);
+  return 4 * s - 1;
+}
+// The gradient at p of the shape function of node (i, j, k) (x slowest): the product of
+// the axes' shape functions differentiated along each axis in turn.
+inline void FlexShapeGradient(double g[3], const double p[3], int i, int j, int k, int order) {
+  g[0] = FlexShapeSlope(p[0], i, order) * FlexShape(p[1], j, order) * FlexShape(p[2], k, order);
+  g[1] = FlexShape(p[0], i, order) * FlexShapeSlope(p[1], j, order) * FlexShape(p[2], k, order);
+  g[2] = FlexShape(p[0], i, order) * FlexShape(p[1], j, order) * FlexShapeSlope(p[2], k, order);
+}
+
+}  // namespace simlab
+
+#endif  // SIMLAB_ENGINE_FLEX_ELASTICITY_H_
