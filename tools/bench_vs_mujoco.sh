@@ -89,7 +89,10 @@ cube-3x3x3|$work/cube/cube_3x3x3.xml|4000
 22-humanoids|$src/model/humanoid/22_humanoids.xml|1000
 cards|$src/model/cards/cards.xml|2000
 replicate-bowl|$src/model/replicate/bowl.xml|10000
-replicate-leaves|$src/model/replicate/leaves.xml|500"
+replicate-leaves|$src/model/replicate/leaves.xml|500
+flex-flag|$src/model/flex/flag.xml|2000
+flex-softbox|$src/model/flex/softbox.xml|2000
+flex-trampoline|$src/model/flex/trampoline.xml|2000"
 
 old=$(command -v mujoco-testspeed || true)
 [ $profiler = 1 ] || old=""  # (2.2.2 keeps its profiler)

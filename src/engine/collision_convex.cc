@@ -211,29 +211,6 @@ int MaxContacts(const Model& m, const ConvexShape& s1, const ConvexShape& s2) {
   return 1;
 }
 
-// One GJK/EPA query; writes up to max_contacts contacts (normal from geom 1 to 2).
-int QueryContacts(const Model& m, ConvexShape* s1, ConvexShape* s2, Contact* con,
-                  int max_contacts, double margin) {
-  ccd::CcdConfig config;
-  config.max_iterations = m.opt.ccd_iterations;
-  config.tolerance = m.opt.ccd_tolerance;
-  config.max_contacts = max_contacts;
-  config.dist_cutoff = 0;
-  ccd::CcdStatus status;
-  double dist = ccd::Collide(config, &status, s1, s2);
-  if (!(dist < 0)) return 0;
-  for (int i = 0; i < status.nx; i++) {
-    Contact& c = con[i];
-    const double* x1 = status.x1 + 3 * i;
-    const double* x2 = status.x2 + 3 * i;
-    c.dist = margin + dist;
-    math::Sub3(c.frame, x1, x2);
-    math::Normalize3(c.frame);
-    for (int k = 0; k < 3; k++) c.pos[k] = 0.5 * (x1[k] + x2[k]);
-    math::Zero3(c.frame + 3);
-  }
-  return status.nx;
-}
 
 // Two unit tangents of the contact normal (as the driver's frame completion).
 void TangentAxes(const double* normal, double* t1, double* t2) {
@@ -394,6 +371,29 @@ int MorePlaneMeshContacts(const Model& m, const ConvexShape& s, Contact* con,
 }
 
 }  // namespace
+
+int QueryContacts(const Model& m, ccd::ConvexShape* s1, ccd::ConvexShape* s2, Contact* con,
+                  int max_contacts, double margin) {
+  ccd::CcdConfig config;
+  config.max_iterations = m.opt.ccd_iterations;
+  config.tolerance = m.opt.ccd_tolerance;
+  config.max_contacts = max_contacts;
+  config.dist_cutoff = 0;
+  ccd::CcdStatus status;
+  double dist = ccd::Collide(config, &status, s1, s2);
+  if (!(dist < 0)) return 0;
+  for (int i = 0; i < status.nx; i++) {
+    Contact& c = con[i];
+    const double* x1 = status.x1 + 3 * i;
+    const double* x2 = status.x2 + 3 * i;
+    c.dist = margin + dist;
+    math::Sub3(c.frame, x1, x2);
+    math::Normalize3(c.frame);
+    for (int k = 0; k < 3; k++) c.pos[k] = 0.5 * (x1[k] + x2[k]);
+    math::Zero3(c.frame + 3);
+  }
+  return status.nx;
+}
 
 // ---------------------------------------------------------------- entry points
 

@@ -26,7 +26,6 @@
 #include "engine/collision_geom.h"
 #include "engine/constraint.h"
 #include "engine/stack.h"
-#include "math/elementary.h"
 #include "math/math.h"
 
 namespace simlab {
@@ -76,18 +75,8 @@ void EdgeCapsule(const Model& m, const Data& d, int f, const int* vid, double po
   math::Scale3(pos, pos, 0.5);
 
   // The rotation taking z to the edge direction (mju_quatZ2Vec, which normalizes again).
-  double quat[4] = {1, 0, 0, 0};
-  static constexpr double kZ[3] = {0, 0, 1};
-  double dir[3] = {dif[0], dif[1], dif[2]}, axis[3];
-  if (math::Normalize3(dir) >= kMinVal) {
-    math::Cross3(axis, kZ, dir);
-    double sin_angle = math::Normalize3(axis);
-    if (std::abs(sin_angle) < kMinVal) {
-      if (Dot3(dir, kZ) < 0) quat[0] = 0, quat[1] = 1;
-    } else {
-      math::AxisAngleToQuat(quat, axis, math::Atan2(sin_angle, Dot3(dir, kZ)));
-    }
-  }
+  double quat[4];
+  math::QuatZToVec(quat, dif);
   math::QuatToMat(mat, quat);
 }
 

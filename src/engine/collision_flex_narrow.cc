@@ -341,25 +341,7 @@ int ConvexElem(const Model& m, const Data& d, Contact* con, int g1, int f1, int 
   ccd::ConvexShape s1 = g1 >= 0 ? ccd::GeomShape(m, d, g1, margin)
                                 : FlexShape(m, d, f1, e1, v1, margin);
   ccd::ConvexShape s2 = FlexShape(m, d, f2, e2, -1, margin);
-  ccd::CcdConfig config;
-  config.max_iterations = m.opt.ccd_iterations;
-  config.tolerance = m.opt.ccd_tolerance;
-  config.max_contacts = 1;
-  config.dist_cutoff = 0;
-  ccd::CcdStatus status;
-  double dist = ccd::Collide(config, &status, &s1, &s2);
-  if (!(dist < 0)) return 0;
-  int n = std::min(status.nx, kMaxContactPair);
-  for (int i = 0; i < n; i++) {
-    Contact& c = con[i];
-    const double* x1 = status.x1 + 3 * i;
-    const double* x2 = status.x2 + 3 * i;
-    c.dist = margin + dist;
-    math::Sub3(c.frame, x1, x2);
-    math::Normalize3(c.frame);
-    for (int k = 0; k < 3; k++) c.pos[k] = 0.5 * (x1[k] + x2[k]);
-    math::Zero3(c.frame + 3);
-  }
+  int n = QueryContacts(m, &s1, &s2, con, 1, margin);
   // Against a triangle, a rounded geom's own normal.
   bool flat = (f1 >= 0 && m.flex_dim[f1] == 2) || (f2 >= 0 && m.flex_dim[f2] == 2);
   if (flat) {

@@ -129,4 +129,13 @@ void SegmentSupport(double res[3], ConvexShape* shape, const double dir[3]);
 
 }  // namespace simlab::ccd
 
+namespace simlab {
+
+// One GJK/EPA query of two shapes (collision_convex.cc): up to max_contacts contacts into
+// `con`, normals from shape 1 to shape 2, distances less the margin; returns how many.
+int QueryContacts(const Model& m, ccd::ConvexShape* s1, ccd::ConvexShape* s2, Contact* con,
+                  int max_contacts, double margin);
+
+}  // namespace simlab
+
 #endif  // SIMLAB_ENGINE_COLLISION_GJK_H_
