@@ -231,7 +231,7 @@ void FlexEdgeRows(const Model& m, Data& d, int eq) {
     if (m.flexedge_rigid[e]) continue;
     double pos = d.flexedge_length[e] - m.flexedge_length0[e];
     int adr = m.flexedge_J_rowadr[e];
-    AddRows(m, d, &d.flexedge_J[adr], Columns{&m.flexedge_J_colind[adr], m.flexedge_J_rownnz[e]},
+    AddRows(m, d, d.flexedge_J.data() + adr, Columns{m.flexedge_J_colind.data() + adr, m.flexedge_J_rownnz[e]},
             &pos, 0, 0, 1, kCnstrEquality, eq);
   }
 }
@@ -244,7 +244,7 @@ void FlexVertexRows(const Model& m, Data& d, int eq) {
   for (int row = 2 * begin; row < 2 * end; row++) {
     double pos = d.flexvert_length[row];
     int adr = m.flexvert_J_rowadr[row];
-    AddRows(m, d, &d.flexvert_J[adr], Columns{&m.flexvert_J_colind[adr], m.flexvert_J_rownnz[row]},
+    AddRows(m, d, d.flexvert_J.data() + adr, Columns{m.flexvert_J_colind.data() + adr, m.flexvert_J_rownnz[row]},
             &pos, 0, 0, 1, kCnstrEquality, eq);
   }
 }

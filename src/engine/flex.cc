@@ -266,8 +266,9 @@ void FlexKinematics(const Model& m, Data& d) {
 void FlexEdgeVelocity(const Model& m, Data& d) {
   for (int e = 0; e < m.nflexedge; e++) {
     int adr = m.flexedge_J_rowadr[e];
-    d.flexedge_velocity[e] = math::DotSparse(&d.flexedge_J[adr], d.qvel.data(),
-                                             m.flexedge_J_rownnz[e], &m.flexedge_J_colind[adr]);
+    // (a flex without rows has none: its addresses may be the arrays' ends)
+    d.flexedge_velocity[e] = math::DotSparse(d.flexedge_J.data() + adr, d.qvel.data(),
+                                             m.flexedge_J_rownnz[e], m.flexedge_J_colind.data() + adr);
   }
 }
 
