@@ -131,6 +131,23 @@ int NameIndex::Find(const std::string& name) const {
   return it == ids_.end() ? -1 : it->second;
 }
 
+NameIndex BodyNames(const CompileState& state) {
+  NameIndex bodies;
+  for (size_t b = 0; b < state.bodies.size(); b++) {
+    const mjcf::BodySpec* spec = state.bodies[b].spec;
+    bodies.Insert(spec ? spec->src.name : "world", static_cast<int>(b));
+  }
+  return bodies;
+}
+
+NameIndex MaterialNames(const mjcf::ModelSpec& spec) {
+  NameIndex materials;
+  for (size_t i = 0; i < spec.materials.size(); i++) {
+    materials.Insert(spec.materials[i].src.name, static_cast<int>(i));
+  }
+  return materials;
+}
+
 int FindNamed(const mjcf::Source& src, const NameIndex& names, const std::string& name,
               const std::string& kind) {
   int id = name.empty() ? -1 : names.Find(name);

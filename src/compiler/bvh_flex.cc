@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "compiler/compiler.h"
+#include "engine/engine.h"
 
 namespace simlab::compiler {
 
@@ -25,11 +26,7 @@ namespace {
 
 constexpr double kFlatBox = 1e-14;  // flat boxes are inflated, centres compared, to mjEPS
 
-// An active element: its index in the flex and its box (centre, half sizes).
-struct FlexElement {
-  int id = -1;
-  double aabb[6] = {0, 0, 0, 0, 0, 0};
-};
+using FlexElement = FlexElementBox;
 
 // MuJoCo's median order along an axis: centres farther apart than mjEPS by centre,
 // otherwise by element.
@@ -105,45 +102,29 @@ class FlexTreeBuilder {
   std::vector<FlexElement>& scratch_;
 };
 
-// The active elements of a compiled flex with their world boxes at qpos0.
-std::vector<FlexElement> ActiveElements(const FlexState& flex) {
+}  // namespace
+
+std::vector<FlexElementBox> ActiveFlexElements(const FlexState& flex) {
   const mjcf::FlexSpec& spec = *flex.spec;
   int dim = spec.dim;
-  std::vector<FlexElement> elements;
+  std::vector<FlexElementBox> elements;
   for (int e = 0; e < flex.nelem; e++) {
-    if (dim == 3 && e < static_cast<int>(flex.elemlayer.size()) &&
-        flex.elemlayer[e] >= spec.activelayers) {
-      continue;
-    }
-    const int* vert = flex.elem.data() + static_cast<size_t>(dim + 1) * e;
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; k++) lo[k] = hi[k] = flex.vertxpos[3 * static_cast<size_t>(vert[0]) + k];
-    for (int i = 1; i <= dim; i++) {
-      for (int k = 0; k < 3; k++) {
-        double x = flex.vertxpos[3 * static_cast<size_t>(vert[i]) + k];
-        lo[k] = std::min(lo[k], x);
-        hi[k] = std::max(hi[k], x);
-      }
-    }
-    FlexElement element;
+    if (dim == 3 && flex.elemlayer[e] >= spec.activelayers) continue;
+    FlexElementBox element;
     element.id = e;
-    for (int k = 0; k < 3; k++) {
-      element.aabb[k] = 0.5 * (hi[k] + lo[k]);
-      element.aabb[3 + k] = 0.5 * (hi[k] - lo[k]) + spec.radius;
-    }
+    FlexElementAabb(flex.vertxpos.data(), flex.elem.data() + static_cast<size_t>(dim + 1) * e, dim,
+                    spec.radius, element.aabb);
     elements.push_back(element);
   }
   return elements;
 }
-
-}  // namespace
 
 void CompileFlexBvh(Model* m, const CompileState& state) {
   std::vector<int> child = std::move(m->bvh_child);
   std::vector<int> nodeid = std::move(m->bvh_nodeid);
   std::vector<int> depth = std::move(m->bvh_depth);
   for (int f = 0; f < m->nflex && f < static_cast<int>(state.flexes.size()); f++) {
-    std::vector<FlexElement> elements = ActiveElements(state.flexes[f]);
+    std::vector<FlexElement> elements = ActiveFlexElements(state.flexes[f]);
     int base = static_cast<int>(nodeid.size());
     m->flex_bvhadr[f] = elements.empty() ? -1 : base;
     if (!elements.empty()) {

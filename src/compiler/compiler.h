@@ -224,6 +224,14 @@ int LongestBoxSide(const double aamm[6]);
 // layout needs the equalities (which flexes keep their edges) and the bodies' welds;
 // the constants (sparsity, rest lengths, inverse weights) need the model at qpos0.
 void CompileFlexes(const mjcf::ModelSpec& spec, CompileState* state);
+// A flex's active elements (all, or a 3D flex's first activelayers layers) with their
+// boxes at qpos0 (centre, half sizes grown by the radius): the leaves of its tree
+// (bvh_flex.cc) and what flex_size spans.
+struct FlexElementBox {
+  int id = -1;
+  double aabb[6] = {0, 0, 0, 0, 0, 0};
+};
+std::vector<FlexElementBox> ActiveFlexElements(const FlexState& flex);
 void FlexSizes(const CompileState& state, Model* m);
 void LayoutFlexes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m);
 // Height fields and the geoms that use them (hfield.cc): before the bodies.
@@ -374,6 +382,11 @@ class NameIndex {
  private:
   std::unordered_map<std::string, int> ids_;
 };
+
+// The bodies of the flattened tree by name (the world as "world"), and the spec's
+// materials by name: what skins and flexes name.
+NameIndex BodyNames(const CompileState& state);
+NameIndex MaterialNames(const mjcf::ModelSpec& spec);
 
 // FindNamed through an index.
 int FindNamed(const mjcf::Source& src, const NameIndex& names, const std::string& name,

@@ -192,20 +192,20 @@ void MakeElasticity(const mjcf::FlexSpec& f, FlexState* flex) {
   if (f.dim == 2) flex->flaps = FlexFlaps(f.dim, flex->elem, flex->elemedge, nedge);
   if (f.young <= 0) return;
   if (f.poisson < 0 || f.poisson >= 0.5) ThrowAt(f.src, "Poisson ratio must be in [0, 0.5)");
-  flex->stiffness.assign(kFlexStiffnessSize * static_cast<size_t>(flex->nelem), 0);
   if (flex->interpolated) {
     size_t n = flex->nodexpos.size();
     int min_size = static_cast<int>(std::ceil(static_cast<double>(n * n / 21)));
     if (min_size > flex->nelem) {
       ThrowAt(f.src, "Trilinear dofs are require at least " + std::to_string(min_size) + " elements");
     }
+    // (zeroed for FlexInterpolatedStiffness, which subtracts into them)
+    flex->stiffness.assign(kFlexStiffnessSize * static_cast<size_t>(flex->nelem), 0);
   } else {
     FlexElementStiffness(f.dim, f.elastic2d, f.young, f.poisson, f.thickness, flex->vertxpos,
                          flex->elem, &flex->stiffness);
   }
   if (f.dim == 2 && (f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth)) {
     if (f.thickness < 0) ThrowAt(f.src, "thickness must be positive for bending stiffness");
-    flex->bending.assign(kFlexBendingSize * static_cast<size_t>(nedge), 0);
     FlexBending(f.young, f.poisson, f.thickness, flex->vertxpos, flex->flaps, &flex->bending);
   }
 }
@@ -318,21 +318,10 @@ void MakeShellsAndPairs(int dim, FlexState* flex) {
 void VertexBox(const mjcf::FlexSpec& f, FlexState* flex) {
   constexpr double kMax = std::numeric_limits<double>::max();
   double aamm[6] = {kMax, kMax, kMax, -kMax, -kMax, -kMax};
-  for (int e = 0; e < flex->nelem; e++) {
-    if (f.dim == 3 && flex->elemlayer[e] >= f.activelayers) continue;
-    const int* el = flex->elem.data() + (f.dim + 1) * e;
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; k++) lo[k] = hi[k] = flex->vertxpos[3 * el[0] + k];
-    for (int i = 1; i <= f.dim; i++) {
-      for (int k = 0; k < 3; k++) {
-        lo[k] = std::min(lo[k], flex->vertxpos[3 * el[i] + k]);
-        hi[k] = std::max(hi[k], flex->vertxpos[3 * el[i] + k]);
-      }
-    }
+  for (const FlexElementBox& e : ActiveFlexElements(*flex)) {
     for (int k = 0; k < 3; k++) {
-      double center = 0.5 * (hi[k] + lo[k]), half = 0.5 * (hi[k] - lo[k]) + f.radius;
-      aamm[k] = std::min(aamm[k], center - half);
-      aamm[k + 3] = std::max(aamm[k + 3], center + half);
+      aamm[k] = std::min(aamm[k], e.aabb[k] - e.aabb[k + 3]);
+      aamm[k + 3] = std::max(aamm[k + 3], e.aabb[k] + e.aabb[k + 3]);
     }
   }
   InflateFlatBox(aamm);
@@ -403,13 +392,8 @@ FlexState CompileFlex(const mjcf::FlexSpec& f, const CompileState& state, const 
 }  // namespace
 
 void CompileFlexes(const mjcf::ModelSpec& spec, CompileState* state) {
-  NameIndex bodies;
-  for (size_t b = 0; b < state->bodies.size(); b++) {
-    bodies.Insert(state->bodies[b].spec ? state->bodies[b].spec->src.name : "world", static_cast<int>(b));
-  }
-  std::vector<std::string> material_names;
-  for (const mjcf::MaterialSpec& mat : spec.materials) material_names.push_back(mat.src.name);
-  NameIndex materials(material_names);
+  NameIndex bodies = BodyNames(*state);
+  NameIndex materials = MaterialNames(spec);
   std::vector<double> xpos, xquat;
   BodyFramesAtQpos0(*state, &xpos, &xquat);
   state->flexes.clear();
@@ -477,69 +461,23 @@ void FlexSizes(const CompileState& state, Model* m) {
   }
 }
 
-void LayoutFlexes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
+namespace {
+
+// Where each flex's vertices, nodes, edges, elements, shells, pairs and texture
+// coordinates start in the shared arrays, and how many it has (-1: none, for shells,
+// pairs and texture coordinates).
+void FlexAddresses(const CompileState& state, Model* m) {
   int vert = 0, node = 0, edge = 0, elem = 0, elemdata = 0, elemedge = 0, shelldata = 0;
   int evpair = 0, texcoord = 0;
   for (int i = 0; i < m->nflex; i++) {
     const FlexState& f = state.flexes[i];
-    const mjcf::FlexSpec& s = *f.spec;
-    int dim = s.dim, nedge = static_cast<int>(f.edge.size());
-    m->flex_names[i] = s.src.name;
-
-    // Contact, look and material.
-    m->flex_contype[i] = s.contype;
-    m->flex_conaffinity[i] = s.conaffinity;
-    m->flex_condim[i] = s.condim;
-    m->flex_priority[i] = s.priority;
-    m->flex_solmix[i] = s.solmix;
-    std::copy(s.solref.begin(), s.solref.end(), &m->flex_solref[kNRef * i]);
-    std::copy(s.solimp.begin(), s.solimp.end(), &m->flex_solimp[kNImp * i]);
-    std::copy(s.friction.begin(), s.friction.end(), &m->flex_friction[3 * i]);
-    m->flex_margin[i] = s.margin;
-    m->flex_gap[i] = s.gap;
-    m->flex_internal[i] = s.internal;
-    m->flex_selfcollide[i] = s.selfcollide;
-    m->flex_activelayers[i] = s.activelayers;
-    m->flex_passive[i] = s.passive;
-    m->flex_dim[i] = dim;
-    m->flex_matid[i] = f.matid;
-    m->flex_group[i] = s.group;
-    m->flex_radius[i] = s.radius;
-    std::copy(f.size, f.size + 3, &m->flex_size[3 * i]);
-    for (int k = 0; k < 4; k++) m->flex_rgba[4 * i + k] = s.rgba[k];
-    m->flex_flatskin[i] = s.flatskin;
-
-    // Elasticity and edges' spring-dampers.
-    if (!f.stiffness.empty()) {
-      std::copy(f.stiffness.begin(), f.stiffness.end(), &m->flex_stiffness[kFlexStiffnessSize * elem]);
-    }
-    if (!f.bending.empty()) {
-      std::copy(f.bending.begin(), f.bending.end(), &m->flex_bending[kFlexBendingSize * edge]);
-    }
-    m->flex_damping[i] = s.damping;
-    m->flex_edgestiffness[i] = s.edgestiffness;
-    m->flex_edgedamping[i] = s.edgedamping;
-    m->flex_rigid[i] = f.rigid;
-    m->flex_centered[i] = f.centered;
-    m->flex_interp[i] = f.order;
-    m->flex_bvhadr[i] = -1;
-    m->flex_bvhnum[i] = 0;
-
-    // The first equality on this flex says which of its lengths it keeps.
-    m->flex_edgeequality[i] = 0;
-    for (const mjcf::EqualitySpec& eq : spec.equalities) {
-      if (eq.name1 != s.src.name || (eq.type != kEqFlex && eq.type != kEqFlexVert)) continue;
-      m->flex_edgeequality[i] = eq.type == kEqFlex ? 1 : 2;
-      break;
-    }
-
-    // Addresses and counts.
+    int dim = f.spec->dim, ntexcoord = static_cast<int>(f.spec->texcoord.size() / 2);
     m->flex_vertadr[i] = vert;
     m->flex_vertnum[i] = f.nvert;
     m->flex_nodeadr[i] = node;
     m->flex_nodenum[i] = f.nnode;
     m->flex_edgeadr[i] = edge;
-    m->flex_edgenum[i] = nedge;
+    m->flex_edgenum[i] = static_cast<int>(f.edge.size());
     m->flex_elemadr[i] = elem;
     m->flex_elemnum[i] = f.nelem;
     m->flex_elemdataadr[i] = elemdata;
@@ -548,54 +486,125 @@ void LayoutFlexes(const mjcf::ModelSpec& spec, const CompileState& state, Model*
     m->flex_shelldataadr[i] = m->flex_shellnum[i] ? shelldata : -1;
     m->flex_evpairnum[i] = static_cast<int>(f.evpair.size() / 2);
     m->flex_evpairadr[i] = f.evpair.empty() ? -1 : evpair;
-    m->flex_texcoordadr[i] = s.texcoord.empty() ? -1 : texcoord;
-
-    // Elements, their edges and texture corners, layers, shells, pairs, coordinates.
-    std::copy(f.elem.begin(), f.elem.end(), &m->flex_elem[elemdata]);
-    const std::vector<int>& corners = s.texcoord.empty() ? f.elem : f.elemtexcoord;
-    std::copy(corners.begin(), corners.begin() + std::min(corners.size(), f.elem.size()),
-              &m->flex_elemtexcoord[elemdata]);
-    std::copy(f.elemedge.begin(), f.elemedge.end(), &m->flex_elemedge[elemedge]);
-    std::copy(f.elemlayer.begin(), f.elemlayer.end(), &m->flex_elemlayer[elem]);
-    std::copy(f.shell.begin(), f.shell.end(), m->flex_shell.begin() + shelldata);
-    std::copy(f.evpair.begin(), f.evpair.end(), m->flex_evpair.begin() + 2 * evpair);
-    std::copy(s.texcoord.begin(), s.texcoord.end(), m->flex_texcoord.begin() + 2 * texcoord);
-
-    // Vertices and nodes: local positions (zero when centered), places in the box,
-    // bodies.
-    if (!f.centered || f.interpolated) std::copy(s.vert.begin(), s.vert.end(), &m->flex_vert[3 * vert]);
-    if (!f.centered) std::copy(s.node.begin(), s.node.end(), m->flex_node.begin() + 3 * node);
-    std::copy(f.vert0.begin(), f.vert0.end(), &m->flex_vert0[3 * vert]);
-    std::copy(f.nodexpos.begin(), f.nodexpos.end(), m->flex_node0.begin() + 3 * node);
-    for (int k = 0; k < f.nvert; k++) {
-      m->flex_vertbodyid[vert + k] = f.rigid ? f.vertbodyid[0] : f.vertbodyid[k];
-    }
-    for (int k = 0; k < f.nnode; k++) m->flex_nodebodyid[node + k] = f.nodebodyid[k];
-
-    // Edges: vertices, flaps (triangles), whether both ends move together.
-    for (int k = 0; k < nedge; k++) {
-      m->flex_edge[2 * (edge + k)] = f.edge[k][0];
-      m->flex_edge[2 * (edge + k) + 1] = f.edge[k][1];
-      bool flap = dim == 2 && (s.elastic2d == mjcf::kElastic2DBend || s.elastic2d == mjcf::kElastic2DBoth);
-      m->flex_edgeflap[2 * (edge + k)] = flap ? f.flaps[k][2] : -1;
-      m->flex_edgeflap[2 * (edge + k) + 1] = flap ? f.flaps[k][3] : -1;
-      if (f.rigid) {
-        m->flexedge_rigid[edge + k] = 1;
-      } else if (!f.interpolated) {
-        int b1 = f.vertbodyid[f.edge[k][0]], b2 = f.vertbodyid[f.edge[k][1]];
-        m->flexedge_rigid[edge + k] = m->body_weldid[b1] == m->body_weldid[b2];
-      }
-    }
-
+    m->flex_texcoordadr[i] = ntexcoord ? texcoord : -1;
     vert += f.nvert;
     node += f.nnode;
-    edge += nedge;
+    edge += m->flex_edgenum[i];
     elem += f.nelem;
     elemdata += (dim + 1) * f.nelem;
     elemedge += kFlexElemEdgeCount[dim - 1] * f.nelem;
     shelldata += static_cast<int>(f.shell.size());
-    evpair += static_cast<int>(f.evpair.size() / 2);
-    texcoord += static_cast<int>(s.texcoord.size() / 2);
+    evpair += m->flex_evpairnum[i];
+    texcoord += ntexcoord;
+  }
+}
+
+// Flex i's contact, look, elasticity and kind, and which of its lengths the first
+// equality on it keeps.
+void FlexProperties(const mjcf::ModelSpec& spec, const FlexState& f, int i, Model* m) {
+  const mjcf::FlexSpec& s = *f.spec;
+  m->flex_names[i] = s.src.name;
+  m->flex_contype[i] = s.contype;
+  m->flex_conaffinity[i] = s.conaffinity;
+  m->flex_condim[i] = s.condim;
+  m->flex_priority[i] = s.priority;
+  m->flex_solmix[i] = s.solmix;
+  std::copy(s.solref.begin(), s.solref.end(), &m->flex_solref[kNRef * i]);
+  std::copy(s.solimp.begin(), s.solimp.end(), &m->flex_solimp[kNImp * i]);
+  std::copy(s.friction.begin(), s.friction.end(), &m->flex_friction[3 * i]);
+  m->flex_margin[i] = s.margin;
+  m->flex_gap[i] = s.gap;
+  m->flex_internal[i] = s.internal;
+  m->flex_selfcollide[i] = s.selfcollide;
+  m->flex_activelayers[i] = s.activelayers;
+  m->flex_passive[i] = s.passive;
+  m->flex_dim[i] = s.dim;
+  m->flex_matid[i] = f.matid;
+  m->flex_group[i] = s.group;
+  m->flex_radius[i] = s.radius;
+  std::copy(f.size, f.size + 3, &m->flex_size[3 * i]);
+  for (int k = 0; k < 4; k++) m->flex_rgba[4 * i + k] = s.rgba[k];
+  m->flex_flatskin[i] = s.flatskin;
+  m->flex_damping[i] = s.damping;
+  m->flex_edgestiffness[i] = s.edgestiffness;
+  m->flex_edgedamping[i] = s.edgedamping;
+  m->flex_rigid[i] = f.rigid;
+  m->flex_centered[i] = f.centered;
+  m->flex_interp[i] = f.order;
+  m->flex_edgeequality[i] = 0;
+  for (const mjcf::EqualitySpec& eq : spec.equalities) {
+    if (eq.name1 != s.src.name || (eq.type != kEqFlex && eq.type != kEqFlexVert)) continue;
+    m->flex_edgeequality[i] = eq.type == kEqFlex ? 1 : 2;
+    break;
+  }
+}
+
+// Flex i's elements (vertices, edges, texture corners, layers, stiffness), shells,
+// element-vertex pairs and texture coordinates.
+void FlexElements(const FlexState& f, int i, Model* m) {
+  const mjcf::FlexSpec& s = *f.spec;
+  int data = m->flex_elemdataadr[i];
+  std::copy(f.elem.begin(), f.elem.end(), &m->flex_elem[data]);
+  const std::vector<int>& corners = s.texcoord.empty() ? f.elem : f.elemtexcoord;
+  std::copy(corners.begin(), corners.begin() + std::min(corners.size(), f.elem.size()),
+            &m->flex_elemtexcoord[data]);
+  std::copy(f.elemedge.begin(), f.elemedge.end(), &m->flex_elemedge[m->flex_elemedgeadr[i]]);
+  std::copy(f.elemlayer.begin(), f.elemlayer.end(), &m->flex_elemlayer[m->flex_elemadr[i]]);
+  std::copy(f.stiffness.begin(), f.stiffness.end(),
+            m->flex_stiffness.begin() + kFlexStiffnessSize * m->flex_elemadr[i]);
+  if (!f.shell.empty()) std::copy(f.shell.begin(), f.shell.end(), &m->flex_shell[m->flex_shelldataadr[i]]);
+  if (!f.evpair.empty()) std::copy(f.evpair.begin(), f.evpair.end(), &m->flex_evpair[2 * m->flex_evpairadr[i]]);
+  if (!s.texcoord.empty()) {
+    std::copy(s.texcoord.begin(), s.texcoord.end(), &m->flex_texcoord[2 * m->flex_texcoordadr[i]]);
+  }
+}
+
+// Flex i's vertices and nodes: local positions (zero when centered), places in the box,
+// bodies.
+void FlexVertices(const FlexState& f, int i, Model* m) {
+  const mjcf::FlexSpec& s = *f.spec;
+  int vert = m->flex_vertadr[i], node = m->flex_nodeadr[i];
+  if (!f.centered || f.interpolated) std::copy(s.vert.begin(), s.vert.end(), m->flex_vert.begin() + 3 * vert);
+  if (!f.centered) std::copy(s.node.begin(), s.node.end(), m->flex_node.begin() + 3 * node);
+  std::copy(f.vert0.begin(), f.vert0.end(), m->flex_vert0.begin() + 3 * vert);
+  std::copy(f.nodexpos.begin(), f.nodexpos.end(), m->flex_node0.begin() + 3 * node);
+  for (int k = 0; k < f.nvert; k++) {
+    m->flex_vertbodyid[vert + k] = f.rigid ? f.vertbodyid[0] : f.vertbodyid[k];
+  }
+  std::copy(f.nodebodyid.begin(), f.nodebodyid.end(), m->flex_nodebodyid.begin() + node);
+}
+
+// Flex i's edges: vertices, flaps (bending triangles), bending, whether both ends move
+// together.
+void FlexEdges(const FlexState& f, int i, Model* m) {
+  const mjcf::FlexSpec& s = *f.spec;
+  int edge = m->flex_edgeadr[i];
+  bool flap = s.dim == 2 && (s.elastic2d == mjcf::kElastic2DBend || s.elastic2d == mjcf::kElastic2DBoth);
+  std::copy(f.bending.begin(), f.bending.end(), m->flex_bending.begin() + kFlexBendingSize * edge);
+  for (int k = 0; k < m->flex_edgenum[i]; k++) {
+    m->flex_edge[2 * (edge + k)] = f.edge[k][0];
+    m->flex_edge[2 * (edge + k) + 1] = f.edge[k][1];
+    m->flex_edgeflap[2 * (edge + k)] = flap ? f.flaps[k][2] : -1;
+    m->flex_edgeflap[2 * (edge + k) + 1] = flap ? f.flaps[k][3] : -1;
+    if (f.rigid) {
+      m->flexedge_rigid[edge + k] = 1;
+    } else if (!f.interpolated) {
+      int b1 = f.vertbodyid[f.edge[k][0]], b2 = f.vertbodyid[f.edge[k][1]];
+      m->flexedge_rigid[edge + k] = m->body_weldid[b1] == m->body_weldid[b2];
+    }
+  }
+}
+
+}  // namespace
+
+void LayoutFlexes(const mjcf::ModelSpec& spec, const CompileState& state, Model* m) {
+  FlexAddresses(state, m);
+  for (int i = 0; i < m->nflex; i++) {
+    const FlexState& f = state.flexes[i];
+    FlexProperties(spec, f, i, m);
+    FlexElements(f, i, m);
+    FlexVertices(f, i, m);
+    FlexEdges(f, i, m);
   }
 }
 

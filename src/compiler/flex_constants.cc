@@ -41,19 +41,6 @@ void VertexEdges(Model* m, int f, int* offset) {
   *offset += total;
 }
 
-// An edge's rest vector (flex_vert0 is on [0, 1]^3 over the box of half sizes
-// flex_size), and the mass of the vertex at its other end than v (at least mjMINVAL;
-// 1 when the vertex has no body).
-double RestEdge(const Model& m, int f, int e, int v, double dx[3]) {
-  int vbase = m.flex_vertadr[f], ebase = m.flex_edgeadr[f];
-  int v1 = m.flex_edge[2 * (ebase + e)], v2 = m.flex_edge[2 * (ebase + e) + 1];
-  math::Sub3(dx, &m.flex_vert0[3 * (vbase + v2)], &m.flex_vert0[3 * (vbase + v1)]);
-  for (int k = 0; k < 3; k++) dx[k] *= 2 * m.flex_size[3 * f + k];
-  int body = m.flex_vertbodyid[vbase + (v == v1 ? v2 : v1)];
-  if (body < 0) return 1.0;
-  return std::max(m.body_mass[body], kMinVal);
-}
-
 // Each vertex's metric, the inverse of its mass-weighted rest edge outer products (2 x 2,
 // in the flex's plane; zero when singular). The flex must lie in the xy plane.
 void VertexMetrics(Model* m, int f) {
@@ -63,7 +50,7 @@ void VertexMetrics(Model* m, int f) {
     int adr = m->flex_vertedgeadr[vbase + v];
     for (int k = 0; k < m->flex_vertedgenum[vbase + v]; k++) {
       double dx[3];
-      double weight = RestEdge(*m, f, m->flex_vertedge[adr + k], v, dx);
+      double weight = FlexRestEdge(*m, f, m->flex_vertedge[adr + k], v, dx);
       if (std::abs(dx[2]) > kMinVal) throw Error("flex vertices are not in the same plane");
       for (int r = 0; r < 2; r++) {
         for (int c = 0; c < 2; c++) b[2 * r + c] += weight * dx[r] * dx[c];

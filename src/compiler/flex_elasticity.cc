@@ -22,10 +22,10 @@ namespace simlab::compiler {
 
 namespace {
 
-// Triangle layout (MuJoCo's Stencil2D): kTriangleSide[i] is the side opposite vertex i,
-// and the basis of edge e comes from the sides kTriangleEdgeSides[e] (the other two).
+// Triangle layout (MuJoCo's Stencil2D, whose face and edge2face tables are this one):
+// kTriangleSide[i] is the side opposite vertex i, and the basis of edge e comes from the
+// two other sides, kTriangleSide[e] read as side numbers.
 constexpr int kTriangleSide[3][2] = {{1, 2}, {2, 0}, {0, 1}};
-constexpr int kTriangleEdgeSides[3][2] = {{1, 2}, {2, 0}, {0, 1}};
 
 // Tetrahedron layout (MuJoCo's Stencil3D): its four faces, and for each edge (in
 // kFlexElemEdges order) the two faces that do not hold it.
@@ -131,8 +131,8 @@ void ElementStiffness(double* metric, int dim, double young, double poisson, dou
   double basis[6][9] = {};
   for (int e = 0; e < nedge; e++) {
     if (dim == 2) {
-      TriangleEdgeBasis(basis[e], x, v, kTriangleSide[kTriangleEdgeSides[e][0]],
-                        kTriangleSide[kTriangleEdgeSides[e][1]], size);
+      TriangleEdgeBasis(basis[e], x, v, kTriangleSide[kTriangleSide[e][0]],
+                        kTriangleSide[kTriangleSide[e][1]], size);
     } else {
       TetEdgeBasis(basis[e], x, v, kTetFace[kTetEdgeFaces[e][0]], kTetFace[kTetEdgeFaces[e][1]],
                    size);
@@ -147,7 +147,7 @@ double Cotangent(const std::vector<double>& x, int a, int b, int c) {
   math::Sub3(ab, At(x, b), At(x, a));
   math::Sub3(ac, At(x, c), At(x, a));
   math::Cross3(normal, ab, ac);
-  return math::Dot3(ab, ac) / std::sqrt(math::Dot3(normal, normal));
+  return math::Dot3(ab, ac) / math::Norm3(normal);
 }
 
 // Area of triangle (a, b, c), without the epsilon of TriangleArea.
@@ -156,7 +156,7 @@ double FlapTriangleArea(const std::vector<double>& x, int a, int b, int c) {
   math::Sub3(ab, At(x, b), At(x, a));
   math::Sub3(ac, At(x, c), At(x, a));
   math::Cross3(normal, ab, ac);
-  return std::sqrt(math::Dot3(normal, normal)) / 2;
+  return math::Norm3(normal) / 2;
 }
 
 // The 17 bending numbers of one inner edge's flap v (shear modulus mu).

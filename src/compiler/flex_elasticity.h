@@ -16,23 +16,11 @@
 #include <array>
 #include <vector>
 
+// (kFlexStiffnessSize, kFlexBendingSize, kFlexElemEdgeCount and kFlexElemEdges, shared
+// with the engine)
+#include "engine/flex_elasticity.h"
+
 namespace simlab::compiler {
-
-// Numbers per element in flex_stiffness, per edge in flex_bending.
-inline constexpr int kFlexStiffnessSize = 21;
-inline constexpr int kFlexBendingSize = 17;
-
-// Edges of an element of dimension dim, at [dim - 1]: a segment 1, a triangle 3, a
-// tetrahedron 6 (MuJoCo's kNumEdges).
-inline constexpr int kFlexElemEdgeCount[3] = {1, 3, 6};
-
-// Each edge of an element as its two local vertices, at [dim - 1][edge] (MuJoCo's
-// eledge; -1 past the element's edges). flex_elemedge lists an element's edges in this
-// order, and new edges are numbered as they first appear in it.
-inline constexpr int kFlexElemEdges[3][6][2] = {
-    {{0, 1}, {-1, -1}, {-1, -1}, {-1, -1}, {-1, -1}, {-1, -1}},
-    {{1, 2}, {2, 0}, {0, 1}, {-1, -1}, {-1, -1}, {-1, -1}},
-    {{0, 1}, {1, 2}, {2, 0}, {2, 3}, {0, 3}, {1, 3}}};
 
 // The flap of each edge of a triangle flex (MuJoCo's CreateFlapStencil): [0], [1] the
 // edge's vertices as the first triangle holding it lists them, [2] that triangle's

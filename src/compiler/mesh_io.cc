@@ -88,13 +88,11 @@ void CheckFaceCount(const mjcf::MeshSpec& mesh, long nfaces) {
 
 // Binary STL: 80-byte header, a face count, then 50 bytes per face.
 bool ReadBinaryStl(const mjcf::MeshSpec& mesh, const std::string& bytes, MeshData* out) {
-  if (bytes.size() < 84) return false;
-  std::uint32_t nfaces = 0;
-  std::memcpy(&nfaces, bytes.data() + 80, 4);
-  if (static_cast<size_t>(nfaces) * 50 != bytes.size() - 84) return false;
+  int64_t nfaces = BinaryStlFaceCount(bytes);
+  if (nfaces < 0) return false;
   CheckFaceCount(mesh, static_cast<long>(nfaces));
   bool righthand = RightHanded(mesh);
-  for (size_t i = 0; i < nfaces; i++) {
+  for (int64_t i = 0; i < nfaces; i++) {
     float corners[9];
     std::memcpy(corners, bytes.data() + 84 + 50 * i + 12, sizeof(corners));
     AddStlTriangle(mesh, corners, righthand, out);
@@ -123,22 +121,6 @@ bool ReadAsciiStl(const mjcf::MeshSpec& mesh, const std::string& bytes, MeshData
   bool righthand = RightHanded(mesh);
   for (size_t i = 0; i < corners.size(); i += 9) AddStlTriangle(mesh, &corners[i], righthand, out);
   return true;
-}
-
-// Merges exactly equal vertices (first occurrence kept, in order; 0 and -0 are equal, as
-// the array's operator< compares them) and renumbers the faces.
-void MergeRepeatedVertices(MeshData* data) {
-  std::map<std::array<float, 3>, int> index;
-  std::vector<float> unique;
-  std::vector<int> renumber;
-  for (size_t i = 0; i < data->vert.size(); i += 3) {
-    std::array<float, 3> key = {data->vert[i], data->vert[i + 1], data->vert[i + 2]};
-    auto [it, added] = index.emplace(key, static_cast<int>(unique.size() / 3));
-    if (added) unique.insert(unique.end(), key.begin(), key.end());
-    renumber.push_back(it->second);
-  }
-  for (int& f : data->face) f = renumber[f];
-  data->vert = std::move(unique);
 }
 
 MeshData ReadStl(const mjcf::MeshSpec& mesh, const std::string& bytes) {
@@ -395,12 +377,41 @@ MeshData ReadMsh(const mjcf::MeshSpec& mesh, const std::string& bytes) {
 
 // ---------------------------------------------------------------- entry points
 
+// The type is checked before the file is opened, as MuJoCo does.
 MeshData ReadMeshFile(const mjcf::MeshSpec& mesh, const mjcf::AssetFiles* assets) {
+  FileKind(mesh);
+  return ReadMeshBytes(mesh, ReadBytes(mesh, assets));
+}
+
+// The reader of the file's type.
+MeshData ReadMeshBytes(const mjcf::MeshSpec& mesh, const std::string& bytes) {
   std::string kind = FileKind(mesh);
-  std::string bytes = ReadBytes(mesh, assets);
   return kind == "stl"   ? ReadStl(mesh, bytes)
          : kind == "obj" ? ReadObj(mesh, bytes)
                          : ReadMsh(mesh, bytes);
+}
+
+// The count at byte 80 when 50 bytes per face follow it exactly.
+int64_t BinaryStlFaceCount(const std::string& bytes) {
+  if (bytes.size() < 84) return -1;
+  std::uint32_t nfaces = 0;
+  std::memcpy(&nfaces, bytes.data() + 80, 4);
+  return static_cast<size_t>(nfaces) * 50 == bytes.size() - 84 ? int64_t{nfaces} : -1;
+}
+
+// Each vertex's key maps to its first occurrence's new index.
+void MergeRepeatedVertices(MeshData* data) {
+  std::map<std::array<float, 3>, int> index;
+  std::vector<float> unique;
+  std::vector<int> renumber;
+  for (size_t i = 0; i < data->vert.size(); i += 3) {
+    std::array<float, 3> key = {data->vert[i], data->vert[i + 1], data->vert[i + 2]};
+    auto [it, added] = index.emplace(key, static_cast<int>(unique.size() / 3));
+    if (added) unique.insert(unique.end(), key.begin(), key.end());
+    renumber.push_back(it->second);
+  }
+  for (int& f : data->face) f = renumber[f];
+  data->vert = std::move(unique);
 }
 
 }  // namespace simlab::compiler

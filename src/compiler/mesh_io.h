@@ -4,6 +4,7 @@
 #ifndef SIMLAB_COMPILER_MESH_IO_H_
 #define SIMLAB_COMPILER_MESH_IO_H_
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,18 @@ struct MeshData {
 // disk; the file type comes from content_type or the extension. A negative scale
 // product reverses the triangles' winding, as in MuJoCo. Throws at mesh.src.
 MeshData ReadMeshFile(const mjcf::MeshSpec& mesh, const mjcf::AssetFiles* assets = nullptr);
+
+// ReadMeshFile for the bytes of mesh.path, read already: the file type is checked (an
+// unknown one throws at mesh.src) and the bytes parsed.
+MeshData ReadMeshBytes(const mjcf::MeshSpec& mesh, const std::string& bytes);
+
+// The face count of a binary STL file (an 80-byte header, the count, then 50 bytes per
+// face), or -1 when the file's size does not fit one (an ASCII STL file, say).
+int64_t BinaryStlFaceCount(const std::string& bytes);
+
+// Merges exactly equal vertices (the first occurrence kept, in order; 0 and -0 are
+// equal) and renumbers the faces (MuJoCo's remove_repeated; STL files come merged).
+void MergeRepeatedVertices(MeshData* data);
 
 }  // namespace simlab::compiler
 

@@ -165,13 +165,8 @@ void NormalizeBones(mjcf::SkinSpec* s) {
 // ---------------------------------------------------------------- the section
 
 void CompileSkins(const mjcf::ModelSpec& spec, CompileState* state) {
-  NameIndex bodies;
-  for (size_t b = 0; b < state->bodies.size(); b++) {
-    bodies.Insert(state->bodies[b].spec->src.name, static_cast<int>(b));
-  }
-  std::vector<std::string> material_names;
-  for (const mjcf::MaterialSpec& mat : spec.materials) material_names.push_back(mat.src.name);
-  NameIndex materials(material_names);
+  NameIndex bodies = BodyNames(*state);
+  NameIndex materials = MaterialNames(spec);
   state->skins.clear();
   for (const mjcf::SkinSpec& s : spec.skins) {
     SkinState skin;

@@ -18,11 +18,12 @@ uint64_t StackDoubles(const Model& m) {
   // Vectors of the state's sizes for every stage...
   uint64_t states = static_cast<uint64_t>(m.nq) + m.nv + m.na + m.nbody + m.nu;
   uint64_t rest = AddBytes(MulBytes(16, states), 64);
-  // ...and a flex's elastic forces (engine/flex_elasticity.cc): 3 per vertex or 15 per
-  // node, and 6 nv for forces applied at points.
+  // ...and a flex's elastic forces (engine/flex_elasticity.cc): 3 per vertex and 1 per
+  // edge, or 15 per node, and 6 nv for forces applied at points.
   uint64_t flex = 0;
   for (int f = 0; f < m.nflex; f++) {
-    flex = std::max({flex, MulBytes(3, m.flex_vertnum[f]), MulBytes(15, m.flex_nodenum[f])});
+    uint64_t elements = AddBytes(MulBytes(3, m.flex_vertnum[f]), m.flex_edgenum[f]);
+    flex = std::max({flex, elements, MulBytes(15, m.flex_nodenum[f])});
   }
   if (m.nflex) rest = AddBytes(rest, AddBytes(flex, MulBytes(6, m.nv)));
   if (m.opt.integrator != kIntegratorImplicit) return rest;

@@ -37,9 +37,6 @@ bool ChoosesTangent(CollideFn collide);
 
 // The whole collision stage: d.ncon and d.contact (collision_driver.cc).
 void Collision(const Model& m, Data& d);
-// The boxes of the flexes' trees this step (d.bvh_aabb_dyn): leaves from the elements'
-// boxes, inner nodes around their children (collision_flex.cc; part of MuJoCo's mj_flex).
-void FlexBoundingVolumes(const Model& m, Data& d);
 
 // Completes a contact frame (MuJoCo mju_makeFrame): row 0, the normal, is normalized;
 // row 1 is the given tangent, else the world y axis (z when the normal is near y), made

@@ -325,10 +325,7 @@ void CollideGeoms(const Model& m, Data& d, int g1, int g2, int ipair) {
   if (SpheresApart(m, d, g1, g2, margin)) return;
 
   // Narrow phase into the free end of the contact array.
-  if (d.contact.size() < static_cast<size_t>(d.ncon + kMaxContactPair)) {
-    d.contact.resize(static_cast<size_t>(d.ncon + kMaxContactPair) * 2);
-  }
-  Contact* con = &d.contact[d.ncon];
+  Contact* con = ContactRoom(d, kMaxContactPair);
   int num = collide(m, d, con, g1, g2, margin);
   if (num <= 0) return;
   if (m.geom_type[g1] == kGeomBox && m.geom_type[g2] == kGeomBox) {
@@ -400,16 +397,10 @@ bool BodyPairFiltered(const Model& m, const int* body_awake, int b1, int b2, boo
   return filterparent && weld1 != 0 && weld2 != 0 && (weld1 == parent2 || weld2 == parent1);
 }
 
-// The number of moving points: geoms not on the world, flex vertices not on the world.
-int MovingPoints(const Model& m) {
-  int count = m.ngeom - m.body_geomnum[0];
-  for (int v = 0; v < m.nflexvert; v++) count += m.flex_vertbodyid[v] != 0;
-  return count;
-}
-
-// The principal frame (rows) of the moving geoms' centres and flex vertices:
-// sweep-and-prune runs along its first axis, where the bodies spread most.
-void PrincipalFrame(const Model& m, const Data& d, double frame[9]) {
+// The principal frame (rows) of the moving points, geoms' centres and flex vertices not
+// on the world: sweep-and-prune runs along its first axis, where the bodies spread most.
+// False, with no frame, when there are no moving points.
+bool PrincipalFrame(const Model& m, const Data& d, double frame[9]) {
   double cen[3] = {0, 0, 0}, cov[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   int count = 0;
   for (int g = 0; g < m.ngeom; g++) {
@@ -422,6 +413,7 @@ void PrincipalFrame(const Model& m, const Data& d, double frame[9]) {
     math::Add3(cen, cen, &d.flexvert_xpos[3 * v]);
     count++;
   }
+  if (count == 0) return false;
   math::Scale3(cen, cen, 1.0 / count);
   auto accumulate = [&](const double* point) {
     double dif[3];
@@ -440,6 +432,7 @@ void PrincipalFrame(const Model& m, const Data& d, double frame[9]) {
   double eigval[3], quat[4];
   math::Eig3(eigval, quat, cov, [](double* q) { math::NormalizeQuat(q); });
   math::QuatToMat(frame, quat);
+  return true;
 }
 
 // A body's box in `frame`: its geoms' bounding spheres grown by their margins.
@@ -463,21 +456,12 @@ void BodyBox(const Model& m, const Data& d, int b, const double* frame, double* 
 // ones whose boxes also overlap on the other two axes. Calls add(b1, b2) per candidate.
 template <typename Add>
 void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
-  // Each end as one integer key: its value in single precision mapped to unsigned bits
-  // in the same order (a NaN as +inf, -0 as +0), then 2 body + 1 for an upper end, so
-  // that ties keep the order the ends were added in (by body, its lower end first).
-  auto key = [](double x, int tie) {
-    float f = std::isnan(x) ? std::numeric_limits<float>::infinity() : static_cast<float>(x);
-    if (f == 0) f = 0;
-    uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
-    return (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(tie);
-  };
+  // Each end as one key (SweepKey), 2 body + 1 for an upper end breaking ties, so that
+  // ties keep the order the ends were added in (by body, its lower end first).
   s.ends.clear();
   for (int b : s.bodies) {
-    s.ends.push_back(key(boxes[6 * b], 2 * b));
-    s.ends.push_back(key(boxes[6 * b + 3], 2 * b + 1));
+    s.ends.push_back(SweepKey(boxes[6 * b], 2 * b));
+    s.ends.push_back(SweepKey(boxes[6 * b + 3], 2 * b + 1));
   }
   std::sort(s.ends.begin(), s.ends.end());
   s.open.clear();
@@ -524,9 +508,8 @@ void BroadPhase(const Model& m, Data& d) {
   }
   // Other bodies and flexes meet when their boxes overlap in the principal frame of the
   // moving geoms and flex vertices (there is none when every one is the world's).
-  if (MovingPoints(m) > 0) {
-    double frame[9];
-    PrincipalFrame(m, d, frame);
+  double frame[9];
+  if (PrincipalFrame(m, d, frame)) {
     StackFrame scratch(d);
     int nbodyflex = m.nbody + m.nflex;
     double* boxes = scratch.Alloc(6 * static_cast<size_t>(nbodyflex));
@@ -573,10 +556,19 @@ double NodeArea(const Model& m, int b, int n) {
   return half[0] * half[1] + half[1] * half[2] + half[2] * half[0];
 }
 
-// Sorts the contacts [first, d.ncon) by (geom[0], geom[1]), keeping the order of equal
-// pairs: an index sort, then one permutation through the free end of d.contact (the
-// contacts are large; this allocates only when that end is short).
-void SortByGeomPair(Data& d, int first) {
+// The object side k of a contact is sorted by: its geom, else its flex element, else
+// its flex vertex (MuJoCo's contactcompare).
+int SortObject(const Contact& c, int k) {
+  return c.geom[k] >= 0 ? c.geom[k] : (c.elem[k] >= 0 ? c.elem[k] : c.vert[k]);
+}
+
+}  // namespace
+
+// Sorts the contacts [first, d.ncon) by the objects of their two sides (for geom-geom
+// contacts: by (geom[0], geom[1])), keeping the order of equals: an index sort, then one
+// permutation through the free end of d.contact (the contacts are large; this allocates
+// only when that end is short).
+void SortContacts(Data& d, int first) {
   int n = d.ncon - first;
   if (n < 2) return;
   Contact* con = d.contact.data() + first;
@@ -584,21 +576,22 @@ void SortByGeomPair(Data& d, int first) {
   int* order = ints.IntsToWrite(n);
   for (int i = 0; i < n; i++) order[i] = i;
   std::sort(order, order + n, [con](int a, int b) {
-    const int* ga = con[a].geom;
-    const int* gb = con[b].geom;
-    return ga[0] != gb[0] ? ga[0] < gb[0] : ga[1] != gb[1] ? ga[1] < gb[1] : a < b;
+    int a0 = SortObject(con[a], 0), b0 = SortObject(con[b], 0);
+    if (a0 != b0) return a0 < b0;
+    int a1 = SortObject(con[a], 1), b1 = SortObject(con[b], 1);
+    return a1 != b1 ? a1 < b1 : a < b;
   });
   bool sorted = true;
   for (int i = 0; i < n && sorted; i++) sorted = order[i] == i;
   if (sorted) return;
-  if (d.contact.size() < static_cast<size_t>(d.ncon + n)) {
-    d.contact.resize(static_cast<size_t>(d.ncon + n) * 2);
-    con = d.contact.data() + first;
-  }
-  Contact* spare = d.contact.data() + d.ncon;
+  // (ContactRoom may move the array: the contacts are found again after it)
+  Contact* spare = ContactRoom(d, n);
+  con = d.contact.data() + first;
   std::copy(con, con + n, spare);
   for (int i = 0; i < n; i++) con[i] = spare[order[i]];
 }
+
+namespace {
 
 // Collides the geoms of two bodies by walking their trees together (MuJoCo's
 // mj_collideTree for two bodies): a pair of nodes whose boxes are apart is dropped with
@@ -637,7 +630,7 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
       nstack++;
     }
   }
-  SortByGeomPair(d, ncon_before);
+  SortContacts(d, ncon_before);
 }
 
 // Collides the geoms of two bodies: through their trees when both have several geoms
@@ -708,6 +701,17 @@ void Collision(const Model& m, Data& d) {
   while (pairadr < m.npair) CollideGeoms(m, d, -1, -1, pairadr++);
   // Flexes with themselves.
   CollideFlexSelf(m, d);
+}
+
+// The end's value in single precision, its bits mapped to unsigned ones in the same
+// order (a NaN as +inf, -0 as +0), above the tie order.
+uint64_t SweepKey(double x, int tie) {
+  float f = std::isnan(x) ? std::numeric_limits<float>::infinity() : static_cast<float>(x);
+  if (f == 0) f = 0;
+  uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+  return (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(tie);
 }
 
 bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin) {

@@ -3,6 +3,8 @@
 #ifndef SIMLAB_ENGINE_COLLISION_DRIVER_H_
 #define SIMLAB_ENGINE_COLLISION_DRIVER_H_
 
+#include <cstdint>
+
 #include "engine/collision.h"
 
 namespace simlab {
@@ -30,6 +32,13 @@ void SetContact(const Model& m, const ContactParams& p, double includemargin, in
                 Contact* c);
 // Room for `n` more contacts past d.ncon; returns the first.
 Contact* ContactRoom(Data& d, int n);
+// Sorts the contacts [first, d.ncon) by the object of side 0, then of side 1 (a geom,
+// else a flex element, else a flex vertex; for geom-geom contacts the geom pair), keeping
+// the order of equals (MuJoCo's contactSort after a tree walk).
+void SortContacts(Data& d, int first);
+// One interval end of a sweep and prune as an integer key that sorts as MuJoCo's sweeps
+// do: the value in single precision (a NaN as +inf), then `tie` (>= 0) among equals.
+uint64_t SweepKey(double x, int tie);
 // True when two boxes (centre, half sizes; world axes) are farther apart than margin on
 // some axis (MuJoCo's filterBox).
 bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin);

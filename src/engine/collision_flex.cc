@@ -15,16 +15,14 @@
 // opposite faces) and between its active elements (by its tree, sweep and prune, or all
 // pairs, per selfcollide). Self-collision ignores margins.
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <limits>
 #include <vector>
 
 #include "engine/collision_driver.h"
 #include "engine/collision_flex.h"
 #include "engine/collision_geom.h"
 #include "engine/constraint.h"
+#include "engine/engine.h"
 #include "engine/stack.h"
 #include "math/math.h"
 
@@ -80,6 +78,18 @@ void EdgeCapsule(const Model& m, const Data& d, int f, const int* vid, double po
   math::QuatToMat(mat, quat);
 }
 
+// Is the sphere (centre, radius `bound`) beyond the box (centre, half sizes; world axes)
+// along some axis? (MuJoCo's filterSphereBox, and the same test of a vertex's sphere
+// against an element's box)
+bool SphereOutsideBox(const double* centre, double bound, const double* box) {
+  for (int k = 0; k < 3; k++) {
+    if (centre[k] + bound < box[k] - box[k + 3] || centre[k] - bound > box[k] + box[k + 3]) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // ---------------------------------------------------------------- recording contacts
 
 // Who touches whom in a contact with a flex.
@@ -91,11 +101,13 @@ struct ContactIds {
 };
 
 // Completes the contacts con[0, num) the narrow phase wrote at the end of d.contact and
-// counts them in (mj_setContact for each).
+// counts them in (mj_setContact for each). No flex collider chooses a tangent: each
+// frame's second row is cleared here, for SetContact to complete the frame from none.
 void Record(const Model& m, Data& d, Contact* con, int num, const ContactParams& p,
             double includemargin, const ContactIds& ids) {
   for (int i = 0; i < num; i++) {
     Contact& c = con[i];
+    math::Zero3(c.frame + 3);
     SetContact(m, p, includemargin, ids.geom[0], ids.geom[1], &c);
     for (int k = 0; k < 2; k++) {
       c.flex[k] = ids.flex[k];
@@ -104,35 +116,6 @@ void Record(const Model& m, Data& d, Contact* con, int num, const ContactParams&
     }
   }
   d.ncon += num;
-}
-
-// The object of side k a flex contact is sorted by: its geom, else element, else vertex.
-int SortObject(const Contact& c, int k) {
-  return c.geom[k] >= 0 ? c.geom[k] : (c.elem[k] >= 0 ? c.elem[k] : c.vert[k]);
-}
-
-// Sorts the contacts past `first` by their objects, keeping the order of equals
-// (MuJoCo's contactSort after its midphase).
-void SortFlexContacts(Data& d, int first) {
-  int n = d.ncon - first;
-  if (n < 2) return;
-  Contact* con = d.contact.data() + first;
-  SolverFrame ints(d.solver_scratch);
-  int* order = ints.IntsToWrite(n);
-  for (int i = 0; i < n; i++) order[i] = i;
-  std::sort(order, order + n, [con](int a, int b) {
-    int a0 = SortObject(con[a], 0), b0 = SortObject(con[b], 0);
-    if (a0 != b0) return a0 < b0;
-    int a1 = SortObject(con[a], 1), b1 = SortObject(con[b], 1);
-    return a1 != b1 ? a1 < b1 : a < b;
-  });
-  bool sorted = true;
-  for (int i = 0; i < n && sorted; i++) sorted = order[i] == i;
-  if (sorted) return;
-  Contact* spare = ContactRoom(d, n);
-  con = d.contact.data() + first;
-  std::copy(con, con + n, spare);
-  for (int i = 0; i < n; i++) con[i] = spare[order[i]];
 }
 
 // ---------------------------------------------------------------- narrow phase calls
@@ -159,7 +142,6 @@ void CollidePlaneFlex(const Model& m, Data& d, int g, int f) {
     double along = -c->dist * 0.5 - radius;
     for (int k = 0; k < 3; k++) c->pos[k] = v[k] + normal[k] * along;
     math::Copy3(c->frame, normal);
-    math::Zero3(c->frame + 3);
     ids.vert[1] = i;
     Record(m, d, c, 1, p, margin - p.gap, ids);
   }
@@ -169,14 +151,10 @@ void CollidePlaneFlex(const Model& m, Data& d, int g, int f) {
 void CollideGeomElem(const Model& m, Data& d, int g, int f, int e) {
   double margin = AssignMargin(m, m.geom_margin[g] + m.flex_margin[f]);
   int dim = m.flex_dim[f], type = m.geom_type[g];
-  if (MidphaseDisabled(m)) {
-    // (the midphase's sphere-box test, when there is no midphase)
-    const double* box = ElementBox(m, d, f, e);
-    const double* s = &d.geom_xpos[3 * g];
-    double bound = m.geom_rbound[g] + margin;
-    for (int k = 0; k < 3; k++) {
-      if (s[k] + bound < box[k] - box[k + 3] || s[k] - bound > box[k] + box[k + 3]) return;
-    }
+  // (the midphase's sphere-box test, when there is no midphase)
+  if (MidphaseDisabled(m) &&
+      SphereOutsideBox(&d.geom_xpos[3 * g], m.geom_rbound[g] + margin, ElementBox(m, d, f, e))) {
+    return;
   }
   // Not against an element with a vertex on the geom's body.
   const int* vert = ElementVertices(m, f, e);
@@ -204,7 +182,6 @@ void CollideGeomElem(const Model& m, Data& d, int g, int f, int e) {
       num = CapsuleBoxPoses(con, margin, capsule, geom);
       for (int i = 0; i < num; i++) math::Scale3(con[i].frame, con[i].frame, -1);
     }
-    for (int i = 0; i < num; i++) math::Zero3(con[i].frame + 3);
   } else if (type == kGeomHfield) {
     num = 0;  // height fields against flex elements: not modelled yet
   } else if (type == kGeomSphere && dim == 2) {
@@ -247,7 +224,6 @@ void CollideElems(const Model& m, Data& d, int f1, int e1, int f2, int e2) {
     EdgeCapsule(m, d, f1, vert1, pos1, mat1, size1);
     EdgeCapsule(m, d, f2, vert2, pos2, mat2, size2);
     num = CapsuleCapsulePoses(con, margin, GeomPose{pos1, mat1, size1}, GeomPose{pos2, mat2, size2});
-    for (int i = 0; i < num; i++) math::Zero3(con[i].frame + 3);
   } else {
     num = ConvexElem(m, d, con, -1, f1, e1, -1, f2, e2, margin);
   }
@@ -267,11 +243,7 @@ void CollideElemVert(const Model& m, Data& d, int f, int e, int v) {
   double margin = AssignMargin(m, m.flex_margin[f]);
   double radius = m.flex_radius[f];
   const double* vert = VertexPos(m, d, f, v);
-  const double* box = ElementBox(m, d, f, e);
-  double bound = margin + radius;
-  for (int k = 0; k < 3; k++) {
-    if (box[k] - box[k + 3] > vert[k] + bound || box[k] + box[k + 3] < vert[k] - bound) return;
-  }
+  if (SphereOutsideBox(vert, margin + radius, ElementBox(m, d, f, e))) return;
   int dim = m.flex_dim[f];
   const int* evert = ElementVertices(m, f, e);
   Contact* con = ContactRoom(d, kMaxContactPair);
@@ -282,7 +254,6 @@ void CollideElemVert(const Model& m, Data& d, int f, int e, int v) {
     EdgeCapsule(m, d, f, evert, pos, mat, size);
     num = SphereCapsulePoses(con, 0, GeomPose{vert, kIdentity, sphere_size},
                              GeomPose{pos, mat, size});
-    for (int i = 0; i < num; i++) math::Zero3(con[i].frame + 3);
   } else if (dim == 2) {
     num = SphereTriangle(con, 0, vert, radius, VertexPos(m, d, f, evert[0]),
                          VertexPos(m, d, f, evert[1]), VertexPos(m, d, f, evert[2]), radius);
@@ -299,7 +270,8 @@ void CollideElemVert(const Model& m, Data& d, int f, int e, int v) {
 }
 
 // Vertex v against the plane of face (t0, t1, t2) of a tetrahedron, from inside: a
-// contact when it is less than two radii beyond (planeVertex). Writes pos, frame, dist.
+// contact when it is less than two radii beyond (planeVertex). Writes pos, the normal
+// and dist.
 bool FaceVertex(Contact* c, const double* xpos, double radius, int t0, int t1, int t2, int v) {
   double e1[3], e2[3], ev[3], normal[3];
   math::Sub3(e1, xpos + 3 * t1, xpos + 3 * t0);
@@ -311,7 +283,6 @@ bool FaceVertex(Contact* c, const double* xpos, double radius, int t0, int t1, i
   if (dist <= -2 * radius) return false;
   c->dist = -dist - 2 * radius;
   math::Scale3(c->frame, normal, -1);
-  math::Zero3(c->frame + 3);
   for (int k = 0; k < 3; k++) c->pos[k] = xpos[3 * v + k] + normal[k] * (-0.5 * dist);
   return true;
 }
@@ -395,10 +366,7 @@ void BodyFlexLeaves(const Model& m, Data& d, const TreeSide& s1, int node1, cons
   }
   const double* s = &d.geom_xpos[3 * g];
   const double* box = s2.Box(node2);
-  double bound = m.geom_rbound[g] + margin;
-  for (int k = 0; k < 3; k++) {
-    if (s[k] + bound < box[k] - box[k + 3] || s[k] - bound > box[k] + box[k + 3]) return;
-  }
+  if (SphereOutsideBox(s, m.geom_rbound[g] + margin, box)) return;
   if (BoxesApartOriented(&m.geom_aabb[6 * g], s, &d.geom_xmat[9 * g], box, nullptr, nullptr,
                          margin, false)) {
     return;
@@ -422,13 +390,11 @@ bool NodesMeet(const Model& m, const Data& d, const TreeSide& s1, int node1, con
 // mj_collideTree with a flex): pairs of nodes whose boxes are apart are dropped, the
 // larger (by OpeningArea) of two inner nodes or the inner one of a leaf and an inner
 // node is opened; leaf pairs go to the narrow phase. Within one flex (b1 == b2) each
-// node pair is visited once.
+// node pair is visited once. The callers have filtered the pair by contype and
+// conaffinity.
 void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
-  if (BitmaskRejects(b1 < m.nbody ? m.body_contype[b1] : m.flex_contype[b1 - m.nbody],
-                     b1 < m.nbody ? m.body_conaffinity[b1] : m.flex_conaffinity[b1 - m.nbody],
-                     m.flex_contype[b2 - m.nbody], m.flex_conaffinity[b2 - m.nbody])) {
-    return;
-  }
+  // (the pair's contype and conaffinity already met: in the broad phase, or, for a flex
+  // with itself, in CollideFlexSelf)
   TreeSide s1 = SideOf(m, d, b1), s2 = SideOf(m, d, b2);
 
   // A static body's planes meet the flex's vertices directly.
@@ -478,17 +444,6 @@ void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
 }
 
 // ---------------------------------------------------------------- sweep and prune
-
-// One key of the sweep: the value in single precision, mapped to unsigned bits in the
-// same order, then the tie order (2 i, + 1 for an upper end).
-uint64_t SweepKey(double x, int tie) {
-  float f = std::isnan(x) ? std::numeric_limits<float>::infinity() : static_cast<float>(x);
-  if (f == 0) f = 0;
-  uint32_t bits;
-  std::memcpy(&bits, &f, sizeof bits);
-  bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
-  return (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(tie);
-}
 
 // The active elements of flex f against each other by sweep and prune along the longest
 // side of the flex's box (mj_collideFlexSAP), in the order the sweep finds them.
@@ -588,7 +543,7 @@ void CollideWithFlex(const Model& m, Data& d, int b1, int b2) {
   int first = d.ncon;
   if (!MidphaseDisabled(m) && bvh1 >= 0 && m.flex_bvhadr[f2] >= 0) {
     CollideTreesWithFlex(m, d, b1, b2);
-    SortFlexContacts(d, first);
+    SortContacts(d, first);
     return;
   }
   if (!body1) {

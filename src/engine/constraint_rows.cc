@@ -222,6 +222,16 @@ void CouplingRow(const Model& m, Data& d, int eq, double* jac, double* jac1, int
   AddDenseRows(m, d, jac, index, &err, 0, 0, 1, kCnstrEquality, eq);
 }
 
+// One equality row of eq at violation `pos`, on row r of a flex's sparse Jacobian
+// (values J, rows at rowadr, rownnz long, columns colind).
+void SparseEqualityRow(const Model& m, Data& d, int eq, double pos, const std::vector<double>& J,
+                       const std::vector<int>& rowadr, const std::vector<int>& rownnz,
+                       const std::vector<int>& colind, int r) {
+  int adr = rowadr[r];
+  AddRows(m, d, J.data() + adr, Columns{colind.data() + adr, rownnz[r]}, &pos, 0, 0, 1,
+          kCnstrEquality, eq);
+}
+
 // A flex's edge equality: one row per edge whose ends can move apart, its length's
 // stretch from its length at qpos0, on the edge's sparse Jacobian.
 void FlexEdgeRows(const Model& m, Data& d, int eq) {
@@ -230,9 +240,8 @@ void FlexEdgeRows(const Model& m, Data& d, int eq) {
   for (int e = begin; e < end; e++) {
     if (m.flexedge_rigid[e]) continue;
     double pos = d.flexedge_length[e] - m.flexedge_length0[e];
-    int adr = m.flexedge_J_rowadr[e];
-    AddRows(m, d, d.flexedge_J.data() + adr, Columns{m.flexedge_J_colind.data() + adr, m.flexedge_J_rownnz[e]},
-            &pos, 0, 0, 1, kCnstrEquality, eq);
+    SparseEqualityRow(m, d, eq, pos, d.flexedge_J, m.flexedge_J_rowadr, m.flexedge_J_rownnz,
+                      m.flexedge_J_colind, e);
   }
 }
 
@@ -242,10 +251,8 @@ void FlexVertexRows(const Model& m, Data& d, int eq) {
   int f = m.eq_obj1id[eq];
   int begin = m.flex_vertadr[f], end = begin + m.flex_vertnum[f];
   for (int row = 2 * begin; row < 2 * end; row++) {
-    double pos = d.flexvert_length[row];
-    int adr = m.flexvert_J_rowadr[row];
-    AddRows(m, d, d.flexvert_J.data() + adr, Columns{m.flexvert_J_colind.data() + adr, m.flexvert_J_rownnz[row]},
-            &pos, 0, 0, 1, kCnstrEquality, eq);
+    SparseEqualityRow(m, d, eq, d.flexvert_length[row], d.flexvert_J, m.flexvert_J_rowadr,
+                      m.flexvert_J_rownnz, m.flexvert_J_colind, row);
   }
 }
 
@@ -430,25 +437,34 @@ void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, do
   }
 }
 
-// The columns of a contact's rows: the dofs of both sides' bodies (`marks`: room for 2 nv,
-// zero, left zero).
-Columns ContactColumns(const Model& m, const ContactSide* sides, int* index, int* marks) {
-  if (sides[0].n == 1 && sides[1].n == 1) {
-    return BodyPairColumns(m, sides[0].body[0], sides[1].body[0], index);
-  }
-  int* chain = marks + m.nv;
-  for (int k = 0; k < 2; k++) {
-    for (int i = 0; i < sides[k].n; i++) {
-      int n = MergedDofChain(m, sides[k].body[i], sides[k].body[i], chain);
-      for (int j = 0; j < n; j++) marks[chain[j]] = 1;
-    }
-  }
+// The columns of a contact's rows: the dofs of both sides' bodies, ascending (for one
+// body a side, the body pair's merged chain); `index` has room for nv.
+Columns ContactColumns(const Model& m, const ContactSide* sides, int* index) {
+  static_assert(2 * ContactSide::kMax <= kMaxMergedChains);
+  int bodies[2 * ContactSide::kMax];
   int n = 0;
-  for (int v = 0; v < m.nv; v++) {
-    if (marks[v]) index[n++] = v;
-    marks[v] = 0;
+  for (int k = 0; k < 2; k++) {
+    for (int i = 0; i < sides[k].n; i++) bodies[n++] = sides[k].body[i];
   }
-  return Columns{index, n};
+  return Columns{index, MergedDofChains(m, bodies, n, index)};
+}
+
+// The bodies of contact c's sides and the columns of its rows. False, the contact marked
+// excluded (3), when a side is not on bodies (as an interpolated flex's can be) or, with
+// a sparse Jacobian, when no dof moves either side.
+bool ContactColumnsOf(const Model& m, const Data& d, Contact& c, bool sparse, int* index,
+                      ContactSide* sides, Columns* cols) {
+  if (!ContactSideBodies(m, d, c, 0, true, &sides[0]) ||
+      !ContactSideBodies(m, d, c, 1, true, &sides[1])) {
+    c.exclude = 3;
+    return false;
+  }
+  *cols = ContactColumns(m, sides, index);
+  if (sparse && cols->n == 0) {
+    c.exclude = 3;
+    return false;
+  }
+  return true;
 }
 
 // One contact's rows: frictionless (1 row), a pyramid (a pair of opposing edges per
@@ -497,24 +513,15 @@ void ContactRows(const Model& m, Data& d) {
   double* scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
-  int* marks = ints.Ints(2 * static_cast<size_t>(m.nv));
   bool sparse = SparseJacobian(m);
   for (int i = 0; i < d.ncon; i++) {
     Contact& c = d.contact[i];
     if (c.exclude) continue;
-    // (a side that is not on bodies, as an interpolated flex's, makes no rows)
+    // (a side not on bodies, or no dofs under a sparse Jacobian: no rows)
     ContactSide sides[2];
-    if (!ContactSideBodies(m, d, c, 0, true, &sides[0]) ||
-        !ContactSideBodies(m, d, c, 1, true, &sides[1])) {
+    Columns cols{nullptr, 0};
+    if (!ContactColumnsOf(m, d, c, sparse, index, sides, &cols)) {
       c.efc_address = -1;
-      c.exclude = 3;
-      continue;
-    }
-    // A sparse Jacobian skips contacts between bodies that all lack dofs.
-    Columns cols = ContactColumns(m, sides, index, marks);
-    if (sparse && cols.n == 0) {
-      c.efc_address = -1;
-      c.exclude = 3;
       continue;
     }
     c.efc_address = d.nefc;
@@ -817,7 +824,6 @@ void PassiveContactForces(const Model& m, Data& d) {
   double* jac = nullptr;
   double* scratch = nullptr;
   int* index = nullptr;
-  int* marks = nullptr;
   SolverFrame ints(d.solver_scratch);
   bool sparse = SparseJacobian(m);
   for (int i = 0; i < d.ncon; i++) {
@@ -827,20 +833,11 @@ void PassiveContactForces(const Model& m, Data& d) {
       jac = frame.Alloc(6 * static_cast<size_t>(m.nv));
       scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
       index = ints.Ints(m.nv);
-      marks = ints.Ints(2 * static_cast<size_t>(m.nv));
     }
     c.efc_address = -1;
     ContactSide sides[2];
-    if (!ContactSideBodies(m, d, c, 0, true, &sides[0]) ||
-        !ContactSideBodies(m, d, c, 1, true, &sides[1])) {
-      c.exclude = 3;
-      continue;
-    }
-    Columns cols = ContactColumns(m, sides, index, marks);
-    if (sparse && cols.n == 0) {
-      c.exclude = 3;
-      continue;
-    }
+    Columns cols{nullptr, 0};
+    if (!ContactColumnsOf(m, d, c, sparse, index, sides, &cols)) continue;
     // The normal row only: a spring pushing the sides apart.
     ContactJacobian(m, d, c, cols, jac, scratch, sides);
     double scale = -kContactStiffness * c.dist;

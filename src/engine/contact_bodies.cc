@@ -58,12 +58,7 @@ void NodeBodies(const Model& m, int f, const int* vert, const double* weight, in
   int order = m.flex_interp[f];
   side->n = 0;
   for (int i = 0; i < m.flex_nodenum[f] && side->n < ContactSide::kMax; i++) {
-    double w;
-    if (order == 1) {
-      w = FlexShape(x[2], i & 1, 1) * FlexShape(x[1], i & 2, 1) * FlexShape(x[0], i & 4, 1);
-    } else {
-      w = FlexShape(x[2], i % 3, 2) * FlexShape(x[1], (i / 3) % 3, 2) * FlexShape(x[0], i / 9, 2);
-    }
+    double w = FlexNodeWeight(x, i, order);
     if (w < 1e-5) continue;
     side->weight[side->n] = w;
     side->body[side->n++] = m.flex_nodebodyid[m.flex_nodeadr[f] + i];

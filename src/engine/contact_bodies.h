@@ -11,12 +11,13 @@
 namespace simlab {
 
 // The bodies of one side: up to 4 (a geom, a vertex, an element's vertices), or up to 27
-// nodes of an interpolated flex.
+// nodes of an interpolated flex. Only [0, n) is ever written before it is read: the
+// arrays are left uninitialized, as a side is made several times per contact and step.
 struct ContactSide {
   static constexpr int kMax = 27;
   int n = 0;
-  int body[kMax] = {};
-  double weight[kMax] = {};
+  int body[kMax];
+  double weight[kMax];
 };
 
 // Side k (0 or 1) of contact c. With `signed_weights` (the Jacobian's), side 0's weights

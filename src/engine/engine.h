@@ -37,6 +37,18 @@ void CameraFixedPose(const Model& m, Data& d, int i);
 void LightFixedPose(const Model& m, Data& d, int i);
 // flexvert_xpos, flexelem_aabb, flexedge_length and flexedge_J (flex.cc, MuJoCo mj_flex).
 void FlexKinematics(const Model& m, Data& d);
+// The boxes of the flexes' trees this step (d.bvh_aabb_dyn): leaves from the elements'
+// boxes, inner nodes around their children (collision_flex.cc; the end of FlexKinematics,
+// as of MuJoCo's mj_flex).
+void FlexBoundingVolumes(const Model& m, Data& d);
+// The box (centre, half sizes grown by `radius`) of an element: its dim + 1 vertex ids
+// `elem` into the positions `xpos` (3 per vertex). The engine's flexelem_aabb and the
+// compiler's flex trees and flex_size use it.
+void FlexElementAabb(const double* xpos, const int* elem, int dim, double radius, double box[6]);
+// Edge e of flex f seen from its vertex v: its rest vector in dx (flex_vert0 scaled by the
+// box, flex_size), and the mass of its other end (at least mjMINVAL; 1 without a body).
+// The vertex equality's metric (compiler) and invariants (FlexKinematics) weigh by it.
+double FlexRestEdge(const Model& m, int f, int e, int v, double dx[3]);
 // flexedge_velocity = flexedge_J qvel (flex.cc).
 void FlexEdgeVelocity(const Model& m, Data& d);
 // The edges' own springs and dampers into qfrc_spring and qfrc_damper (flex.cc).
@@ -93,6 +105,10 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
 // The dofs that move body b0 or b1 (their chains to the root), ascending, into `dofs`
 // (room for nv); returns their count (MuJoCo mj_mergeChain).
 int MergedDofChain(const Model& m, int b0, int b1, int* dofs);
+// The same for the chains of nbodies <= kMaxMergedChains bodies: the ascending union of
+// the dofs that move any of them.
+constexpr int kMaxMergedChains = 64;
+int MergedDofChains(const Model& m, const int* bodies, int nbodies, int* dofs);
 // Jacobian of site `site`'s position and rotation (MuJoCo mj_jacSite).
 void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site);
 // Translation Jacobian of a point and the Jacobian of a unit axis turning with `body`.

@@ -40,27 +40,14 @@ void FlexInterpolatedPositions(const Model& m, Data& d, int f) {
   int order = m.flex_interp[f];
   int nnode = m.flex_nodenum[f], nbegin = m.flex_nodeadr[f];
   double nodexpos[3 * 27];
-  for (int j = 0; j < nnode && j < 27; j++) {
-    int b = m.flex_nodebodyid[nbegin + j];
-    double* x = nodexpos + 3 * j;
-    if (m.flex_centered[f]) {
-      math::Copy3(x, &d.xpos[3 * b]);
-      continue;
-    }
-    math::MulMatVec3(x, &d.xmat[9 * b], &m.flex_node[3 * (nbegin + j)]);
-    math::Add3(x, x, &d.xpos[3 * b]);
-  }
+  for (int j = 0; j < nnode && j < 27; j++) FlexNodeXpos(m, d, f, nbegin + j, nodexpos + 3 * j);
   int begin = m.flex_vertadr[f], end = begin + m.flex_vertnum[f];
   for (int i = begin; i < end; i++) {
     const double* p = &m.flex_vert0[3 * i];
     double* x = &d.flexvert_xpos[3 * i];
     math::Zero3(x);
     for (int j = 0; j < nnode; j++) {
-      // (node j: x slowest; order 1 tests the bits of j, order 2 its base-3 digits)
-      double w = order == 1
-                     ? FlexShape(p[2], j & 1, 1) * FlexShape(p[1], j & 2, 1) * FlexShape(p[0], j & 4, 1)
-                     : FlexShape(p[2], j % 3, 2) * FlexShape(p[1], (j / 3) % 3, 2) *
-                           FlexShape(p[0], j / 9, 2);
+      double w = FlexNodeWeight(p, j, order);
       for (int k = 0; k < 3; k++) x[k] += nodexpos[3 * j + k] * w;
     }
   }
@@ -72,20 +59,7 @@ void FlexElementBoxes(const Model& m, Data& d, int f) {
   const double* vert = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
   for (int e = 0; e < m.flex_elemnum[f]; e++) {
     const int* el = &m.flex_elem[m.flex_elemdataadr[f] + e * (dim + 1)];
-    double lo[3], hi[3];
-    math::Copy3(lo, vert + 3 * el[0]);
-    math::Copy3(hi, vert + 3 * el[0]);
-    for (int i = 1; i <= dim; i++) {
-      for (int k = 0; k < 3; k++) {
-        lo[k] = std::min(lo[k], vert[3 * el[i] + k]);
-        hi[k] = std::max(hi[k], vert[3 * el[i] + k]);
-      }
-    }
-    double* box = &d.flexelem_aabb[6 * (m.flex_elemadr[f] + e)];
-    for (int k = 0; k < 3; k++) {
-      box[k] = 0.5 * (hi[k] + lo[k]);
-      box[k + 3] = 0.5 * (hi[k] - lo[k]) + m.flex_radius[f];
-    }
+    FlexElementAabb(vert, el, dim, m.flex_radius[f], &d.flexelem_aabb[6 * (m.flex_elemadr[f] + e)]);
   }
 }
 
@@ -133,17 +107,13 @@ void MulMat322(double* r, const double* a, const double* b) {
   }
 }
 
-// Edge e of flex f seen from vertex v: its rest vector in the flex's plane (flex_vert0
-// scaled by the box), its current vector, and the mass of its far end (at least
-// mjMINVAL; 1 without a body).
+// Edge e of flex f seen from vertex v: its rest vector (FlexRestEdge) and its current
+// vector; returns the mass of its far end.
 double VertexEdge(const Model& m, const Data& d, int f, int e, int v, double dx[3], double dy[3]) {
   int vbase = m.flex_vertadr[f], ebase = m.flex_edgeadr[f];
   int v1 = m.flex_edge[2 * (ebase + e)], v2 = m.flex_edge[2 * (ebase + e) + 1];
-  math::Sub3(dx, &m.flex_vert0[3 * (vbase + v2)], &m.flex_vert0[3 * (vbase + v1)]);
-  for (int k = 0; k < 3; k++) dx[k] *= 2 * m.flex_size[3 * f + k];
   math::Sub3(dy, &d.flexvert_xpos[3 * (vbase + v2)], &d.flexvert_xpos[3 * (vbase + v1)]);
-  int body = m.flex_vertbodyid[vbase + (v == v1 ? v2 : v1)];
-  return body >= 0 ? std::max(m.body_mass[body], 1e-15) : 1.0;
+  return FlexRestEdge(m, f, e, v, dx);
 }
 
 // res (n) = jac (3 x n)^T vec, skipping zero entries of vec (MuJoCo's mju_mulMatTVec).
@@ -155,22 +125,36 @@ void MulJacT(const double* jac, const double* vec, int n, double* res) {
   }
 }
 
-// The derivative of one vertex invariant along one edge of vertex v, w.r.t. the edge's
-// two ends (g1 at v1, -g1 at v2), added into the dense row `row`.
-void AddEdgeEndsJacobian(const Model& m, Data& d, int f, int e, const double g1[3],
-                         double* row, SolverFrame& frame) {
+// Scratch for the vertex invariants' Jacobians, taken once per flex: the dense rows of
+// the two invariants, and for each end of an edge its dof chain and point Jacobian.
+struct VertexScratch {
+  double* rows[2];
+  int* chain[2];
+  double* jac[2];
+  double* local;
+};
+
+// The derivatives g[0], g[1] of the two invariants along edge e (at its first end; the
+// second end takes their negatives), added into the dense rows through both ends' point
+// Jacobians, in MuJoCo's order for each row: first end, then second.
+void AddEdgeEndsJacobian(const Model& m, Data& d, int f, int e, const double g[2][3],
+                         VertexScratch& s) {
   int vbase = m.flex_vertadr[f], ebase = m.flex_edgeadr[f];
   int ends[2] = {vbase + m.flex_edge[2 * (ebase + e)], vbase + m.flex_edge[2 * (ebase + e) + 1]};
-  int* chain = frame.IntsToWrite(m.nv);
-  double* jac = frame.RealsToWrite(3 * static_cast<size_t>(m.nv));
-  double* local = frame.RealsToWrite(m.nv);
+  int n[2];
   for (int side = 0; side < 2; side++) {
     int body = m.flex_vertbodyid[ends[side]];
-    int n = MergedDofChain(m, body, body, chain);
-    JacobianOnDofs(m, d, chain, n, jac, nullptr, &d.flexvert_xpos[3 * ends[side]], body);
-    double g[3] = {side ? -g1[0] : g1[0], side ? -g1[1] : g1[1], side ? -g1[2] : g1[2]};
-    MulJacT(jac, g, n, local);
-    for (int j = 0; j < n; j++) row[chain[j]] += local[j];
+    n[side] = MergedDofChain(m, body, body, s.chain[side]);
+    JacobianOnDofs(m, d, s.chain[side], n[side], s.jac[side], nullptr,
+                   &d.flexvert_xpos[3 * ends[side]], body);
+  }
+  for (int row = 0; row < 2; row++) {
+    for (int side = 0; side < 2; side++) {
+      double sign = side ? -1 : 1;
+      double gs[3] = {sign * g[row][0], sign * g[row][1], sign * g[row][2]};
+      MulJacT(s.jac[side], gs, n[side], s.local);
+      for (int j = 0; j < n[side]; j++) s.rows[row][s.chain[side][j]] += s.local[j];
+    }
   }
 }
 
@@ -179,8 +163,13 @@ void AddEdgeEndsJacobian(const Model& m, Data& d, int f, int e, const double g1[
 // gradient, less their rest values, scaled by sqrt(mass); and their Jacobians.
 void FlexVertexInvariants(const Model& m, Data& d, int f) {
   SolverFrame frame(d.solver_scratch);
-  double* j0 = frame.Reals(m.nv);
-  double* j1 = frame.Reals(m.nv);
+  VertexScratch scratch;
+  for (int k = 0; k < 2; k++) {
+    scratch.rows[k] = frame.Reals(m.nv);
+    scratch.chain[k] = frame.IntsToWrite(m.nv);
+    scratch.jac[k] = frame.RealsToWrite(3 * static_cast<size_t>(m.nv));
+  }
+  scratch.local = frame.RealsToWrite(m.nv);
   int vbase = m.flex_vertadr[f];
   for (int v = 0; v < m.flex_vertnum[f]; v++) {
     int vadr = vbase + v, adr = m.flex_vertedgeadr[vadr], count = m.flex_vertedgenum[vadr];
@@ -216,18 +205,17 @@ void FlexVertexInvariants(const Model& m, Data& d, int f) {
       int e = m.flex_vertedge[adr + k];
       double dx[3], dy[3];
       double w = VertexEdge(m, d, f, e, v, dx, dy);
-      double g0[3], g1[3];
+      double g[2][3];
       for (int r = 0; r < 3; r++) {
-        g0[r] = (fb[2 * r] * dx[0] + fb[2 * r + 1] * dx[1]) * (-2 * w);
-        g1[r] = (fadjb[2 * r] * dx[0] + fadjb[2 * r + 1] * dx[1]) * (-2 * w);
+        g[0][r] = (fb[2 * r] * dx[0] + fb[2 * r + 1] * dx[1]) * (-2 * w);
+        g[1][r] = (fadjb[2 * r] * dx[0] + fadjb[2 * r + 1] * dx[1]) * (-2 * w);
       }
-      AddEdgeEndsJacobian(m, d, f, e, g0, j0, frame);
-      AddEdgeEndsJacobian(m, d, f, e, g1, j1, frame);
+      AddEdgeEndsJacobian(m, d, f, e, g, scratch);
     }
 
     // Into the sparse rows, clearing the dense ones for the next vertex.
     for (int row = 0; row < 2; row++) {
-      double* dense = row ? j1 : j0;
+      double* dense = scratch.rows[row];
       int r = 2 * vadr + row, radr = m.flexvert_J_rowadr[r];
       for (int j = 0; j < m.flexvert_J_rownnz[r]; j++) {
         int col = m.flexvert_J_colind[radr + j];
@@ -240,6 +228,31 @@ void FlexVertexInvariants(const Model& m, Data& d, int f) {
 
 }  // namespace
 
+void FlexElementAabb(const double* xpos, const int* elem, int dim, double radius, double box[6]) {
+  double lo[3], hi[3];
+  math::Copy3(lo, xpos + 3 * elem[0]);
+  math::Copy3(hi, xpos + 3 * elem[0]);
+  for (int i = 1; i <= dim; i++) {
+    for (int k = 0; k < 3; k++) {
+      lo[k] = std::min(lo[k], xpos[3 * elem[i] + k]);
+      hi[k] = std::max(hi[k], xpos[3 * elem[i] + k]);
+    }
+  }
+  for (int k = 0; k < 3; k++) {
+    box[k] = 0.5 * (hi[k] + lo[k]);
+    box[k + 3] = 0.5 * (hi[k] - lo[k]) + radius;
+  }
+}
+
+double FlexRestEdge(const Model& m, int f, int e, int v, double dx[3]) {
+  int vbase = m.flex_vertadr[f], ebase = m.flex_edgeadr[f];
+  int v1 = m.flex_edge[2 * (ebase + e)], v2 = m.flex_edge[2 * (ebase + e) + 1];
+  math::Sub3(dx, &m.flex_vert0[3 * (vbase + v2)], &m.flex_vert0[3 * (vbase + v1)]);
+  for (int k = 0; k < 3; k++) dx[k] *= 2 * m.flex_size[3 * f + k];
+  int body = m.flex_vertbodyid[vbase + (v == v1 ? v2 : v1)];
+  return body >= 0 ? std::max(m.body_mass[body], 1e-15) : 1.0;
+}
+
 void FlexKinematics(const Model& m, Data& d) {
   if (m.nflex == 0) return;
   for (int f = 0; f < m.nflex; f++) {
@@ -250,6 +263,8 @@ void FlexKinematics(const Model& m, Data& d) {
     }
   }
   for (int f = 0; f < m.nflex; f++) FlexElementBoxes(m, d, f);
+  // The flexes' tree boxes from them (where MuJoCo's mj_flex updates them).
+  FlexBoundingVolumes(m, d);
 
   // Edges of flexes that can make forces: lengths, and Jacobians where needed.
   std::fill(d.flexedge_J.begin(), d.flexedge_J.end(), 0.0);

@@ -26,14 +26,26 @@ namespace simlab {
 
 namespace {
 
-// Each edge of a triangle ([0]) and a tetrahedron ([1]) as its two local vertices, in the
-// order of flex_elemedge (the compiler's kFlexElemEdges).
-constexpr int kElemEdges[2][6][2] = {{{1, 2}, {2, 0}, {0, 1}, {0, 0}, {0, 0}, {0, 0}},
-                                     {{0, 1}, {1, 2}, {2, 0}, {2, 3}, {0, 3}, {1, 3}}};
-
-// Numbers per element in flex_stiffness, per edge in flex_bending.
-constexpr int kStiffnessSize = 21;
-constexpr int kBendingSize = 17;
+// Where the metric between edges a and b of a triangle ([0]) or a tetrahedron ([1]) is
+// among its element's 21 flex_stiffness numbers: the upper triangle (a <= b), row by
+// row, as the compiler stores it; [b][a] names the same number.
+struct MetricIndex {
+  int at[2][6][6] = {};
+};
+constexpr MetricIndex MakeMetricIndex() {
+  MetricIndex index;
+  for (int dim = 2; dim <= 3; dim++) {
+    int nedge = kFlexElemEdgeCount[dim - 1], id = 0;
+    for (int a = 0; a < nedge; a++) {
+      for (int b = a; b < nedge; b++) {
+        index.at[dim - 2][a][b] = id;
+        index.at[dim - 2][b][a] = id++;
+      }
+    }
+  }
+  return index;
+}
+constexpr MetricIndex kMetricIndex = MakeMetricIndex();
 
 // A body that is a simple point mass (three slide joints, MuJoCo's body_simple 2) takes a
 // vertex force on its dofs directly.
@@ -107,7 +119,7 @@ void BendingForces(const Model& m, Data& d, int f, bool spring, bool damper) {
     int v[4] = {m.flex_edge[2 * edge], m.flex_edge[2 * edge + 1], m.flex_edgeflap[2 * edge],
                 m.flex_edgeflap[2 * edge + 1]};
     if (v[3] == -1) continue;
-    const double* b = &m.flex_bending[kBendingSize * edge];
+    const double* b = &m.flex_bending[kFlexBendingSize * edge];
 
     // Forces of the curved reference: gradients of the flap's volume.
     double ed[3][3], frc[4][3];
@@ -148,13 +160,14 @@ void InterpolatedForces(const Model& m, Data& d, int f, bool spring, bool damper
   int nnode = m.flex_nodenum[f], ndof = 3 * nnode;
   const int* bodyid = &m.flex_nodebodyid[m.flex_nodeadr[f]];
   const double* xpos0 = &m.flex_node0[3 * m.flex_nodeadr[f]];
-  const double* k = &m.flex_stiffness[kStiffnessSize * m.flex_elemadr[f]];
+  const double* k = &m.flex_stiffness[kFlexStiffnessSize * m.flex_elemadr[f]];
   StackFrame frame(d);
   double* xpos = frame.Alloc(ndof);
   double* displacement = frame.Alloc(ndof);
-  double* vel = frame.Alloc(ndof);
   double* frc = frame.Alloc(ndof);
-  double* dmp = frame.Alloc(ndof);
+  // (velocities only reach the damping)
+  double* vel = damper ? frame.Alloc(ndof) : nullptr;
+  double* dmp = damper ? frame.Alloc(ndof) : nullptr;
 
   // Corotated state and displacement from the reference.
   double quat[4] = {1, 0, 0, 0};
@@ -170,10 +183,12 @@ void InterpolatedForces(const Model& m, Data& d, int f, bool spring, bool damper
   const double no_torque[3] = {0, 0, 0};
   math::NegQuat(quat, quat);
   for (int i = 0; i < nnode; i++) {
-    double qfrc[3], qdmp[3];
+    double qfrc[3], qdmp[3] = {0, 0, 0};
     RotateAlways(qfrc, frc + 3 * i, quat);
-    RotateAlways(qdmp, dmp + 3 * i, quat);
-    math::Scale3(qdmp, qdmp, m.flex_damping[f]);
+    if (damper) {
+      RotateAlways(qdmp, dmp + 3 * i, quat);
+      math::Scale3(qdmp, qdmp, m.flex_damping[f]);
+    }
     int body = bodyid[i], dofadr = m.body_dofadr[body];
     if (m.flex_centered[f]) {
       for (int x = 0; x < 3; x++) {
@@ -199,46 +214,41 @@ void SquaredLengthGradients(double grad[6][2][3], const double* xpos, const int*
   }
 }
 
-// The local forces (3 per vertex) of element t of flex f, whose edges are flex edges
-// edgeadr + edge_ids[e]: the metric times the edges' elongations.
-void ElementForce(const Model& m, const Data& d, int edgeadr, const double* metric21,
-                  const double* xpos, const int* vert, const int* edge_ids, int dim,
-                  double damping_rate, double force[12]) {
-  const int(*edges)[2] = kElemEdges[dim - 2];
-  int nedge = dim == 2 ? 3 : 6;
-  double grad[6][2][3];
-  SquaredLengthGradients(grad, xpos, vert, edges, nedge);
-
-  // Elongation of each edge's square, with Rayleigh damping (Kharevych et al.,
-  // "Geometric, variational integrators for computer animation", section 5.2).
+// The elongation of each edge of flex f's square, with Rayleigh damping (Kharevych et al.,
+// "Geometric, variational integrators for computer animation", section 5.2), by the
+// flex's edge ids: computed once for all the elements that hold the edge.
+void EdgeElongations(const Model& m, const Data& d, int f, double damping_rate,
+                     double* elongation) {
   double timestep = m.opt.timestep;
-  double elongation[6];
-  for (int e = 0; e < nedge; e++) {
-    int edge = edgeadr + edge_ids[e];
+  int edgeadr = m.flex_edgeadr[f];
+  for (int e = 0; e < m.flex_edgenum[f]; e++) {
+    int edge = edgeadr + e;
     double length = d.flexedge_length[edge], rest = m.flexedge_length0[edge];
     double previous = length - d.flexedge_velocity[edge] * timestep;
     elongation[e] = length * length - rest * rest +
-                   (length * length - previous * previous) * damping_rate;
+                    (length * length - previous * previous) * damping_rate;
   }
+}
 
-  // The metric from its upper triangle.
-  double metric[36];
-  int id = 0;
-  for (int a = 0; a < nedge; a++) {
-    for (int b = a; b < nedge; b++) {
-      metric[nedge * a + b] = metric21[id];
-      metric[nedge * b + a] = metric21[id++];
-    }
-  }
+// The local forces (3 per vertex) of one element of dimension dim (vertices vert, flex
+// edge ids edge_ids): f = -sum over edges a, b of metric[a][b] elongation[a] grad[b], the
+// metric's upper triangle being the element's 21 stiffness numbers.
+void ElementForce(const double* metric21, const double* xpos, const int* vert,
+                  const int* edge_ids, const double* elongation, int dim, double force[12]) {
+  const int(*edges)[2] = kFlexElemEdges[dim - 1];
+  const int(*index)[6] = kMetricIndex.at[dim - 2];
+  int nedge = kFlexElemEdgeCount[dim - 1];
+  double grad[6][2][3];
+  SquaredLengthGradients(grad, xpos, vert, edges, nedge);
 
   // f -= elongation[a] metric[a][b] grad[b] on edge b's two vertices.
   for (int k = 0; k < 12; k++) force[k] = 0;
   for (int a = 0; a < nedge; a++) {
+    double elong = elongation[edge_ids[a]];
     for (int b = 0; b < nedge; b++) {
+      double metric = metric21[index[a][b]];
       for (int i = 0; i < 2; i++) {
-        for (int x = 0; x < 3; x++) {
-          force[3 * edges[b][i] + x] -= elongation[a] * grad[b][i][x] * metric[nedge * a + b];
-        }
+        for (int x = 0; x < 3; x++) force[3 * edges[b][i] + x] -= elong * grad[b][i][x] * metric;
       }
     }
   }
@@ -246,21 +256,23 @@ void ElementForce(const Model& m, const Data& d, int edgeadr, const double* metr
 
 // Element elasticity of flex f (triangles or tetrahedra), into qfrc_spring.
 void ElementForces(const Model& m, Data& d, int f) {
-  int dim = m.flex_dim[f], nedge = dim == 2 ? 3 : 6, nvert = m.flex_vertnum[f];
+  int dim = m.flex_dim[f], nedge = kFlexElemEdgeCount[dim - 1], nvert = m.flex_vertnum[f];
   const int* elem = &m.flex_elem[m.flex_elemdataadr[f]];
   const int* elemedge = &m.flex_elemedge[m.flex_elemedgeadr[f]];
   const double* xpos = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
-  const double* k = &m.flex_stiffness[kStiffnessSize * m.flex_elemadr[f]];
+  const double* k = &m.flex_stiffness[kFlexStiffnessSize * m.flex_elemadr[f]];
   double damping_rate = m.opt.timestep > 0 ? m.flex_damping[f] / m.opt.timestep : 0;
   StackFrame frame(d);
   double* qfrc = frame.Alloc(3 * nvert);
+  double* elongation = frame.Alloc(m.flex_edgenum[f]);
+  EdgeElongations(m, d, f, damping_rate, elongation);
 
   // Sum the elements' forces per vertex.
   for (int t = 0; t < m.flex_elemnum[f]; t++) {
     const int* vert = elem + (dim + 1) * t;
     double force[12];
-    ElementForce(m, d, m.flex_edgeadr[f], k + kStiffnessSize * t, xpos, vert,
-                 elemedge + nedge * t, dim, damping_rate, force);
+    ElementForce(k + kFlexStiffnessSize * t, xpos, vert, elemedge + nedge * t, elongation, dim,
+                 force);
     for (int i = 0; i <= dim; i++) {
       for (int x = 0; x < 3; x++) qfrc[3 * vert[i] + x] += force[3 * i + x];
     }
@@ -290,18 +302,15 @@ void FlexInterpState(const Model& m, const Data& d, int f, double* xpos, double*
 
   // World positions and velocities of the nodes: body origins, or points of the bodies.
   for (int i = 0; i < nnode; i++) {
+    FlexNodeXpos(m, d, f, nodeadr + i, xpos + 3 * i);
+    if (!vel) continue;
     int body = bodyid[i];
     if (m.flex_centered[f]) {
-      math::Copy3(xpos + 3 * i, &d.xpos[3 * body]);
-      if (vel) math::Copy3(vel + 3 * i, &d.qvel[m.body_dofadr[body]]);
+      math::Copy3(vel + 3 * i, &d.qvel[m.body_dofadr[body]]);
     } else {
-      math::MulMatVec3(xpos + 3 * i, &d.xmat[9 * body], &m.flex_node[3 * (nodeadr + i)]);
-      math::Add3(xpos + 3 * i, xpos + 3 * i, &d.xpos[3 * body]);
-      if (vel) {
-        double screw[6];
-        ObjectVelocity(m, d, kObjBody, body, screw, false);
-        math::Copy3(vel + 3 * i, screw + 3);
-      }
+      double screw[6];
+      ObjectVelocity(m, d, kObjBody, body, screw, false);
+      math::Copy3(vel + 3 * i, screw + 3);
     }
   }
 
@@ -327,7 +336,7 @@ void FlexElasticForces(const Model& m, Data& d, bool spring, bool damper) {
 
     // Bending first, then the elements (a flex without stiffness has none).
     if (dim == 2) BendingForces(m, d, f, spring, damper);
-    if (m.flex_stiffness[kStiffnessSize * m.flex_elemadr[f]] == 0) continue;
+    if (m.flex_stiffness[kFlexStiffnessSize * m.flex_elemadr[f]] == 0) continue;
     if (m.flex_interp[f]) {
       InterpolatedForces(m, d, f, spring, damper);
     } else {

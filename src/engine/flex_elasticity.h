@@ -5,20 +5,46 @@
 #ifndef SIMLAB_ENGINE_FLEX_ELASTICITY_H_
 #define SIMLAB_ENGINE_FLEX_ELASTICITY_H_
 
+#include "math/math.h"
 #include "simlab/data.h"
 #include "simlab/model.h"
 
 namespace simlab {
+
+// Numbers per element in flex_stiffness, per edge in flex_bending.
+inline constexpr int kFlexStiffnessSize = 21;
+inline constexpr int kFlexBendingSize = 17;
+
+// Edges of an element of dimension dim, at [dim - 1]: a segment 1, a triangle 3, a
+// tetrahedron 6 (MuJoCo's kNumEdges).
+inline constexpr int kFlexElemEdgeCount[3] = {1, 3, 6};
+
+// Each edge of an element as its two local vertices, at [dim - 1][edge] (MuJoCo's
+// eledge; -1 past the element's edges). flex_elemedge lists an element's edges in this
+// order, and the compiler numbers new edges as they first appear in it.
+inline constexpr int kFlexElemEdges[3][6][2] = {
+    {{0, 1}, {-1, -1}, {-1, -1}, {-1, -1}, {-1, -1}, {-1, -1}},
+    {{1, 2}, {2, 0}, {0, 1}, {-1, -1}, {-1, -1}, {-1, -1}},
+    {{0, 1}, {1, 2}, {2, 0}, {2, 3}, {0, 3}, {1, 3}}};
 
 // Adds every flex's elastic forces into qfrc_spring and its damping into qfrc_damper, as
 // MuJoCo does after the joint springs and dof dampers and before the flex edges' own
 // spring-dampers (spring, damper: those forces are enabled). As in MuJoCo the element
 // forces, damping included, go to qfrc_spring whatever the flags. Reads flexvert_xpos,
 // flexedge_length, flexedge_velocity (and for interpolated flexes xpos, xmat, cvel,
-// subtree_com, cdof); takes up to 15 * flex_nodenum or 3 * flex_vertnum doubles of the
-// Data stack, plus what ApplyForceTorque takes, for vertices of bodies that are not
-// simple point masses.
+// subtree_com, cdof); takes up to 15 * flex_nodenum or 3 * flex_vertnum + flex_edgenum
+// doubles of the Data stack, plus what ApplyForceTorque takes, for vertices of bodies
+// that are not simple point masses.
 void FlexElasticForces(const Model& m, Data& d, bool spring, bool damper);
+
+// The world position x of node `node` (a global node id) of interpolated flex f: its
+// body's origin if the flex is centered, else its offset carried by its body.
+inline void FlexNodeXpos(const Model& m, const Data& d, int f, int node, double x[3]) {
+  int b = m.flex_nodebodyid[node];
+  if (m.flex_centered[f]) return math::Copy3(x, &d.xpos[3 * b]);
+  math::MulMatVec3(x, &d.xmat[9 * b], &m.flex_node[3 * node]);
+  math::Add3(x, x, &d.xpos[3 * b]);
+}
 
 // The nodes of interpolated flex f in its corotated frame (MuJoCo's mj_flexInterpState):
 // their world positions (and, if vel is not null, velocities) rotated by quat, the
@@ -42,6 +68,16 @@ inline double FlexShapeSlope(double s, int i, int order) {
   if (i == 1) return 4 * (1 - 2 * s);
   return 4 * s - 1;
 }
+// The weight of node j (x slowest: order 1 reads the bits of j, order 2 its base-3
+// digits) at p in the flex's box: the product of the axes' shape functions (MuJoCo's
+// mju_evalBasis, as mju_interpolate3D and mj_vertBodyWeight weight the nodes).
+inline double FlexNodeWeight(const double p[3], int j, int order) {
+  if (order == 1) {
+    return FlexShape(p[2], j & 1, 1) * FlexShape(p[1], j & 2, 1) * FlexShape(p[0], j & 4, 1);
+  }
+  return FlexShape(p[2], j % 3, 2) * FlexShape(p[1], (j / 3) % 3, 2) * FlexShape(p[0], j / 9, 2);
+}
+
 // The gradient at p of the shape function of node (i, j, k) (x slowest): the product of
 // the axes' shape functions differentiated along each axis in turn.
 inline void FlexShapeGradient(double g[3], const double p[3], int i, int j, int k, int order) {

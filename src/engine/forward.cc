@@ -104,7 +104,6 @@ void KinematicsAndInertia(const Model& m, Data& d) {
     ComPos(m, d);
     CamLight(m, d);
     FlexKinematics(m, d);
-    FlexBoundingVolumes(m, d);
     Tendon(m, d);
     if (WakeOnTendonLimit(m, d)) UpdateSleep(m, d);
   }

@@ -75,18 +75,30 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
   }
 }
 
-int MergedDofChain(const Model& m, int b0, int b1, int* dofs) {
-  // Both chains walked up together (descending dof indices), shared ancestors once, then
-  // the list turned ascending.
-  int n = 0, i0 = LastDof(m, b0), i1 = LastDof(m, b1);
-  while (i0 >= 0 || i1 >= 0) {
-    int next = std::max(i0, i1);
+int MergedDofChains(const Model& m, const int* bodies, int nbodies, int* dofs) {
+  // Every chain walked up together (descending dof indices): the highest cursor's dof is
+  // taken once and every cursor on it moves to its parent, so shared ancestors come once;
+  // then the list is turned ascending.
+  int cursor[kMaxMergedChains];
+  for (int i = 0; i < nbodies; i++) cursor[i] = LastDof(m, bodies[i]);
+  int n = 0;
+  for (;;) {
+    int next = -1;
+    for (int i = 0; i < nbodies; i++) next = std::max(next, cursor[i]);
+    if (next < 0) break;
     dofs[n++] = next;
-    if (i0 == next) i0 = m.dof_parentid[i0];
-    if (i1 == next) i1 = m.dof_parentid[i1];
+    for (int i = 0; i < nbodies; i++) {
+      if (cursor[i] == next) cursor[i] = m.dof_parentid[next];
+    }
   }
   std::reverse(dofs, dofs + n);
   return n;
+}
+
+// Two bodies' chains: the merge of two.
+int MergedDofChain(const Model& m, int b0, int b1, int* dofs) {
+  const int bodies[2] = {b0, b1};
+  return MergedDofChains(m, bodies, 2, dofs);
 }
 
 void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site) {

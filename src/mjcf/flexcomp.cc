@@ -13,11 +13,6 @@ namespace simlab::mjcf {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kEpsilon = 1e-14;  // MuJoCo's mjEPS
-
-// Normalizes the first n numbers of v (MuJoCo's mjuu_normvec: too short or already unit
-// length, left alone).
-void NormalizeInPlace(double* v, int n) { compiler::NormalizeVec(v, n); }
 
 void AddPoint(FlexcompPoints* out, double x, double y, double z) {
   out->point.push_back(x);
@@ -67,18 +62,17 @@ void MakeSheet(const FlexcompShapeInput& in, bool needtex, FlexcompPoints* out) 
       if (needtex) AddTexcoord<double>(out, ix, count[0], iy, count[1]);
 
       // The disc's flipped quadrants.
-      bool flip = (pos[0] < -kEpsilon && pos[1] > -kEpsilon) ||
-                  (pos[0] > -kEpsilon && pos[1] < -kEpsilon);
+      bool flip = (pos[0] < -compiler::kEps && pos[1] > -compiler::kEps) ||
+                  (pos[0] > -compiler::kEps && pos[1] < -compiler::kEps);
       if (flip && in.type == kFcompDisc) {
         quad2tri[0][2] = 3;
         quad2tri[1][0] = 1;
       }
 
-      // The cell's two triangles.
+      // The cell's two triangles (numbered as a block's bottom layer, as MuJoCo does).
       if (ix < count[0] - 1 && iy < count[1] - 1) {
-        int stride = count[2] * count[1];
-        int vert[4] = {stride * ix + count[2] * iy, stride * (ix + 1) + count[2] * iy,
-                       stride * (ix + 1) + count[2] * (iy + 1), stride * ix + count[2] * (iy + 1)};
+        int vert[4] = {GridId(count, ix, iy, 0), GridId(count, ix + 1, iy, 0),
+                       GridId(count, ix + 1, iy + 1, 0), GridId(count, ix, iy + 1, 0)};
         for (const auto& tri : quad2tri) {
           for (int v : tri) out->element.push_back(vert[v]);
         }
@@ -92,7 +86,7 @@ void MakeBlock(const FlexcompShapeInput& in, bool needtex, FlexcompPoints* out) 
   const auto& count = in.count;
   static const int kCubeToTets[6][4] = {{0, 3, 1, 7}, {0, 1, 4, 7}, {1, 3, 2, 7},
                                         {1, 2, 6, 7}, {1, 5, 4, 7}, {1, 6, 5, 7}};
-  auto id = [&](int ix, int iy, int iz) { return count[2] * count[1] * ix + count[2] * iy + iz; };
+  auto id = [&](int ix, int iy, int iz) { return GridId(count, ix, iy, iz); };
   for (int ix = 0; ix < count[0]; ix++) {
     for (int iy = 0; iy < count[1]; iy++) {
       for (int iz = 0; iz < count[2]; iz++) {
@@ -139,13 +133,13 @@ void BoxProject(const FlexcompShapeInput& in, int ix, int iy, int iz, double pos
                     0.5 * in.spacing[2] * (count[2] - 1)};
   if (in.type == kFcompCylinder) {
     double l0 = std::max(std::abs(pos[0]), std::abs(pos[1]));
-    NormalizeInPlace(pos, 2);
+    compiler::NormalizeVec(pos, 2);
     pos[0] *= size[0] * l0;
     pos[1] *= size[1] * l0;
     pos[2] *= size[2];
     return;
   }
-  if (in.type == kFcompEllipsoid) NormalizeInPlace(pos, 3);
+  if (in.type == kFcompEllipsoid) compiler::NormalizeVec(pos, 3);
   for (int k = 0; k < 3; k++) pos[k] *= size[k];
 }
 
@@ -156,12 +150,11 @@ void BoxSurfacePoints(const FlexcompShapeInput& in, bool needtex, std::vector<in
                       FlexcompPoints* out) {
   const auto& count = in.count;
   int n = 0;
-  auto lin = [&](int ix, int iy, int iz) { return ix * count[1] * count[2] + iy * count[2] + iz; };
   auto add = [&](int ix, int iy, int iz, int tu, int nu, int tv, int nv) {
     double pos[3];
     BoxProject(in, ix, iy, iz, pos);
     AddPoint(out, pos[0], pos[1], pos[2]);
-    (*idx)[lin(ix, iy, iz)] = n++;
+    (*idx)[GridId(count, ix, iy, iz)] = n++;
     if (needtex) AddTexcoord<float>(out, tu, nu, tv, nv);
   };
   // (a surface is open at the top: no top side, and the other sides reach its edge)
@@ -201,7 +194,7 @@ void BoxSurfaceElements(const FlexcompShapeInput& in, const std::vector<int>& id
                         FlexcompPoints* out) {
   const auto& count = in.count;
   bool solid = in.dim == 3;
-  auto lin = [&](int ix, int iy, int iz) { return idx[ix * count[1] * count[2] + iy * count[2] + iz]; };
+  auto lin = [&](int ix, int iy, int iz) { return idx[GridId(count, ix, iy, iz)]; };
   auto box = [&](int ix, int iy, int iz) { return BoxId(count, ix, iy, iz); };
   // z sides
   for (int iz = 0; iz < count[2]; iz += count[2] - 1) {
@@ -265,7 +258,7 @@ void ProjectToDisc(const FlexcompShapeInput& in, FlexcompPoints* out) {
   for (size_t i = 0; i + 2 < out->point.size(); i += 3) {
     double* pos = out->point.data() + i;
     double l0 = std::max(std::abs(pos[0]), std::abs(pos[1]));
-    NormalizeInPlace(pos, 2);
+    compiler::NormalizeVec(pos, 2);
     pos[0] *= size[0] * l0;
     pos[1] *= size[1] * l0;
   }
@@ -285,15 +278,12 @@ std::string MakeFlexcompShape(const FlexcompShapeInput& in, FlexcompPoints* out)
       if (out->element.empty()) return "No elements were created in grid";
       return "";
     case kFcompSquare:
-    case kFcompDisc: {
-      FlexcompShapeInput sheet = in;
-      sheet.dim = 2;
+    case kFcompDisc:
       out->dim = 2;
-      MakeSheet(sheet, needtex, out);
+      MakeSheet(in, needtex, out);
       if (out->element.empty()) return "No elements were created in grid";
       if (in.type == kFcompDisc) ProjectToDisc(in, out);
       return "";
-    }
     case kFcompBox:
     case kFcompCylinder:
     case kFcompEllipsoid:

@@ -34,6 +34,13 @@ struct FlexcompPoints {
   std::vector<int> elemtexcoord;
 };
 
+// The point id of grid coordinates in a count[0] x count[1] sheet or count[0] x count[1]
+// x count[2] block of points, x slowest (MuJoCo's GridID).
+inline int GridId(const std::array<int, 3>& count, int ix, int iy) { return ix * count[1] + iy; }
+inline int GridId(const std::array<int, 3>& count, int ix, int iy, int iz) {
+  return ix * count[1] * count[2] + iy * count[2] + iz;
+}
+
 // What a generated shape needs: its type, dimension, grid counts and spacing, and
 // whether it makes texture coordinates (a material is named and none were written).
 struct FlexcompShapeInput {
@@ -74,7 +81,7 @@ struct FlexcompSpec {
 
 // The mesh or GMSH file of a flexcomp, read from `path` (already resolved against the
 // model's folder and meshdir; `assets` holds files given in memory, or is null).
-// type="mesh": a surface mesh (any format simlab's <mesh> reads). dim 2 takes its
+// type="mesh": a surface mesh (STL or OBJ, as simlab's <mesh> reads them). dim 2 takes its
 // faces as triangles; dim 3 makes a tetrahedron from `origin` to each face of positive
 // volume, the origin becoming point 0 (MuJoCo's MakeMesh). texcoord and elemtexcoord
 // come from the mesh when it has texture coordinates.
@@ -82,9 +89,10 @@ struct FlexcompSpec {
 // tetrahedra; sets out->dim from the file's elements and appends its nodes and elements
 // to any points and elements written (MuJoCo's LoadGMSH). A mesh file's texture
 // coordinates replace any written; without them the written ones stay.
-// Return "" on success, else the error message (MuJoCo's wording where it has one).
-std::string LoadFlexcompMesh(const std::string& path, const AssetFiles* assets, int dim,
-                             const std::array<double, 3>& origin, FlexcompPoints* out);
+// Return "" on success, else the error message (MuJoCo's wording where it has one); a
+// mesh file the mesh reader refuses throws simlab::Error at `src`, the flexcomp.
+std::string LoadFlexcompMesh(const Source& src, const std::string& path, const AssetFiles* assets,
+                             int dim, const std::array<double, 3>& origin, FlexcompPoints* out);
 std::string LoadFlexcompGmsh(const std::string& path, const AssetFiles* assets,
                              FlexcompPoints* out);
 

@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <map>
 #include <sstream>
 #include <exception>
 #include <string>
@@ -28,13 +27,12 @@
 #include "mjcf/assets.h"
 #include "mjcf/flexcomp.h"
 #include "mjcf/spec.h"
+#include "simlab/model.h"
 #include "simlab/simlab.h"
 
 namespace simlab::mjcf {
 
 namespace {
-
-constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL
 
 // ---------------------------------------------------------------- files
 
@@ -57,20 +55,6 @@ std::string Extension(const std::string& path) {
 
 // ---------------------------------------------------------------- mesh
 
-// A simlab::Error from a reader without an element carries ": " before the message.
-std::string WithoutEmptySource(const std::string& message) {
-  return message.rfind(": ", 0) == 0 ? message.substr(2) : message;
-}
-
-// The triangle count of a binary STL file (80-byte header, a count, 50 bytes per
-// triangle), or -1 when its size does not fit one.
-int64_t BinaryStlTriangles(const std::string& bytes) {
-  if (bytes.size() < 84) return -1;
-  uint32_t count = 0;
-  std::memcpy(&count, bytes.data() + 80, 4);
-  return uint64_t{count} * 50 == bytes.size() - 84 ? int64_t{count} : -1;
-}
-
 // MuJoCo refuses a non-finite vertex, naming its first coordinate among the file's
 // vertices as read (for binary STL, before repeated ones are merged).
 std::string NonFiniteVertex(const std::string& ext, const std::string& bytes,
@@ -80,7 +64,7 @@ std::string NonFiniteVertex(const std::string& ext, const std::string& bytes,
   };
 
   // Binary STL: each triangle's 3 corners follow its 12-byte normal.
-  int64_t triangles = ext == ".stl" ? BinaryStlTriangles(bytes) : -1;
+  int64_t triangles = ext == ".stl" ? compiler::BinaryStlFaceCount(bytes) : -1;
   if (triangles >= 0) {
     for (uint64_t corner = 0; corner < 3 * uint64_t(triangles); corner++) {
       float v[3];
@@ -99,46 +83,32 @@ std::string NonFiniteVertex(const std::string& ext, const std::string& bytes,
   return "";
 }
 
-// Merges exactly equal vertices (0 and -0 alike), keeping each at its first occurrence
-// and in that order, and renumbers the faces (MuJoCo's ProcessVertices with
-// remove_repeated; STL files come merged already, OBJ files do not).
-void MergeRepeatedVertices(compiler::MeshData* mesh) {
-  std::map<std::array<float, 3>, int> index_of;
-  std::vector<float> unique;
-  std::vector<int> renumber;
-  for (size_t i = 0; i + 2 < mesh->vert.size(); i += 3) {
-    std::array<float, 3> key = {mesh->vert[i], mesh->vert[i + 1], mesh->vert[i + 2]};
-    auto [it, added] = index_of.emplace(key, static_cast<int>(unique.size() / 3));
-    if (added) unique.insert(unique.end(), key.begin(), key.end());
-    renumber.push_back(it->second);
-  }
-  for (int& f : mesh->face) f = renumber[f];
-  mesh->vert = std::move(unique);
-}
-
 // Reads the surface mesh at `path` with simlab's mesh reader, checked and merged as
-// MuJoCo's LoadFromResource(resource, remove_repeated=true) leaves it.
-std::string ReadSurfaceMesh(const std::string& path, const AssetFiles* assets,
-                            compiler::MeshData* mesh) {
-  // The file must open before its type is looked at, as in MuJoCo. (Its bytes serve the
-  // finiteness check below; the mesh reader reads the file itself.)
+// MuJoCo's LoadFromResource(resource, remove_repeated=true) leaves it. The reader's own
+// errors throw at `src`, the flexcomp.
+std::string ReadSurfaceMesh(const Source& src, const std::string& path,
+                            const AssetFiles* assets, compiler::MeshData* mesh) {
+  // The file must open before its type is looked at, as in MuJoCo (the reader refuses
+  // every type but STL and OBJ, MSH being refused already).
   std::string bytes, problem;
   if (!ReadFileOrAsset(path, assets, &bytes, &problem)) return OpenError(path, assets, problem);
   std::string ext = Extension(path);
   if (ext == ".ply") return "unsupported mesh type: 'model/ply'";
-  if (ext != ".stl" && ext != ".obj") return "unknown or unsupported mesh file: '" + path + "'";
 
   // Parse (STL: repeated vertices merged; OBJ: polygons cut into triangles).
   MeshSpec spec;
+  spec.src = src;
   spec.path = path;
   try {
-    *mesh = compiler::ReadMeshFile(spec, assets);
+    *mesh = compiler::ReadMeshBytes(spec, bytes);
+  } catch (const Error&) {
+    throw;  // (it names the flexcomp already)
   } catch (const std::exception& e) {
-    return WithoutEmptySource(e.what());
+    return e.what();
   }
   std::string bad = NonFiniteVertex(ext, bytes, *mesh);
   if (!bad.empty()) return bad;
-  MergeRepeatedVertices(mesh);
+  if (ext == ".obj") compiler::MergeRepeatedVertices(mesh);
   return "";
 }
 
@@ -613,15 +583,15 @@ void ReadGmsh22(std::string_view bytes, const GmshLayout& at, FlexcompPoints* ou
 
 // ---------------------------------------------------------------- entry points
 
-std::string LoadFlexcompMesh(const std::string& path, const AssetFiles* assets, int dim,
-                             const std::array<double, 3>& origin, FlexcompPoints* out) {
+std::string LoadFlexcompMesh(const Source& src, const std::string& path, const AssetFiles* assets,
+                             int dim, const std::array<double, 3>& origin, FlexcompPoints* out) {
   // MuJoCo's checks before reading.
   if (path.empty()) return "File is required";
   if (dim < 2) return "Flex dim must be at least 2 for mesh";
   if (Extension(path) == ".msh") return "legacy MSH files are not supported in flexcomp";
 
   compiler::MeshData mesh;
-  std::string error = ReadSurfaceMesh(path, assets, &mesh);
+  std::string error = ReadSurfaceMesh(src, path, assets, &mesh);
   if (!error.empty()) return error;
   if (mesh.vert.empty() || mesh.face.empty()) return "Vertex and face data required";
 

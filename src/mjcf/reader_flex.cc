@@ -2,14 +2,10 @@
 // is expanded here, as MuJoCo's parser expands it (mjCFlexcomp::Make): its shape's
 // points, the bodies and slider joints that carry the points that move, the flex, and
 // the edge equality it asks for.
-#include <algorithm>
-#include <cmath>
 #include <string>
 
 #include "compiler/orientation.h"
-#include "mjcf/error.h"
 #include "mjcf/flexcomp.h"
-#include "mjcf/limits.h"
 #include "mjcf/reader.h"
 
 namespace simlab::mjcf {
@@ -82,12 +78,6 @@ void ReadFlexLook(const XmlElement& e, FlexSpec* flex) {
   e.Bool("flatskin", &flex->flatskin);
 }
 
-bool ParseDouble(const std::string& t, double* out) {
-  char* end = nullptr;
-  *out = std::strtod(t.c_str(), &end);
-  return end != t.c_str() && *end == '\0';
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------- <flex>
@@ -133,7 +123,6 @@ void Reader::Flexcomp(const XmlElement& e, BodySpec* body, const DefaultClass* d
                      "xyaxes", "zaxis", "euler", "origin"});
   FlexcompSpec fc;
   fc.src = e.src();
-  fc.flex.src = e.src();
   e.RequiredText("name", &fc.name);
   e.Enum("type", &fc.type, kFlexcompTypes);
   e.Ints("count", fc.count.data(), 3);

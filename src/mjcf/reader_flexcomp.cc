@@ -5,27 +5,19 @@
 #include <algorithm>
 #include <string>
 
-#include "mjcf/error.h"
 #include "mjcf/flexcomp.h"
 #include "mjcf/limits.h"
 #include "mjcf/reader.h"
 #include "compiler/orientation.h"
 #include "math/math.h"
+#include "simlab/model.h"
 
 namespace simlab::mjcf {
 
 namespace {
 
-constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL
-
 bool IsDirect(int type) { return type == kFcompDirect || type == kFcompMesh || type == kFcompGmsh; }
 bool IsInterpolated(int dof) { return dof == kFcompDofTrilinear || dof == kFcompDofQuadratic; }
-
-// The point id of grid coordinates (MuJoCo's GridID).
-int GridId(const FlexcompSpec& fc, int ix, int iy) { return ix * fc.count[1] + iy; }
-int GridId(const FlexcompSpec& fc, int ix, int iy, int iz) {
-  return ix * fc.count[1] * fc.count[2] + iy * fc.count[2] + iz;
-}
 
 // The checks MuJoCo makes before building: name, dim, counts, spacing, scale, mass.
 void CheckFlexcomp(const XmlElement& e, const FlexcompSpec& fc, bool named_parent) {
@@ -60,15 +52,12 @@ void CheckFlexcomp(const XmlElement& e, const FlexcompSpec& fc, bool named_paren
   }
 }
 
-// The shape's points and elements, by type.
+// The shape's points and elements, by type (a file's loader makes MuJoCo's checks).
 void MakeShape(const XmlElement& e, FlexcompSpec* fc, const AssetFiles* assets) {
   std::string error;
   if (fc->type == kFcompMesh || fc->type == kFcompGmsh) {
-    if (fc->file.empty()) e.Fail("File is required");
-    if (fc->type == kFcompMesh && fc->flex.dim < 2) e.Fail("Flex dim must be at least 2 for mesh");
-    fc->shape.dim = fc->flex.dim;
     error = fc->type == kFcompMesh
-                ? LoadFlexcompMesh(fc->file, assets, fc->flex.dim, fc->origin, &fc->shape)
+                ? LoadFlexcompMesh(fc->src, fc->file, assets, fc->flex.dim, fc->origin, &fc->shape)
                 : LoadFlexcompGmsh(fc->file, assets, &fc->shape);
     if (fc->type == kFcompGmsh) fc->flex.dim = fc->shape.dim;
   } else if (fc->type != kFcompDirect) {
@@ -150,7 +139,7 @@ void PinPoints(const XmlElement& e, FlexcompSpec* fc, int npoint, int nnode, boo
       if (fc->pingrid[i + k] < 0 || fc->pingrid[i + k] >= limit[k]) e.Fail("pingrid out of range");
     }
     const int* g = fc->pingrid.data() + i;
-    pinned[dim == 2 ? GridId(*fc, g[0], g[1]) : GridId(*fc, g[0], g[1], g[2])] = true;
+    pinned[dim == 2 ? GridId(fc->count, g[0], g[1]) : GridId(fc->count, g[0], g[1], g[2])] = true;
   }
   for (size_t i = 0; i < fc->pingridrange.size(); i += 2 * dim) {
     const int* r = fc->pingridrange.data() + i;
@@ -160,10 +149,10 @@ void PinPoints(const XmlElement& e, FlexcompSpec* fc, int npoint, int nnode, boo
     for (int ix = r[0]; ix <= r[dim]; ix++) {
       for (int iy = r[1]; iy <= r[dim + 1]; iy++) {
         if (dim == 2) {
-          pinned[GridId(*fc, ix, iy)] = true;
+          pinned[GridId(fc->count, ix, iy)] = true;
           continue;
         }
-        for (int iz = r[2]; iz <= r[5]; iz++) pinned[GridId(*fc, ix, iy, iz)] = true;
+        for (int iz = r[2]; iz <= r[5]; iz++) pinned[GridId(fc->count, ix, iy, iz)] = true;
       }
     }
   }
@@ -340,19 +329,20 @@ void Reader::MakeFlexcomp(const XmlElement& e, FlexcompSpec* fc, BodySpec* body,
   flex.src = fc->src;
   flex.src.tag = "flex";
   flex.src.name = fc->name;
-  flex.elem = fc->shape.element;
-  flex.texcoord = fc->shape.texcoord;
-  flex.elemtexcoord = fc->shape.elemtexcoord;
+  // (the flexcomp is dropped once expanded: its shape moves into the flex)
+  flex.elem = std::move(fc->shape.element);
+  flex.texcoord = std::move(fc->shape.texcoord);
+  flex.elemtexcoord = std::move(fc->shape.elemtexcoord);
   std::string parent = IsWorld(body) ? "world" : body->src.name;
   if (fc->rigid) {
-    flex.vert = fc->shape.point;
+    flex.vert = std::move(fc->shape.point);
     flex.vertbody = {parent};
     spec_->flexes.push_back(std::move(flex));
     return;
   }
   AddVertexBodies(fc, body, def, centered, parent);
   if (IsInterpolated(fc->dof)) AddNodeBodies(fc, body, def, minmax, parent);
-  if (!centered || IsInterpolated(fc->dof)) flex.vert = fc->shape.point;
+  if (!centered || IsInterpolated(fc->dof)) flex.vert = std::move(fc->shape.point);
   spec_->flexes.push_back(std::move(flex));
 
   // The equality that keeps the edges (or the vertices' metric) at their lengths.

@@ -73,9 +73,7 @@ std::vector<std::string> XmlElement::Tokens(const char* name) const {
 
 // ---------------------------------------------------------------- numbers
 
-namespace {
-
-// Parses a whole token as a double; false if anything is left over.
+// The whole token, or false (out untouched).
 bool ParseDouble(const std::string& token, double* out) {
   errno = 0;
   char* end = nullptr;
@@ -84,8 +82,6 @@ bool ParseDouble(const std::string& token, double* out) {
   *out = v;
   return true;
 }
-
-}  // namespace
 
 bool ParseFloat(const std::string& t, float* out) {
   errno = 0;

@@ -85,6 +85,10 @@ class XmlElement {
   Source src_;
 };
 
+// Parses a whole token as a double; false if anything is left over (a value out of
+// range reads as strtod gives it: infinity, or a denormal or zero).
+bool ParseDouble(const std::string& token, double* out);
+
 // Parses a whole token as an int; false if it is not one or out of range.
 bool ParseInt(const std::string& token, int* out);
 
