@@ -51,6 +51,7 @@ std::vector<Case> ReadCases() {
   for (const char* list : {"tests/conformance/cases.txt", "tests/conformance/actuation_cases.txt",
                            "tests/conformance/corpus_cases.txt",
                            "tests/conformance/flex_cases.txt",
+                           "tests/conformance/flex_native_cases.txt",
                            "tests/conformance/tendon_cases.txt",
                            "tests/conformance/constraint_cases.txt",
                            "tests/conformance/fluid_cases.txt",

@@ -2,8 +2,11 @@
 // errors for flexes and flexcomps that cannot be built. (Agreement with MuJoCo is in the
 // conformance goldens: tests/conformance/flex_cases.txt, and the compiler's flex fields
 // in CompilerConformance.Flexes.)
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -82,6 +85,76 @@ TEST(Flex, EdgeEqualityHoldsAHangingCloth) {
 }
 
 // Flexes and flexcomps that cannot be built: file, line, element and what is wrong.
+// Two tetrahedra at the ends of a 4 x 1 x 1 box, trilinear on cellcount='4 1 1': a
+// lattice of 5 x 2 x 2 nodes over the box. The middle cells hold no element, so the
+// nodes that only they hold (x = 2) stay in the parent; the others get bodies sharing
+// the mass. Elastic cells get a 24 x 24 stiffness each, empty ones none (MuJoCo 3.12).
+std::string CellFlexcomp(const std::string& attrs, const std::string& children = "") {
+  return Flexcomp("type='direct' dim='3' dof='trilinear' mass='1.6' radius='.01' " + attrs +
+                      " point='0 0 0  .9 0 0  0 1 0  0 0 1  4 1 1  3.1 1 1  4 0 1  4 1 0'"
+                      " element='0 1 2 3  4 5 6 7'",
+                  "<contact selfcollide='none'/>" + children);
+}
+
+TEST(Flex, CellcountLatticePinsNodesOfEmptyCells) {
+  Model m = LoadXmlString(CellFlexcomp("cellcount='4 1 1'", "<elasticity young='100' poisson='0.3'/>"),
+                          "cells.xml");
+  ASSERT_EQ(m.nflex, 1);
+  EXPECT_EQ(m.flex_cellnum[0], 4);
+  EXPECT_EQ(m.flex_cellnum[1], 1);
+  EXPECT_EQ(m.flex_cellnum[2], 1);
+  EXPECT_EQ(m.flex_interp[0], 1);
+  ASSERT_EQ(m.flex_nodenum[0], 5 * 2 * 2);
+  for (int i = 0; i < 5; i++) {
+    for (int j = 0; j < 2; j++) {
+      for (int k = 0; k < 2; k++) {
+        int body = m.flex_nodebodyid[(i * 2 + j) * 2 + k];
+        std::string name = "f_" + std::to_string(i) + "_" + std::to_string(j) + "_" + std::to_string(k);
+        EXPECT_EQ(m.body_names[body], i == 2 ? "b" : name);
+        if (i != 2) EXPECT_DOUBLE_EQ(m.body_mass[body], 0.1);  // 1.6 over 16 nodes
+      }
+    }
+  }
+  EXPECT_EQ(m.nbody, 2 + 16);
+  EXPECT_EQ(m.flex_centered[0], 0);
+  // A pinned node sits at its place in the parent: (2, 0, 0) of the box.
+  EXPECT_DOUBLE_EQ(m.flex_node[3 * 8], 2.0);
+  // The stiffness of four cells, zero in the two empty ones.
+  ASSERT_EQ(m.nflexstiffness, 4 * 24 * 24);
+  EXPECT_EQ(m.flex_stiffnessadr[0], 0);
+  for (int cell = 0; cell < 4; cell++) {
+    double first = m.flex_stiffness[cell * 24 * 24];
+    if (cell == 1 || cell == 2) {
+      EXPECT_EQ(first, 0) << cell;
+    } else {
+      EXPECT_LT(first, 0) << cell;  // stored negated
+    }
+  }
+  // A vertex moves with its own cell's nodes: at rest, where it was written.
+  Data d = MakeData(m);
+  Forward(m, d);
+  EXPECT_NEAR(d.flexvert_xpos[3 * 4 + 0], 4.0, 1e-12);
+  EXPECT_NEAR(d.flexvert_xpos[3 * 4 + 2], 2.0, 1e-12);  // z 1 in b at height 1
+}
+
+// A shell (2D elasticity on an interpolated flex): the lattice's interior nodes stay in
+// the parent, flex_interp is -order, each of the 24 boundary faces of 2 x 2 x 2 cells gets
+// a 12 x 12 membrane stiffness, and the 48 edges between faces their bending.
+TEST(Flex, CellcountShellPinsTheInterior) {
+  Model m = LoadXmlString(
+      CellFlexcomp("cellcount='2 2 2'", "<elasticity young='100' poisson='0.3' elastic2d='bend' thickness='.1'/>"),
+      "shell.xml");
+  EXPECT_EQ(m.flex_interp[0], -1);
+  ASSERT_EQ(m.flex_nodenum[0], 27);
+  for (int n = 0; n < 27; n++) {
+    EXPECT_EQ(m.body_names[m.flex_nodebodyid[n]] == "b", n == 13) << n;  // (1, 1, 1)
+  }
+  EXPECT_EQ(m.nflexstiffness, 24 * 12 * 12);
+  ASSERT_GE(m.flex_bendingadr[0], 0);
+  EXPECT_EQ(m.flex_bending[m.flex_bendingadr[0]], 48);
+  EXPECT_EQ(m.nflexbending, 1 + 48 * 10);
+}
+
 TEST(Flex, BadFlexesAreClearErrors) {
   struct Case {
     std::string xml;
@@ -109,6 +182,167 @@ TEST(Flex, BadFlexesAreClearErrors) {
        "<equality><flex flex='x'/></equality></mujoco>",
        {"rigid flex 'x' in equality constraint"}},
       {"<mujoco><equality><flex flex='missing'/></equality></mujoco>", {"missing"}},
+      {Flexcomp("type='grid' count='3 3 1' cellcount='2 2 1'"),
+       {"bad.xml:1", "flexcomp", "cellcount requires dof=\"trilinear\" or \"quadratic\""}},
+      {CellFlexcomp("cellcount='0 1 1'"),
+       {"cellcount cannot be 0 in any dimension when interpolation order > 0"}},
+      {CellFlexcomp("cellcount='2 -1 1'"), {"cellcount must be positive"}},
+      {CellFlexcomp("cellcount='2 2'"), {"cellcount"}},
+      {CellFlexcomp("cellcount='2000 2000 2000'"), {"cellcount=", "budget"}},
+  };
+  for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
+}
+
+// dof='2d': a body per point with two sliders, along its parent's x and y. Under a
+// parent turned 90 degrees about x the sheet's plane holds the world's z: the cloth,
+// pinned along one row, falls in that plane and never leaves it.
+TEST(Flex, PlanarFlexcompSlidesInItsParentsPlane) {
+  std::string xml = "<mujoco><worldbody><body name='b' pos='0 0 1' euler='90 0 0'>"
+                    "<flexcomp name='f' type='grid' count='3 3 1' spacing='.05 .05 .05' "
+                    "radius='.001' dof='2d'><edge equality='true'/><pin id='2 5 8'/>"
+                    "</flexcomp></body></worldbody></mujoco>";
+  Model m = LoadXmlString(xml, "planar.xml");
+  EXPECT_EQ(m.nbody, 2 + 6);
+  EXPECT_EQ(m.njnt, 12);
+  for (int v : {0, 1, 3, 4, 6, 7}) {
+    int body = m.flex_vertbodyid[v];
+    ASSERT_EQ(m.body_jntnum[body], 2);
+    EXPECT_EQ(m.body_simple[body], 2);  // a point mass on sliders (MuJoCo's simple 2)
+    for (int j = 0; j < 2; j++) {
+      int joint = m.body_jntadr[body] + j;
+      EXPECT_EQ(m.jnt_type[joint], kJointSlide);
+      for (int k = 0; k < 3; k++) EXPECT_EQ(m.jnt_axis[3 * joint + k], k == j ? 1 : 0);
+    }
+  }
+  Data d = MakeData(m);
+  for (int i = 0; i < 300; i++) Step(m, d);
+  for (int v = 0; v < m.flex_vertnum[0]; v++) {
+    EXPECT_NEAR(d.flexvert_xpos[3 * v + 1], 0, 1e-12) << v;  // the parent's z: world -y
+  }
+  EXPECT_LT(d.flexvert_xpos[3 * 0 + 2], 1 - 0.01);  // the free side fell
+}
+
+// The elastic forces on a 2d sheet's point masses (taken in their bodies' frame) equal
+// the same forces through the bodies' Jacobians: the same sheet under a parent that
+// slides, whose vertex bodies are not simple.
+TEST(Flex, PlanarElasticForcesOnPointMassesFollowTheirFrame) {
+  auto sheet = [](const std::string& joint) {
+    return "<mujoco><worldbody><body name='b' pos='0 0 1' euler='90 30 0'>"
+           "<inertial pos='0 0 0' mass='1' diaginertia='1 1 1'/>" + joint +
+           "<flexcomp name='f' type='grid' count='3 3 1' spacing='.1 .1 .1' radius='.001' "
+           "dof='2d'><elasticity young='1e3' poisson='.3' thickness='.01' elastic2d='stretch'/>"
+           "</flexcomp></body></worldbody></mujoco>";
+  };
+  Model simple = LoadXmlString(sheet(""), "simple.xml");
+  Model moving = LoadXmlString(sheet("<joint type='slide' axis='0 0 1'/>"), "moving.xml");
+  int body = simple.flex_vertbodyid[4];
+  ASSERT_EQ(simple.body_simple[body], 2);
+  ASSERT_EQ(moving.body_simple[moving.flex_vertbodyid[4]], 0);
+  Data a = MakeData(simple), b = MakeData(moving);
+  // Stretch the middle vertex; the moving model's dofs follow the parent's one.
+  int q = simple.jnt_qposadr[simple.body_jntadr[body]];
+  for (auto [data, shift] : {std::pair<Data*, int>{&a, 0}, {&b, 1}}) {
+    data->qpos[q + shift] += 0.01;
+    data->qpos[q + shift + 1] -= 0.02;
+  }
+  Forward(simple, a);
+  Forward(moving, b);
+  double largest = 0;
+  for (int v = 0; v < simple.nv; v++) {
+    largest = std::max(largest, std::abs(a.qfrc_spring[v]));
+    EXPECT_NEAR(a.qfrc_spring[v], b.qfrc_spring[v + 1], 1e-9) << v;
+  }
+  EXPECT_GT(largest, 1e-3);
+}
+
+// Strain equality on a trilinear cube (MuJoCo 3.12): one flexstrain for its one cell,
+// a row per stiff mode of the cell's stiffness (24 node dofs less 6 rigid motions; 75
+// for the 27 quadratic nodes). Stretched by a fifth along x, the rows pull it back to
+// its rest shape.
+TEST(Flex, StrainEqualityPullsAStretchedBoxBack) {
+  auto cube = [](const char* dof) {
+    return std::string("<mujoco><option gravity='0 0 0'/><worldbody><body name='b'>"
+                       "<flexcomp name='f' type='grid' count='2 2 2' spacing='.1 .1 .1' dim='3' "
+                       "radius='.001' dof='") +
+           dof + "'><edge equality='strain'/><contact selfcollide='none'/></flexcomp>"
+                 "</body></worldbody></mujoco>";
+  };
+  Model quadratic = LoadXmlString(cube("quadratic"), "quadratic.xml");
+  Data dq = MakeData(quadratic);
+  Forward(quadratic, dq);
+  EXPECT_EQ(dq.ne, 75);
+
+  Model m = LoadXmlString(cube("trilinear"), "strain.xml");
+  ASSERT_EQ(m.neq, 1);
+  EXPECT_EQ(m.eq_type[0], kEqFlexStrain);
+  EXPECT_EQ(m.flex_edgeequality[0], 3);
+  Data d = MakeData(m);
+  Forward(m, d);
+  ASSERT_EQ(d.ne, 18);
+  for (int r = 0; r < d.ne; r++) EXPECT_NEAR(d.efc_pos[r], 0, 1e-12);
+
+  // Nodes (1, j, k) moved 2 cm along x, away from nodes (0, j, k).
+  auto extent = [&](const Data& data) {
+    double sum = 0;
+    for (int n = 0; n < 4; n++) {
+      sum += data.xpos[3 * m.flex_nodebodyid[4 + n]] - data.xpos[3 * m.flex_nodebodyid[n]];
+    }
+    return sum / 4;
+  };
+  for (int n = 4; n < 8; n++) d.qpos[m.jnt_qposadr[m.body_jntadr[m.flex_nodebodyid[n]]]] += 0.02;
+  Forward(m, d);
+  double stretched = 0;
+  for (int r = 0; r < d.ne; r++) stretched = std::max(stretched, std::abs(d.efc_pos[r]));
+  EXPECT_GT(stretched, 1e-3);
+  EXPECT_NEAR(extent(d), 0.12, 1e-12);
+  for (int i = 0; i < 500; i++) Step(m, d);
+  Forward(m, d);
+  double left = 0;
+  for (int r = 0; r < d.ne; r++) left = std::max(left, std::abs(d.efc_pos[r]));
+  EXPECT_LT(left, 1e-3 * stretched);
+  EXPECT_NEAR(extent(d), 0.1, 1e-4);
+}
+
+// Strain equalities and planar flexcomps that cannot be built: file, line, element and
+// what is wrong (MuJoCo's words where MuJoCo refuses it; MuJoCo accepts the rest and
+// reads past its arrays or makes no rows).
+TEST(Flex, BadStrainEqualitiesAreClearErrors) {
+  const std::string trilinear =
+      "type='grid' count='2 2 2' spacing='.1 .1 .1' dim='3' dof='trilinear'";
+  auto with_equality = [&](const std::string& equality) {
+    return "<mujoco><worldbody><body name='b'>\n<flexcomp name='f' " + trilinear +
+           "><contact selfcollide='none'/></flexcomp></body></worldbody>\n<equality>\n" +
+           equality + "\n</equality></mujoco>";
+  };
+  struct Case {
+    std::string xml;
+    std::vector<std::string> parts;
+  };
+  const std::vector<Case> cases = {
+      {Flexcomp("type='grid' count='3 3 1' dof='3d'"),
+       {"bad.xml:1", "<flexcomp", "dof", "invalid keyword '3d'", "2d"}},
+      {Flexcomp("type='grid' count='3 3 1'", "<edge equality='strain'/>"),
+       {"bad.xml:1", "<flexcomp", "strain equality needs an interpolated flexcomp"}},
+      {Flexcomp(trilinear,
+                "<edge equality='strain'/><elasticity young='10'/><contact selfcollide='none'/>"),
+       {"bad.xml:1", "<flexcomp",
+        "flex constraints and elasticity (young) cannot both be present"}},
+      {with_equality("<flexstrain flex='missing' cell='0 0 0'/>"),
+       {"bad.xml:4", "<flexstrain", "unknown flex 'missing'"}},
+      {with_equality("<flexstrain cell='0 0 0'/>"), {"bad.xml:4", "<flexstrain", "flex"}},
+      {with_equality("<flexstrain flex='f'/>"), {"bad.xml:4", "<flexstrain", "missing cell"}},
+      {with_equality("<flexstrain flex='f' cell='1 0 0'/>"),
+       {"bad.xml:4", "<flexstrain", "cell '1 0 0' is not one of the 1 x 1 x 1 cells of flex 'f'"}},
+      {with_equality("<flexstrain flex='f' cell='0 0.5 0'/>"), {"bad.xml:4", "cell '0 0.5 0'"}},
+      {"<mujoco><worldbody><body name='a'/><body name='c'><joint type='slide'/><geom size='.1'/>"
+       "</body></worldbody>"
+       "<deformable><flex name='x' dim='1' body='a c' element='0 1'/></deformable>\n"
+       "<equality><flexstrain flex='x' cell='0 0 0'/></equality></mujoco>",
+       {"bad.xml:2", "<flexstrain", "flex 'x' is not interpolated"}},
+      {"<mujoco><worldbody><body name='a'/></worldbody><deformable>"
+       "<flex name='x' dim='2' body='a' vertex='0 0 0 1 0 0 0 1 0' element='0 1 2'/></deformable>\n"
+       "<equality><flexstrain flex='x' cell='0 0 0'/></equality></mujoco>",
+       {"bad.xml:2", "rigid flex 'x' in equality constraint"}},
   };
   for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
 }

@@ -108,8 +108,6 @@ TEST(MjcfErrors, MissingFile) {
 }
 
 TEST(MjcfErrors, NotSupportedYet) {
-  ExpectError("<mujoco>\n<equality>\n<flexstrain flex=\"f\"/>\n</equality>\n</mujoco>",
-              {"bad.xml:3:", "<flexstrain> equality constraints is not supported yet"});
   ExpectError("<mujoco>\n<option><flag nativeccd=\"disable\"/></option>\n<asset>\n"
               "<hfield name=\"h\" nrow=\"2\" ncol=\"2\" size=\"1 1 .1 .1\"/>\n</asset>\n<worldbody>\n"
               "<geom name=\"ground\" type=\"hfield\" hfield=\"h\"/>\n"

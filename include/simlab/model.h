@@ -92,7 +92,8 @@ enum CtrlChart : int { kChartExpmap = 1, kChartQuat = 2 };
 
 // Equality constraint types (mjtEq).
 enum EqType : int {
-  kEqConnect = 0, kEqWeld = 1, kEqJoint = 2, kEqTendon = 3, kEqFlex = 4, kEqFlexVert = 5
+  kEqConnect = 0, kEqWeld = 1, kEqJoint = 2, kEqTendon = 3, kEqFlex = 4, kEqFlexVert = 5,
+  kEqFlexStrain = 6  // one cell (or shell face) of an interpolated flex: its stiff modes
 };
 
 // Self-collision modes of a flex (mjtFlexSelf).
@@ -451,7 +452,8 @@ struct Visual {
   X(int, flex_dim, nflex, 1)                       \
   X(int, flex_matid, nflex, 1)                     \
   X(int, flex_group, nflex, 1)                     \
-  X(int, flex_interp, nflex, 1) /* 0: vertices; 1, 2: order of the nodes */ \
+  X(int, flex_interp, nflex, 1) /* 0: vertices; 1, 2: order of the nodes; -1, -2: a shell */ \
+  X(int, flex_cellnum, nflex, 3) /* cells of the node lattice along x, y, z */ \
   X(int, flex_nodeadr, nflex, 1)                   \
   X(int, flex_nodenum, nflex, 1)                   \
   X(int, flex_vertadr, nflex, 1)                   \
@@ -461,7 +463,9 @@ struct Visual {
   X(int, flex_elemadr, nflex, 1)                   \
   X(int, flex_elemnum, nflex, 1)                   \
   X(int, flex_elemdataadr, nflex, 1)               \
+  X(int, flex_stiffnessadr, nflex, 1) /* -1: none */ \
   X(int, flex_elemedgeadr, nflex, 1)               \
+  X(int, flex_bendingadr, nflex, 1)   /* -1: none */ \
   X(int, flex_shellnum, nflex, 1)                  \
   X(int, flex_shelldataadr, nflex, 1) /* -1: none */ \
   X(int, flex_evpairadr, nflex, 1)    /* -1: none */ \
@@ -489,12 +493,12 @@ struct Visual {
   X(double, flexedge_invweight0, nflexedge, 1)     \
   X(double, flex_radius, nflex, 1)                 \
   X(double, flex_size, nflex, 3)                   \
-  X(double, flex_stiffness, nflexelem, 21)         \
-  X(double, flex_bending, nflexedge, 17)           \
+  X(double, flex_stiffness, nflexstiffness, 1) /* per flex: 21 per element, or see flex_cells.h */ \
+  X(double, flex_bending, nflexbending, 1)     /* per flex: 17 per edge, or see flex_cells.h */ \
   X(double, flex_damping, nflex, 1)                \
   X(double, flex_edgestiffness, nflex, 1)          \
   X(double, flex_edgedamping, nflex, 1)            \
-  X(int, flex_edgeequality, nflex, 1) /* 0: none, 1: edges, 2: vertices */ \
+  X(int, flex_edgeequality, nflex, 1) /* 0: none, 1: edges, 2: vertices, 3: strain */ \
   X(int, flex_rigid, nflex, 1)                     \
   X(int, flexedge_rigid, nflexedge, 1)             \
   X(int, flex_centered, nflex, 1)                  \
@@ -752,6 +756,8 @@ struct Visual {
   X(nflexedge)   /* edges of all flexes */                                 \
   X(nflexelem)   /* elements of all flexes */                              \
   X(nflexelemdata) /* element vertex ids of all flexes */                  \
+  X(nflexstiffness) /* stiffness numbers of all flexes */                  \
+  X(nflexbending) /* bending numbers of all flexes */                      \
   X(nflexelemedge) /* element edge ids of all flexes */                    \
   X(nflexshelldata) /* shell fragment vertex ids of all flexes */          \
   X(nflexevpair) /* element-vertex collision pairs of all flexes */        \

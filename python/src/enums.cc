@@ -47,7 +47,7 @@ void DefineModelEnums(py::module_& m) {
       {"mjCAMLIGHT_TARGETBODY", 3}, {"mjCAMLIGHT_TARGETBODYCOM", 4}});
   DefineEnum<EqType>(m, "mjtEq", {
       {"mjEQ_CONNECT", 0}, {"mjEQ_WELD", 1}, {"mjEQ_JOINT", 2}, {"mjEQ_TENDON", 3},
-      {"mjEQ_FLEX", 4}, {"mjEQ_FLEXVERT", 5}, {"mjEQ_DISTANCE", 6}});
+      {"mjEQ_FLEX", 4}, {"mjEQ_FLEXVERT", 5}, {"mjEQ_FLEXSTRAIN", 6}, {"mjEQ_DISTANCE", 7}});
   DefineEnum<FrameKind>(m, "mjtFrame", {
       {"mjFRAME_NONE", 0}, {"mjFRAME_BODY", 1}, {"mjFRAME_GEOM", 2}, {"mjFRAME_SITE", 3},
       {"mjFRAME_CAMERA", 4}, {"mjFRAME_LIGHT", 5}, {"mjFRAME_CONTACT", 6},

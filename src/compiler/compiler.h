@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "engine/flex_cells.h"
 #include "mjcf/spec.h"
 #include "simlab/data.h"
 #include "simlab/model.h"
@@ -122,6 +123,13 @@ struct FlexState {
   std::vector<int> shell, evpair, elemlayer;
   std::vector<double> vert0;  // vertex positions in the box, on [0, 1]^3
   double size[3] = {0, 0, 0};
+  // An interpolated flex made of cells (MuJoCo 3.12: more than one cell, a shell or
+  // strain equality): its lattice, its empty cells, and its nodes' positions turned by
+  // the lattice's rotation (flex_node0).
+  bool cells = false;
+  FlexLattice lattice;
+  std::vector<bool> cell_empty;
+  std::vector<double> nodelocal;
 };
 
 // A geom while compiling (pose in the body frame, mass properties).

@@ -10,7 +10,11 @@
 //                    with its quaternion normalized
 //   weld, sites:     as written; only data[10] (torquescale) is used
 //   joint, tendon:   data[0-4] polynomial coefficients
+//   flexstrain:      data[0-2] the cell (x, y, z indices) of the interpolated flex, or
+//                    data[0] the face of a shell (data[1-2] -1)
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "compiler/compiler.h"
@@ -36,7 +40,8 @@ const NameIndex& ObjectNames(const mjcf::EqualitySpec& eq, const EqualityNames& 
     case kEqJoint: *kind = "joint"; return names.joints;
     case kEqTendon: *kind = "tendon"; return names.tendons;
     case kEqFlex:
-    case kEqFlexVert: *kind = "flex"; return names.flexes;
+    case kEqFlexVert:
+    case kEqFlexStrain: *kind = "flex"; return names.flexes;
     default: break;
   }
   if (eq.objtype == kObjSite) {
@@ -63,11 +68,41 @@ void ResolveObjects(const mjcf::EqualitySpec& eq, const EqualityNames& all, int 
       }
     }
   }
-  if ((eq.type == kEqFlex || eq.type == kEqFlexVert) && m->flex_rigid[id1]) {
+  bool flex = eq.type == kEqFlex || eq.type == kEqFlexVert || eq.type == kEqFlexStrain;
+  if (flex && m->flex_rigid[id1]) {
     ThrowAt(eq.src, "rigid flex '" + eq.name1 + "' in equality constraint " + std::to_string(i));
   }
   m->eq_obj1id[i] = id1;
   m->eq_obj2id[i] = id2;
+}
+
+// A flexstrain's flex must be interpolated, and its cell (or a shell's face) one of the
+// flex's: MuJoCo reads whatever lies there.
+void CheckStrainElement(const mjcf::EqualitySpec& eq, const mjcf::FlexSpec& flex, int interp) {
+  if (interp == 0) {
+    ThrowAt(eq.src, "flex '" + eq.name1 +
+                        "' is not interpolated: a strain equality needs nodes (a flexcomp with "
+                        "dof trilinear or quadratic, or a flex with node bodies)");
+  }
+  const std::array<int, 3>& c = flex.cellcount;
+  const double* at = eq.data.data();
+  if (interp < 0) {
+    int nface = 2 * (c[1] * c[2] + c[0] * c[2] + c[0] * c[1]);
+    if (at[0] != std::floor(at[0]) || at[0] < 0 || at[0] >= nface || at[1] != -1 || at[2] != -1) {
+      ThrowAt(eq.src, "cell must be a face of the shell, 'f -1 -1' with f from 0 to " +
+                          std::to_string(nface - 1));
+    }
+    return;
+  }
+  for (int k = 0; k < 3; k++) {
+    if (at[k] != std::floor(at[k]) || at[k] < 0 || at[k] >= c[k]) {
+      char cell[96];
+      std::snprintf(cell, sizeof(cell), "%g %g %g", at[0], at[1], at[2]);
+      ThrowAt(eq.src, std::string("cell '") + cell + "' is not one of the " +
+                          std::to_string(c[0]) + " x " + std::to_string(c[1]) + " x " +
+                          std::to_string(c[2]) + " cells of flex '" + eq.name1 + "'");
+    }
+  }
 }
 
 // data[3-5] of a body connect: body1's anchor seen from body2 at qpos0.
@@ -110,6 +145,10 @@ void CompileEqualities(const mjcf::ModelSpec& spec, Model* m) {
     }
     m->eq_names[i] = eq.src.name;
     ResolveObjects(eq, names, i, m);
+    if (eq.type == kEqFlexStrain) {
+      int f = m->eq_obj1id[i];
+      CheckStrainElement(eq, spec.flexes[f], m->flex_interp[f]);
+    }
 
     // Everything else is copied as read.
     m->eq_type[i] = eq.type;

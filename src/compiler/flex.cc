@@ -6,12 +6,14 @@
 // weights) are set by ComputeConstants (constants.cc, FlexConstants).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "compiler/compiler.h"
+#include "compiler/flex_cells.h"
 #include "compiler/flex_elasticity.h"
 #include "compiler/orientation.h"
 #include "math/math.h"
@@ -40,6 +42,31 @@ void CheckFlexSpec(const mjcf::FlexSpec& f, bool interpolated) {
   if (interpolated && f.internal) ThrowAt(at, "trilinear interpolation cannot do internal collisions");
 }
 
+// A flex made of cells: its lattice from its cellcount and order, and as many nodes.
+void CheckLattice(const mjcf::FlexSpec& f, FlexState* flex) {
+  const std::array<int, 3>& c = f.cellcount;
+  if (c[0] == 0 || c[1] == 0 || c[2] == 0) {
+    ThrowAt(f.src, "cellcount cannot be 0 in any dimension when interpolation order > 0");
+  }
+  if (c[0] < 0 || c[1] < 0 || c[2] < 0) ThrowAt(f.src, "cellcount must be positive");
+  FlexLattice& g = flex->lattice;
+  g.cells = c;
+  g.order = flex->order;
+  g.shell = f.elastic2d != mjcf::kElastic2DNone;
+  // (a lattice has fewer cells along an axis than nodes: counted only then, in 64 bits)
+  int64_t expected = 1;
+  bool too_many = c[0] > flex->nnode || c[1] > flex->nnode || c[2] > flex->nnode;
+  for (int k = 0; k < 3 && !too_many; k++) expected *= static_cast<int64_t>(c[k]) * g.order + 1;
+  if (too_many) {
+    ThrowAt(f.src, "number of nodes (" + std::to_string(flex->nnode) +
+                       ") does not match cellcount and dof: cellcount asks for more");
+  }
+  if (flex->nnode != expected) {
+    ThrowAt(f.src, "number of nodes (" + std::to_string(flex->nnode) +
+                       ") does not match cellcount and dof expected (" + std::to_string(expected) + ")");
+  }
+}
+
 // The number of vertices, whether they all sit at their bodies' origins (no vertex
 // data) or all in one body, and the interpolation order from the node count.
 void CountVertices(const mjcf::FlexSpec& f, FlexState* flex) {
@@ -57,6 +84,9 @@ void CountVertices(const mjcf::FlexSpec& f, FlexState* flex) {
   if (flex->nvert < f.dim + 1) ThrowAt(f.src, "not enough vertices");
   flex->nnode = static_cast<int>(f.nodebody.size());
   flex->order = f.order;
+  if (flex->nnode && !flex->order && flex->cells) {
+    ThrowAt(f.src, "Interpolation order must be explicitly specified (dof is missing)");
+  }
   if (flex->nnode && !flex->order) {
     flex->order = static_cast<int>(std::pow(flex->nnode, 1.0 / 3) - 1);
     if (flex->nnode != static_cast<int>(std::pow(flex->order + 1, 3))) {
@@ -64,8 +94,9 @@ void CountVertices(const mjcf::FlexSpec& f, FlexState* flex) {
                          std::to_string(flex->nnode));
     }
   }
-  // (MuJoCo's engine holds at most mjMAXFLEXNODES = 27 nodes: order 2)
+  // (MuJoCo's engine holds at most mjMAXFLEXNODES = 27 nodes per cell: order 2)
   if (flex->order > 2) ThrowAt(f.src, "a flex interpolates from at most 27 nodes (order 2)");
+  if (flex->cells) CheckLattice(f, flex);
   for (int v : f.elem) {
     if (v < 0 || v >= flex->nvert) ThrowAt(f.src, "elem vertex id out of range");
   }
@@ -94,7 +125,11 @@ void FindFlexBodies(const mjcf::FlexSpec& f, const CompileState& state, const Na
     if (id < 0) ThrowAt(f.src, "unknown body '" + name + "' in flex");
     int njoint = state.bodies[id].joint_num;
     bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
-    if (njoint != 3 && f.dim == 2 && bending) ThrowAt(f.src, "pins are not supported for bending");
+    // (an interpolated flex's vertices ride on its nodes)
+    bool interpolated = !f.nodebody.empty();
+    if (njoint != 3 && f.dim == 2 && bending && !interpolated) {
+      ThrowAt(f.src, "pins are not supported for bending");
+    }
     flex->vertbodyid.push_back(id);
   }
   for (const std::string& name : f.nodebody) {
@@ -186,10 +221,28 @@ void MakeEdges(int dim, FlexState* flex) {
   }
 }
 
+// A flex made of cells: the stiffness of its cells or faces (with a Young's modulus, or
+// their stiff modes for strain equality), and a shell's bending between its faces.
+void MakeCellElasticity(const mjcf::FlexSpec& f, bool strain, FlexState* flex) {
+  if (f.young > 0 && (f.poisson < 0 || f.poisson >= 0.5)) {
+    ThrowAt(f.src, "Poisson ratio must be in [0, 0.5)");
+  }
+  if (f.young > 0 || strain) {
+    FlexCellStiffness(flex->lattice, flex->cell_empty, flex->nodelocal, f.young, f.poisson,
+                      f.thickness, strain, &flex->stiffness);
+  }
+  bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
+  if (flex->lattice.shell && bending && f.thickness > 0 && f.young > 0) {
+    FlexShellBending(flex->lattice, flex->nodelocal, f.young, f.poisson, f.thickness,
+                     &flex->bending);
+  }
+}
+
 // Stiffness of the elements and bending of the edges (only with a Young's modulus).
-void MakeElasticity(const mjcf::FlexSpec& f, FlexState* flex) {
+void MakeElasticity(const mjcf::FlexSpec& f, bool strain, FlexState* flex) {
   int nedge = static_cast<int>(flex->edge.size());
   if (f.dim == 2) flex->flaps = FlexFlaps(f.dim, flex->elem, flex->elemedge, nedge);
+  if (flex->cells) return MakeCellElasticity(f, strain, flex);
   if (f.young <= 0) return;
   if (f.poisson < 0 || f.poisson >= 0.5) ThrowAt(f.src, "Poisson ratio must be in [0, 0.5)");
   if (flex->interpolated) {
@@ -340,14 +393,54 @@ void VertexBox(const mjcf::FlexSpec& f, FlexState* flex) {
   }
 }
 
+// A flex made of cells: its empty cells (from a flexcomp, else from its elements; none
+// for a shell), its nodes turned by the lattice's rotation R0 (flex_node0), and its
+// vertices' places in the box of the turned nodes (flex_vert0, flex_size).
+void PrepareCells(const mjcf::FlexSpec& f, FlexState* flex) {
+  FlexLattice& g = flex->lattice;
+  flex->cell_empty = f.cell_empty;
+  if (flex->cell_empty.empty() && !g.shell && g.CellCount() > 1) {
+    flex->cell_empty = EmptyFlexCells(g.cells, flex->vertxpos, f.elem, f.dim, nullptr);
+  }
+  double r0[9];
+  std::string error = UnrotatedFlexNodes(g, flex->cell_empty, flex->nodexpos, &flex->nodelocal, r0);
+  if (!error.empty()) ThrowAt(f.src, error);
+
+  // The turned nodes' box, and each turned vertex's place in it.
+  double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
+  for (size_t i = 0; i + 2 < flex->nodelocal.size(); i += 3) {
+    for (int k = 0; k < 3; k++) {
+      lo[k] = std::min(lo[k], flex->nodelocal[i + k]);
+      hi[k] = std::max(hi[k], flex->nodelocal[i + k]);
+    }
+  }
+  for (int k = 0; k < 3; k++) flex->size[k] = (hi[k] - lo[k]) / 2;
+  flex->vert0.assign(3 * static_cast<size_t>(flex->nvert), 0);
+  for (int j = 0; j < flex->nvert; j++) {
+    double local[3];
+    math::MulMatVec3(local, r0, flex->vertxpos.data() + 3 * j);
+    for (int k = 0; k < 3; k++) {
+      double extent = hi[k] - lo[k];
+      flex->vert0[3 * j + k] = extent > kMinVal ? (local[k] - lo[k]) / extent : 0.5;
+    }
+  }
+}
+
 // One flex, compiled.
-FlexState CompileFlex(const mjcf::FlexSpec& f, const CompileState& state, const NameIndex& bodies,
-                      const NameIndex& materials, const std::vector<double>& xpos,
-                      const std::vector<double>& xquat) {
+FlexState CompileFlex(const mjcf::FlexSpec& f, bool strain, const CompileState& state,
+                      const NameIndex& bodies, const NameIndex& materials,
+                      const std::vector<double>& xpos, const std::vector<double>& xquat) {
   FlexState flex;
   flex.spec = &f;
   flex.interpolated = !f.nodebody.empty();
   CheckFlexSpec(f, flex.interpolated);
+  const std::array<int, 3>& c = f.cellcount;
+  flex.cells = flex.interpolated &&
+               (c[0] * c[1] * c[2] != 1 || f.elastic2d != mjcf::kElastic2DNone || strain);
+  if (flex.cells && f.elastic2d != mjcf::kElastic2DNone) {
+    if (f.thickness <= 0) ThrowAt(f.src, "2d elasticity requires positive thickness");
+    if (f.poisson < 0 || f.poisson >= 0.5) ThrowAt(f.src, "Poisson ratio must be in [0, 0.5)");
+  }
   flex.nelem = static_cast<int>(f.elem.size() / (f.dim + 1));
   CountVertices(f, &flex);
   FlexTexcoords(f, &flex);
@@ -378,14 +471,19 @@ FlexState CompileFlex(const mjcf::FlexSpec& f, const CompileState& state, const 
 
   flex.elem = f.elem;
   if (f.dim == 3) OrientTetrahedra(&flex);
+  if (flex.cells) PrepareCells(f, &flex);
   MakeEdges(f.dim, &flex);
-  MakeElasticity(f, &flex);
+  MakeElasticity(f, strain, &flex);
   MakeShellsAndPairs(f.dim, &flex);
+  if (flex.cells) return flex;
   if (f.young > 0 && flex.interpolated) {
     FlexInterpolatedStiffness(f.young, f.poisson, flex.order, flex.nodexpos, &flex.stiffness);
-    flex.stiffness.resize(kFlexStiffnessSize * static_cast<size_t>(flex.nelem));
   }
   VertexBox(f, &flex);
+
+  // (MuJoCo 3.5.1's layout: 21 stiffness numbers per element, 17 bending per edge)
+  flex.stiffness.resize(kFlexStiffnessSize * static_cast<size_t>(flex.nelem), 0);
+  flex.bending.resize(kFlexBendingSize * flex.edge.size(), 0);
   return flex;
 }
 
@@ -398,7 +496,10 @@ void CompileFlexes(const mjcf::ModelSpec& spec, CompileState* state) {
   BodyFramesAtQpos0(*state, &xpos, &xquat);
   state->flexes.clear();
   for (const mjcf::FlexSpec& f : spec.flexes) {
-    state->flexes.push_back(CompileFlex(f, *state, bodies, materials, xpos, xquat));
+    bool strain = std::any_of(spec.equalities.begin(), spec.equalities.end(), [&](const auto& eq) {
+      return eq.type == kEqFlexStrain && eq.name1 == f.src.name;
+    });
+    state->flexes.push_back(CompileFlex(f, strain, *state, bodies, materials, xpos, xquat));
   }
 }
 
@@ -428,6 +529,7 @@ void FlexSizes(const CompileState& state, Model* m) {
   m->nflex = static_cast<int>(state.flexes.size());
   m->nflexnode = m->nflexvert = m->nflexedge = m->nflexelem = m->nflexelemdata = 0;
   m->nflexelemedge = m->nflexshelldata = m->nflexevpair = m->nflextexcoord = 0;
+  m->nflexstiffness = m->nflexbending = 0;
   m->nJfe = m->nJfv = 0;
   for (const FlexState& f : state.flexes) {
     int dim = f.spec->dim;
@@ -440,6 +542,8 @@ void FlexSizes(const CompileState& state, Model* m) {
     m->nflexshelldata += static_cast<int>(f.shell.size());
     m->nflexevpair += static_cast<int>(f.evpair.size() / 2);
     m->nflextexcoord += static_cast<int>(f.spec->texcoord.size() / 2);
+    m->nflexstiffness += static_cast<int>(f.stiffness.size());
+    m->nflexbending += static_cast<int>(f.bending.size());
     if (f.interpolated || f.rigid) continue;
 
     // Nonzeros of the edge Jacobian: the dofs of the bodies on both vertices' paths to
@@ -468,7 +572,7 @@ namespace {
 // pairs and texture coordinates).
 void FlexAddresses(const CompileState& state, Model* m) {
   int vert = 0, node = 0, edge = 0, elem = 0, elemdata = 0, elemedge = 0, shelldata = 0;
-  int evpair = 0, texcoord = 0;
+  int evpair = 0, texcoord = 0, stiffness = 0, bending = 0;
   for (int i = 0; i < m->nflex; i++) {
     const FlexState& f = state.flexes[i];
     int dim = f.spec->dim, ntexcoord = static_cast<int>(f.spec->texcoord.size() / 2);
@@ -487,6 +591,8 @@ void FlexAddresses(const CompileState& state, Model* m) {
     m->flex_evpairnum[i] = static_cast<int>(f.evpair.size() / 2);
     m->flex_evpairadr[i] = f.evpair.empty() ? -1 : evpair;
     m->flex_texcoordadr[i] = ntexcoord ? texcoord : -1;
+    m->flex_stiffnessadr[i] = f.stiffness.empty() ? -1 : stiffness;
+    m->flex_bendingadr[i] = f.bending.empty() ? -1 : bending;
     vert += f.nvert;
     node += f.nnode;
     edge += m->flex_edgenum[i];
@@ -496,6 +602,8 @@ void FlexAddresses(const CompileState& state, Model* m) {
     shelldata += static_cast<int>(f.shell.size());
     evpair += m->flex_evpairnum[i];
     texcoord += ntexcoord;
+    stiffness += static_cast<int>(f.stiffness.size());
+    bending += static_cast<int>(f.bending.size());
   }
 }
 
@@ -530,11 +638,14 @@ void FlexProperties(const mjcf::ModelSpec& spec, const FlexState& f, int i, Mode
   m->flex_edgedamping[i] = s.edgedamping;
   m->flex_rigid[i] = f.rigid;
   m->flex_centered[i] = f.centered;
-  m->flex_interp[i] = f.order;
+  m->flex_interp[i] = f.cells && f.lattice.shell ? -f.order : f.order;
+  std::copy(s.cellcount.begin(), s.cellcount.end(), &m->flex_cellnum[3 * i]);
   m->flex_edgeequality[i] = 0;
+  // (1 edges, 2 vertices, 3 strain: the first equality on the flex says which)
   for (const mjcf::EqualitySpec& eq : spec.equalities) {
-    if (eq.name1 != s.src.name || (eq.type != kEqFlex && eq.type != kEqFlexVert)) continue;
-    m->flex_edgeequality[i] = eq.type == kEqFlex ? 1 : 2;
+    bool on_flex = eq.type == kEqFlex || eq.type == kEqFlexVert || eq.type == kEqFlexStrain;
+    if (eq.name1 != s.src.name || !on_flex) continue;
+    m->flex_edgeequality[i] = eq.type == kEqFlex ? 1 : eq.type == kEqFlexVert ? 2 : 3;
     break;
   }
 }
@@ -550,8 +661,10 @@ void FlexElements(const FlexState& f, int i, Model* m) {
             &m->flex_elemtexcoord[data]);
   std::copy(f.elemedge.begin(), f.elemedge.end(), &m->flex_elemedge[m->flex_elemedgeadr[i]]);
   std::copy(f.elemlayer.begin(), f.elemlayer.end(), &m->flex_elemlayer[m->flex_elemadr[i]]);
-  std::copy(f.stiffness.begin(), f.stiffness.end(),
-            m->flex_stiffness.begin() + kFlexStiffnessSize * m->flex_elemadr[i]);
+  if (!f.stiffness.empty()) {
+    std::copy(f.stiffness.begin(), f.stiffness.end(),
+              m->flex_stiffness.begin() + m->flex_stiffnessadr[i]);
+  }
   if (!f.shell.empty()) std::copy(f.shell.begin(), f.shell.end(), &m->flex_shell[m->flex_shelldataadr[i]]);
   if (!f.evpair.empty()) std::copy(f.evpair.begin(), f.evpair.end(), &m->flex_evpair[2 * m->flex_evpairadr[i]]);
   if (!s.texcoord.empty()) {
@@ -567,7 +680,8 @@ void FlexVertices(const FlexState& f, int i, Model* m) {
   if (!f.centered || f.interpolated) std::copy(s.vert.begin(), s.vert.end(), m->flex_vert.begin() + 3 * vert);
   if (!f.centered) std::copy(s.node.begin(), s.node.end(), m->flex_node.begin() + 3 * node);
   std::copy(f.vert0.begin(), f.vert0.end(), m->flex_vert0.begin() + 3 * vert);
-  std::copy(f.nodexpos.begin(), f.nodexpos.end(), m->flex_node0.begin() + 3 * node);
+  const std::vector<double>& node0 = f.cells ? f.nodelocal : f.nodexpos;
+  std::copy(node0.begin(), node0.end(), m->flex_node0.begin() + 3 * node);
   for (int k = 0; k < f.nvert; k++) {
     m->flex_vertbodyid[vert + k] = f.rigid ? f.vertbodyid[0] : f.vertbodyid[k];
   }
@@ -580,7 +694,9 @@ void FlexEdges(const FlexState& f, int i, Model* m) {
   const mjcf::FlexSpec& s = *f.spec;
   int edge = m->flex_edgeadr[i];
   bool flap = s.dim == 2 && (s.elastic2d == mjcf::kElastic2DBend || s.elastic2d == mjcf::kElastic2DBoth);
-  std::copy(f.bending.begin(), f.bending.end(), m->flex_bending.begin() + kFlexBendingSize * edge);
+  if (!f.bending.empty()) {
+    std::copy(f.bending.begin(), f.bending.end(), m->flex_bending.begin() + m->flex_bendingadr[i]);
+  }
   for (int k = 0; k < m->flex_edgenum[i]; k++) {
     m->flex_edge[2 * (edge + k)] = f.edge[k][0];
     m->flex_edge[2 * (edge + k) + 1] = f.edge[k][1];

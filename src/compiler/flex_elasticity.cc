@@ -366,4 +366,56 @@ void FlexInterpolatedStiffness(double young, double poisson, int order,
   }
 }
 
+void FlexFaceStiffness(double young, double poisson, double thickness, int order,
+                       int normal_axis, const double* pos, std::vector<double>* stiffness) {
+  int nbasis = order + 1, npe = nbasis * nbasis, ndof = 3 * npe;
+  stiffness->assign(static_cast<size_t>(ndof) * ndof, 0.0);
+  double* k = stiffness->data();
+  int axis0 = (normal_axis + 1) % 3, axis1 = (normal_axis + 2) % 3;
+
+  // Quadrature on the unit square; the face's extents along its axes map onto it.
+  double points[3], weights[3];
+  QuadraturePoints(points, weights, nbasis);
+  double d0 = pos[3 * (npe - 1) + axis0] - pos[axis0];
+  double d1 = pos[3 * (npe - 1) + axis1] - pos[axis1];
+  double det = d0 * d1, inv0 = 1.0 / d0, inv1 = 1.0 / d1;
+  double lambda = young * poisson / (1.0 - poisson * poisson);  // plane stress
+  double mu = young / (2.0 * (1.0 + poisson));
+
+  std::vector<double> gradient(2 * npe);
+  const int inplane[2] = {axis0, axis1};
+  for (int ps = 0; ps < nbasis; ps++) {
+    for (int pt = 0; pt < nbasis; pt++) {
+      double s = points[ps], t = points[pt];
+      double dvol = weights[ps] * weights[pt] * det * thickness;
+      int node = 0;
+      for (int b0 = 0; b0 < nbasis; b0++) {
+        for (int b1 = 0; b1 < nbasis; b1++, node++) {
+          gradient[2 * node] = FlexShapeSlope(s, b0, order) * FlexShape(t, b1, order);
+          gradient[2 * node + 1] = FlexShape(s, b0, order) * FlexShapeSlope(t, b1, order);
+        }
+      }
+
+      // Every pair of nodes, in-plane displacements only (a membrane: no transverse
+      // shear).
+      for (int i = 0; i < npe; i++) {
+        for (int j = 0; j < npe; j++) {
+          for (int a : inplane) {
+            for (int b : inplane) {
+              Mat3 du{}, dv{};
+              du[a][axis0] = inv0 * gradient[2 * i];
+              du[a][axis1] = inv1 * gradient[2 * i + 1];
+              dv[b][axis0] = inv0 * gradient[2 * j];
+              dv[b][axis1] = inv1 * gradient[2 * j + 1];
+              double& entry = k[static_cast<size_t>(ndof) * (3 * i + a) + 3 * j + b];
+              entry -= lambda * Trace(du) * Trace(dv) * dvol;
+              entry -= mu * TraceOfProduct(Symmetric(du), Symmetric(dv)) * dvol;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace simlab::compiler

@@ -8,6 +8,8 @@
 //                   operator of the edge's flap (its two triangles) and the coefficient
 //                   of the force from a curved reference shape.
 //   flex_edgeflap   the flap's two vertices opposite the edge.
+// (each flex's part at flex_stiffnessadr, flex_bendingadr; an interpolated flex made of
+// cells, MuJoCo 3.12's, lays them out as engine/flex_cells.h says, flex_cells.cc)
 //
 // Every sum and product runs in MuJoCo's order, so the numbers agree to the last bit.
 #ifndef SIMLAB_COMPILER_FLEX_ELASTICITY_H_
@@ -55,6 +57,14 @@ void FlexBending(double young, double poisson, double thickness,
 void FlexInterpolatedStiffness(double young, double poisson, int order,
                                const std::vector<double>& nodexpos,
                                std::vector<double>* stiffness);
+
+// The membrane stiffness of one face element of a shell (MuJoCo's
+// ComputeLinearStiffness2D): the dense (3 npe x 3 npe) matrix, stored negated as
+// FlexInterpolatedStiffness stores it, of its npe = (order + 1)^2 nodes at `pos` (world,
+// 3 each, its first in-plane axis (normal + 1) % 3 slowest) in plane stress with the
+// given thickness; only in-plane displacements couple. *stiffness is replaced.
+void FlexFaceStiffness(double young, double poisson, double thickness, int order,
+                       int normal_axis, const double* pos, std::vector<double>* stiffness);
 
 }  // namespace simlab::compiler
 

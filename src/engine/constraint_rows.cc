@@ -12,6 +12,7 @@
 #include "engine/constraint.h"
 #include "engine/contact_bodies.h"
 #include "engine/engine.h"
+#include "engine/flex_strain.h"
 #include "engine/rows.h"
 #include "engine/sleep.h"
 #include "engine/stack.h"
@@ -256,6 +257,14 @@ void FlexVertexRows(const Model& m, Data& d, int eq) {
   }
 }
 
+// One element of an interpolated flex held near its rest shape: a row per stiff mode
+// (flex_strain.h).
+void FlexStrainEqualityRows(const Model& m, Data& d, int eq) {
+  FlexStrainRows(m, d, eq, [&](const double* jac, const int* dofs, int n, double pos) {
+    AddRows(m, d, jac, Columns{dofs, n}, &pos, 0, 0, 1, kCnstrEquality, eq);
+  });
+}
+
 void EqualityRows(const Model& m, Data& d) {
   if ((m.opt.disableflags & kDisableEquality) || m.neq == 0) return;
   StackFrame frame(d);
@@ -273,6 +282,7 @@ void EqualityRows(const Model& m, Data& d) {
       case kEqWeld: WeldRows(m, d, eq, jac, jac1, index); break;
       case kEqFlex: FlexEdgeRows(m, d, eq); break;
       case kEqFlexVert: FlexVertexRows(m, d, eq); break;
+      case kEqFlexStrain: FlexStrainEqualityRows(m, d, eq); break;
       default: CouplingRow(m, d, eq, jac, jac1, index); break;
     }
   }
@@ -594,6 +604,16 @@ void DiagApprox(const Model& m, Data& d) {
             d.efc_diagApprox[i++] = w;
           }
           i--;
+        } else if (m.eq_type[id] == kEqFlexStrain) {
+          // One row per mode, each weighed by the element's nodes' mean weight.
+          double w = FlexStrainInvWeight(m, id);
+          int last = i;
+          while (last + 1 < d.nefc && d.efc_type[last + 1] == kCnstrEquality &&
+                 d.efc_id[last + 1] == id) {
+            last++;
+          }
+          for (int r = i; r <= last; r++) d.efc_diagApprox[r] = w;
+          i = last;
         } else if (m.eq_type[id] == kEqFlex) {
           // One row per movable edge, weighed by the edge's inverse weight.
           int f = m.eq_obj1id[id];

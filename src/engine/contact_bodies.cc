@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/flex_cells.h"
 #include "engine/flex_elasticity.h"
 
 namespace simlab {
@@ -65,6 +66,55 @@ void NodeBodies(const Model& m, int f, const int* vert, const double* weight, in
   }
 }
 
+// Adds weight w to `body` on the side, or the body with w if it is not there yet.
+void AddBodyWeight(ContactSide* side, int body, double w) {
+  for (int i = 0; i < side->n; i++) {
+    if (side->body[i] != body) continue;
+    side->weight[i] += w;
+    return;
+  }
+  if (side->n == ContactSide::kMax) return;
+  side->body[side->n] = body;
+  side->weight[side->n++] = w;
+}
+
+// The nodes of flex f (made of cells) moving the vertices `vert` (global ids, weights
+// `weight`, n of them): the cell holding their place weighted by the weights' sizes, its
+// nodes' shape functions with the weights' sign (those below 1e-5 left out), a shell's
+// interior node passed on to the boundary nodes it follows, each body once (MuJoCo
+// 3.12's mj_vertBodyWeight).
+void CellNodeBodies(const Model& m, int f, const int* vert, const double* weight, int n,
+                    ContactSide* side) {
+  double sign = n > 0 && weight[0] < 0 ? -1 : 1;
+  double coord[3] = {0, 0, 0};
+  for (int i = 0; i < n; i++) {
+    const double* p = &m.flex_vert0[3 * static_cast<size_t>(vert[i])];
+    for (int k = 0; k < 3; k++) coord[k] += p[k] * std::abs(weight[i]);
+  }
+  FlexLattice g = FlexLatticeOf(m, f);
+  double local[3], basis[27];
+  int ids[27];
+  FlexCellLookup(coord, g.cells.data(), g.order, local, ids);
+  FlexCellWeights(local, g.order, basis);
+  const int* bodyid = &m.flex_nodebodyid[m.flex_nodeadr[f]];
+  int ny = g.Nodes(1), nz = g.Nodes(2);
+  side->n = 0;
+  for (int j = 0; j < g.NodesPerCell(); j++) {
+    double w = basis[j];
+    if (w < 1e-5) continue;
+    int node = ids[j];
+    int i = node / (ny * nz), jj = (node / nz) % ny, k = node % nz;
+    bool interior = i > 0 && i < g.Nodes(0) - 1 && jj > 0 && jj < ny - 1 && k > 0 && k < nz - 1;
+    if (g.shell && interior) {
+      FlexShellInteriorWeights(g, i, jj, k, sign * w, [&](int boundary, double bw) {
+        AddBodyWeight(side, bodyid[boundary], bw);
+      });
+      continue;
+    }
+    AddBodyWeight(side, bodyid[node], sign * w);
+  }
+}
+
 }  // namespace
 
 bool ContactSideBodies(const Model& m, const Data& d, const Contact& c, int k,
@@ -81,7 +131,7 @@ bool ContactSideBodies(const Model& m, const Data& d, const Contact& c, int k,
   int f = c.flex[k];
   if (!ValidFlex(m, f)) return false;
   int interp = m.flex_interp[f];
-  if (interp != 0 && interp != 1 && interp != 2) return false;
+  if (interp < -2 || interp > 2) return false;
   // The vertex (global id), or the element's vertices, with their weights.
   if (c.vert[k] >= 0) {
     if (c.vert[k] >= m.flex_vertnum[f]) return false;
@@ -99,7 +149,11 @@ bool ContactSideBodies(const Model& m, const Data& d, const Contact& c, int k,
     int n = std::min(side->n, 4);
     std::copy_n(side->body, n, vert);
     std::copy_n(side->weight, n, weight);
-    NodeBodies(m, f, vert, weight, n, side);
+    if (FlexHasCells(m, f)) {
+      CellNodeBodies(m, f, vert, weight, n, side);
+    } else {
+      NodeBodies(m, f, vert, weight, n, side);
+    }
     return true;
   }
   for (int i = 0; i < side->n; i++) {

@@ -11,19 +11,22 @@
 namespace simlab {
 
 // The bodies of one side: up to 4 (a geom, a vertex, an element's vertices), or up to 27
-// nodes of an interpolated flex. Only [0, n) is ever written before it is read: the
-// arrays are left uninitialized, as a side is made several times per contact and step.
+// nodes of an interpolated flex (more for a shell: its interior nodes' boundary nodes).
+// Only [0, n) is ever written before it is read: the arrays are left uninitialized, as a
+// side is made several times per contact and step.
 struct ContactSide {
-  static constexpr int kMax = 27;
+  static constexpr int kMax = 729;  // (MuJoCo's 27 x 27)
   int n = 0;
   int body[kMax];
   double weight[kMax];
 };
 
 // Side k (0 or 1) of contact c. With `signed_weights` (the Jacobian's), side 0's weights
-// are negative; an interpolated flex's nodes then keep MuJoCo's unsigned shape-function
-// weights, found at the vertex place taken with those negative weights (as
-// mj_vertBodyWeight does). False when the side cannot be resolved (a bad index).
+// are negative; an interpolated flex's nodes then keep MuJoCo 3.5.1's unsigned
+// shape-function weights, found at the vertex place taken with those negative weights
+// (as its mj_vertBodyWeight does), except for a flex made of cells (flex_cells.h),
+// whose nodes' bodies come once each with the side's sign, as in MuJoCo 3.12. False
+// when the side cannot be resolved (a bad index).
 bool ContactSideBodies(const Model& m, const Data& d, const Contact& c, int k,
                        bool signed_weights, ContactSide* side);
 

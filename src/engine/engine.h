@@ -107,7 +107,7 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
 int MergedDofChain(const Model& m, int b0, int b1, int* dofs);
 // The same for the chains of nbodies <= kMaxMergedChains bodies: the ascending union of
 // the dofs that move any of them.
-constexpr int kMaxMergedChains = 64;
+constexpr int kMaxMergedChains = 2 * 729;  // (two contact sides of 27 x 27 nodes)
 int MergedDofChains(const Model& m, const int* bodies, int nbodies, int* dofs);
 // Jacobian of site `site`'s position and rotation (MuJoCo mj_jacSite).
 void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site);

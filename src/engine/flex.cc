@@ -7,7 +7,9 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/flex_cells.h"
 #include "engine/flex_elasticity.h"
+#include "engine/stack.h"
 #include "math/dot.h"
 #include "math/math.h"
 #include "simlab/data.h"
@@ -49,6 +51,28 @@ void FlexInterpolatedPositions(const Model& m, Data& d, int f) {
     for (int j = 0; j < nnode; j++) {
       double w = FlexNodeWeight(p, j, order);
       for (int k = 0; k < 3; k++) x[k] += nodexpos[3 * j + k] * w;
+    }
+  }
+}
+
+// World positions of the vertices of a flex made of cells: each from the nodes of the
+// cell holding it (a shell's interior nodes following its boundary), weighted by the
+// shape functions of its place in that cell (MuJoCo 3.12's mj_flex).
+void FlexCellPositions(const Model& m, Data& d, int f) {
+  FlexLattice g = FlexLatticeOf(m, f);
+  StackFrame frame(d);
+  double* nodexpos = frame.Alloc(3 * static_cast<size_t>(m.flex_nodenum[f]));
+  FlexCellNodeState(m, d, f, nodexpos, nullptr);
+  int begin = m.flex_vertadr[f], end = begin + m.flex_vertnum[f];
+  for (int i = begin; i < end; i++) {
+    double local[3], weight[27];
+    int ids[27];
+    FlexCellLookup(&m.flex_vert0[3 * i], g.cells.data(), g.order, local, ids);
+    FlexCellWeights(local, g.order, weight);
+    double* x = &d.flexvert_xpos[3 * i];
+    math::Zero3(x);
+    for (int j = 0; j < g.NodesPerCell(); j++) {
+      for (int k = 0; k < 3; k++) x[k] += nodexpos[3 * ids[j] + k] * weight[j];
     }
   }
 }
@@ -258,6 +282,8 @@ void FlexKinematics(const Model& m, Data& d) {
   for (int f = 0; f < m.nflex; f++) {
     if (m.flex_interp[f] == 0) {
       FlexVertexPositions(m, d, f);
+    } else if (FlexHasCells(m, f)) {
+      FlexCellPositions(m, d, f);
     } else {
       FlexInterpolatedPositions(m, d, f);
     }

@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "engine/engine.h"
+#include "engine/flex_cells.h"
 #include "engine/sensor.h"
 #include "engine/stack.h"
 #include "math/dot.h"
@@ -47,13 +48,16 @@ constexpr MetricIndex MakeMetricIndex() {
 }
 constexpr MetricIndex kMetricIndex = MakeMetricIndex();
 
-// A body that is a simple point mass (three slide joints, MuJoCo's body_simple 2) takes a
-// vertex force on its dofs directly.
+// A body that is a simple point mass (slide joints along its frame's axes, MuJoCo's
+// body_simple 2: three, or the two of a 2d flexcomp) takes a vertex force on its dofs
+// directly, seen in its frame.
 constexpr int kSimplePointMass = 2;
+
+}  // namespace
 
 // r = q v q*, also computed for a zero v (MuJoCo's inline variant, which keeps the signs
 // of zero that math::RotVecQuat's shortcut would not).
-void RotateAlways(double* r, const double* v, const double* q) {
+void FlexRotateAlways(double* r, const double* v, const double* q) {
   if (q[0] == 1 && q[1] == 0 && q[2] == 0 && q[3] == 0) return math::Copy3(r, v);
   double t[3] = {q[0] * v[0] + q[2] * v[2] - q[3] * v[1],
                  q[0] * v[1] + q[3] * v[0] - q[1] * v[2],
@@ -65,7 +69,7 @@ void RotateAlways(double* r, const double* v, const double* q) {
 
 // The deformation gradient (row-major 3x3) at p of the nodes' positions (MuJoCo's
 // mju_defGradient).
-void DeformationGradient(double mat[9], const double p[3], const double* nodes, int order) {
+void FlexDeformationGradient(double mat[9], const double p[3], const double* nodes, int order) {
   for (int k = 0; k < 9; k++) mat[k] = 0;
   int node = 0;
   for (int i = 0; i <= order; i++) {
@@ -85,7 +89,7 @@ void DeformationGradient(double mat[9], const double p[3], const double* nodes, 
 // Refines quat toward the rotation nearest `mat` (Mueller et al., "A robust method to
 // extract the rotational part of deformations"; MuJoCo's mju_mat2Rot): at most 500 steps,
 // until the correcting rotation is below 1e-9 radians.
-void NearestRotation(double quat[4], const double mat[9]) {
+void FlexNearestRotation(double quat[4], const double mat[9]) {
   for (int iter = 0; iter < 500; iter++) {
     // The correcting rotation: sum of rot_col x mat_col over the sum of their dots.
     double rot[9];
@@ -111,6 +115,8 @@ void NearestRotation(double quat[4], const double mat[9]) {
   }
 }
 
+namespace {
+
 // Thin-plate bending of triangle flex f: each inner edge's flap.
 void BendingForces(const Model& m, Data& d, int f, bool spring, bool damper) {
   const double* xpos = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
@@ -119,7 +125,8 @@ void BendingForces(const Model& m, Data& d, int f, bool spring, bool damper) {
     int v[4] = {m.flex_edge[2 * edge], m.flex_edge[2 * edge + 1], m.flex_edgeflap[2 * edge],
                 m.flex_edgeflap[2 * edge + 1]};
     if (v[3] == -1) continue;
-    const double* b = &m.flex_bending[kFlexBendingSize * edge];
+    int adr = m.flex_bendingadr[f] + kFlexBendingSize * (edge - m.flex_edgeadr[f]);
+    const double* b = &m.flex_bending[adr];
 
     // Forces of the curved reference: gradients of the flap's volume.
     double ed[3][3], frc[4][3];
@@ -160,7 +167,7 @@ void InterpolatedForces(const Model& m, Data& d, int f, bool spring, bool damper
   int nnode = m.flex_nodenum[f], ndof = 3 * nnode;
   const int* bodyid = &m.flex_nodebodyid[m.flex_nodeadr[f]];
   const double* xpos0 = &m.flex_node0[3 * m.flex_nodeadr[f]];
-  const double* k = &m.flex_stiffness[kFlexStiffnessSize * m.flex_elemadr[f]];
+  const double* k = &m.flex_stiffness[m.flex_stiffnessadr[f]];
   StackFrame frame(d);
   double* xpos = frame.Alloc(ndof);
   double* displacement = frame.Alloc(ndof);
@@ -184,9 +191,9 @@ void InterpolatedForces(const Model& m, Data& d, int f, bool spring, bool damper
   math::NegQuat(quat, quat);
   for (int i = 0; i < nnode; i++) {
     double qfrc[3], qdmp[3] = {0, 0, 0};
-    RotateAlways(qfrc, frc + 3 * i, quat);
+    FlexRotateAlways(qfrc, frc + 3 * i, quat);
     if (damper) {
-      RotateAlways(qdmp, dmp + 3 * i, quat);
+      FlexRotateAlways(qdmp, dmp + 3 * i, quat);
       math::Scale3(qdmp, qdmp, m.flex_damping[f]);
     }
     int body = bodyid[i], dofadr = m.body_dofadr[body];
@@ -260,7 +267,7 @@ void ElementForces(const Model& m, Data& d, int f) {
   const int* elem = &m.flex_elem[m.flex_elemdataadr[f]];
   const int* elemedge = &m.flex_elemedge[m.flex_elemedgeadr[f]];
   const double* xpos = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
-  const double* k = &m.flex_stiffness[kFlexStiffnessSize * m.flex_elemadr[f]];
+  const double* k = &m.flex_stiffness[m.flex_stiffnessadr[f]];
   double damping_rate = m.opt.timestep > 0 ? m.flex_damping[f] / m.opt.timestep : 0;
   StackFrame frame(d);
   double* qfrc = frame.Alloc(3 * nvert);
@@ -278,7 +285,7 @@ void ElementForces(const Model& m, Data& d, int f) {
     }
   }
 
-  // Onto the dofs: directly for point masses, through the Jacobian for pinned vertices.
+  // Onto the dofs: in their frame for point masses, through the Jacobian for pinned vertices.
   const int* bodyid = &m.flex_vertbodyid[m.flex_vertadr[f]];
   const double no_torque[3] = {0, 0, 0};
   for (int v = 0; v < nvert; v++) {
@@ -286,9 +293,10 @@ void ElementForces(const Model& m, Data& d, int f) {
     if (m.body_simple[body] != kSimplePointMass) {
       ApplyForceTorque(m, d, qfrc + 3 * v, no_torque, xpos + 3 * v, body, d.qfrc_spring.data());
     } else {
-      for (int x = 0; x < m.body_dofnum[body]; x++) {
-        d.qfrc_spring[m.body_dofadr[body] + x] += qfrc[3 * v + x];
-      }
+      double local[3];
+      math::MulMatTVec3(local, &d.xmat[9 * body], qfrc + 3 * v);
+      int adr = m.body_dofadr[body];
+      for (int x = 0; x < m.body_dofnum[body]; x++) d.qfrc_spring[adr + x] += local[x];
     }
   }
 }
@@ -317,8 +325,8 @@ void FlexInterpState(const Model& m, const Data& d, int f, double* xpos, double*
   // The rotation of the deformation gradient at the centre, inverted.
   const double centre[3] = {0.5, 0.5, 0.5};
   double mat[9];
-  DeformationGradient(mat, centre, xpos, m.flex_interp[f]);
-  NearestRotation(quat, mat);
+  FlexDeformationGradient(mat, centre, xpos, m.flex_interp[f]);
+  FlexNearestRotation(quat, mat);
   math::NegQuat(quat, quat);
 
   // Into the corotated frame, positions about the centre.
@@ -334,9 +342,16 @@ void FlexElasticForces(const Model& m, Data& d, bool spring, bool damper) {
     int dim = m.flex_dim[f];
     if (dim == 1 || m.flex_rigid[f]) continue;
 
+    // A flex made of cells (MuJoCo 3.12): its cells' or faces' elasticity, a shell's
+    // bending.
+    if (FlexHasCells(m, f)) {
+      FlexCellElasticForces(m, d, f, spring, damper);
+      continue;
+    }
+
     // Bending first, then the elements (a flex without stiffness has none).
     if (dim == 2) BendingForces(m, d, f, spring, damper);
-    if (m.flex_stiffness[kFlexStiffnessSize * m.flex_elemadr[f]] == 0) continue;
+    if (m.flex_stiffness[m.flex_stiffnessadr[f]] == 0) continue;
     if (m.flex_interp[f]) {
       InterpolatedForces(m, d, f, spring, damper);
     } else {

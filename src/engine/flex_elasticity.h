@@ -54,6 +54,18 @@ inline void FlexNodeXpos(const Model& m, const Data& d, int f, int node, double 
 void FlexInterpState(const Model& m, const Data& d, int f, double* xpos, double* vel,
                      double quat[4]);
 
+// r = q v q*, computed for a zero v too (MuJoCo's inline mji_rotVecQuat, which keeps
+// the signs of zero that math::RotVecQuat's shortcut would not).
+void FlexRotateAlways(double* r, const double* v, const double* q);
+
+// The deformation gradient (row-major 3x3) at p of (order + 1)^3 nodes' positions, x
+// slowest (MuJoCo's mju_defGradient).
+void FlexDeformationGradient(double mat[9], const double p[3], const double* nodes, int order);
+
+// Refines quat toward the rotation nearest `mat` (Mueller et al., "A robust method to
+// extract the rotational part of deformations"; MuJoCo's mju_mat2Rot).
+void FlexNearestRotation(double quat[4], const double mat[9]);
+
 // Shape function i (0..order) of a flex interpolated with order 1 or 2 along one axis at
 // s, and its derivative (MuJoCo's phi and dphi; the compiler's stiffness uses them too).
 inline double FlexShape(double s, int i, int order) {

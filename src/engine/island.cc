@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "engine/constraint.h"
+#include "engine/flex_cells.h"
 #include "engine/island.h"
 #include "engine/rows.h"
 
@@ -90,6 +91,29 @@ void ListTreesByIsland(const Model& m, Data& d, int* placed) {
   }
 }
 
+// Joins the trees of each flex made of cells (flex_cells.h) whose elasticity couples
+// its nodes without rows (its cells' or faces' stiffness, a shell's bending): MuJoCo
+// 3.12's islands hold such a flex whole, its trees counted as constrained. (Other
+// flexes keep MuJoCo 3.5.1's islands, made of rows only.)
+void JoinElasticFlexTrees(const Model& m, const Data& d, int* parent, int* used) {
+  for (int f = 0; f < m.nflex; f++) {
+    if (!FlexHasCells(m, f) || m.flex_rigid[f] || m.flex_dim[f] < 2) continue;
+    int adr = m.flex_stiffnessadr[f];
+    if (m.flex_bendingadr[f] < 0 && (adr < 0 || m.flex_stiffness[adr] == 0)) continue;
+    int first = -1;
+    for (int j = m.flex_nodeadr[f]; j < m.flex_nodeadr[f] + m.flex_nodenum[f]; j++) {
+      int t = m.body_treeid[m.flex_nodebodyid[j]];
+      if (t < 0 || t == first || !d.tree_awake[t]) continue;
+      if (first < 0) {
+        first = t;
+        continue;
+      }
+      used[first] = used[t] = 1;
+      parent[Root(parent, t)] = Root(parent, first);
+    }
+  }
+}
+
 }  // namespace
 
 void FindIslands(const Model& m, Data& d) {
@@ -104,10 +128,11 @@ void FindIslands(const Model& m, Data& d) {
   // constraint share its trees; each row keeps its first moving tree.
   for (int t = 0; t < ntree; t++) parent[t] = t;
   for (int r = 0; r < d.nefc; r++) {
-    // (except a flex equality's rows, one per edge, each on the trees of its edge)
+    // (except a flex equality's rows, one per edge, vertex invariant or strain mode, each
+    // on the trees of its own columns)
     bool same = r > 0 && d.efc_type[r] == d.efc_type[r - 1] && d.efc_id[r] == d.efc_id[r - 1];
-    bool flex = d.efc_type[r] == kCnstrEquality &&
-                (m.eq_type[d.efc_id[r]] == kEqFlex || m.eq_type[d.efc_id[r]] == kEqFlexVert);
+    int eq_type = d.efc_type[r] == kCnstrEquality ? m.eq_type[d.efc_id[r]] : -1;
+    bool flex = eq_type == kEqFlex || eq_type == kEqFlexVert || eq_type == kEqFlexStrain;
     same = same && !flex;
     if (same) {
       first_tree[r] = first_tree[r - 1];
@@ -123,6 +148,8 @@ void FindIslands(const Model& m, Data& d) {
       parent[Root(parent, t)] = Root(parent, first_tree[r]);
     }
   }
+
+  JoinElasticFlexTrees(m, d, parent, used);
 
   // Number islands by their lowest tree; map dofs and rows.
   int* tree_island = d.tree_island.data();

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "engine/engine.h"
+#include "engine/flex_strain.h"
 #include "engine/sensor.h"
 #include "engine/stack.h"
 #include "math/math.h"
@@ -74,11 +75,17 @@ void EqualityAnchor(const Model& m, const Data& d, int eq, int side, int* body, 
 }
 
 // Connect (force) and weld (force and torque) rows act on both sides, opposite ways.
-// Joint and tendon equalities move no body directly and are skipped.
+// Joint, tendon and flex equalities move no body directly and are skipped: a row at a
+// time, but a flexstrain by MuJoCo's count (FlexStrainRneStep), which can step over the
+// rows of the equalities after it, as MuJoCo's does.
 void AddEqualityForces(const Model& m, Data& d) {
   for (int i = 0; i < d.ne;) {
     int eq = d.efc_id[i];
     int type = m.eq_type[eq];
+    if (type == kEqFlexStrain) {
+      i += std::max(1, FlexStrainRneStep(m, eq));
+      continue;
+    }
     if (type != kEqConnect && type != kEqWeld) {
       i++;
       continue;

@@ -103,6 +103,7 @@ bool EqualityTrees(const Model& m, int e, int* a, int* b) {
     case kEqTendon:
       throw std::runtime_error("tendon equality does not yet support sleeping");
     default:
+      // (flex, flexvert, flexstrain: the trees that carry a flex never sleep)
       return false;
   }
 }
@@ -174,6 +175,7 @@ SleepState EqualitySleepState(const Model& m, const Data& d, int e) {
     case kEqWeld: type = m.eq_objtype[e]; break;
     case kEqJoint: type = kObjJoint; break;
     case kEqTendon: type = kObjTendon; break;
+    // (flex equalities: the trees that carry a flex never sleep)
     default: return kAwake;
   }
   int id1 = m.eq_obj1id[e], id2 = m.eq_obj2id[e];

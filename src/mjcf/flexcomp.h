@@ -21,7 +21,9 @@ enum FlexcompType : int {
   kFcompGrid = 0, kFcompBox, kFcompCylinder, kFcompEllipsoid, kFcompSquare, kFcompDisc,
   kFcompCircle, kFcompMesh, kFcompGmsh, kFcompDirect
 };
-enum FlexcompDof : int { kFcompDofFull = 0, kFcompDofRadial, kFcompDofTrilinear, kFcompDofQuadratic };
+enum FlexcompDof : int {
+  kFcompDofFull = 0, kFcompDofRadial, kFcompDofTrilinear, kFcompDofQuadratic, kFcompDof2D
+};
 
 // The points (3 per point) and elements (dim+1 point ids each) of a flexcomp, with
 // optional texture coordinates (2 per point) and per-element texture ids. `dim` is the
@@ -63,6 +65,7 @@ struct FlexcompSpec {
   int type = kFcompGrid;
   int dof = kFcompDofFull;
   std::array<int, 3> count = {10, 10, 10};
+  std::array<int, 3> cellcount = {-1, -1, -1};  // cells of the node lattice (-1: not given)
   std::array<double, 3> spacing = {0.02, 0.02, 0.02};
   std::array<double, 3> scale = {1, 1, 1};
   std::array<double, 3> origin = {0, 0, 0};
@@ -71,7 +74,7 @@ struct FlexcompSpec {
   std::string file;  // resolved path
   std::array<double, 3> pos = {0, 0, 0};
   std::array<double, 4> quat = {1, 0, 0, 0};
-  int equality = 0;  // 0 none, 1 edges (kEqFlex), 2 vertices (kEqFlexVert)
+  int equality = 0;  // 0 none, 1 edges (kEqFlex), 2 vertices (kEqFlexVert), 3 strain
   EqualitySpec eq;   // its solref and solimp
   std::vector<int> pinid, pinrange, pingrid, pingridrange;
   FlexSpec flex;

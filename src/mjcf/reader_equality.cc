@@ -1,5 +1,6 @@
-// MJCF reader: the <equality> section (connect, weld, joint, tendon and flex constraints) and
-// the <equality> element of default classes, which sets active, solref and solimp.
+// MJCF reader: the <equality> section (connect, weld, joint, tendon and flex constraints;
+// a flexstrain keeps the cell it holds in data[0-2]) and the <equality> element of
+// default classes, which sets active, solref and solimp.
 //
 // Connect and weld name their objects in one of two ways: a body (with an anchor, and
 // optionally a second body, which is the world otherwise) or two sites. The reader
@@ -15,7 +16,8 @@ namespace {
 
 const std::initializer_list<Keyword> kEqualityTypes = {
     {"connect", kEqConnect}, {"weld", kEqWeld},   {"joint", kEqJoint},
-    {"tendon", kEqTendon},   {"flex", kEqFlex},   {"flexvert", kEqFlexVert}};
+    {"tendon", kEqTendon},   {"flex", kEqFlex},   {"flexvert", kEqFlexVert},
+    {"flexstrain", kEqFlexStrain}};
 
 // The attributes every equality element accepts, and those of each kind.
 std::vector<const char*> EqualityAttributes(int type) {
@@ -27,6 +29,7 @@ std::vector<const char*> EqualityAttributes(int type) {
     case kEqJoint: own = {"joint1", "joint2", "polycoef"}; break;
     case kEqFlex:
     case kEqFlexVert: own = {"flex"}; break;
+    case kEqFlexStrain: own = {"flex", "cell"}; break;
     default: own = {"tendon1", "tendon2", "polycoef"}; break;
   }
   attrs.insert(attrs.end(), own.begin(), own.end());
@@ -83,7 +86,6 @@ void Reader::Equality(const XmlElement& e) {
     if (n.type() != pugi::node_element) continue;
     XmlElement c = Element(n);
     const std::string& tag = c.tag();
-    if (tag == "flexstrain") NotSupported(c, "<flexstrain> equality constraints");
     if (tag == "distance") c.Fail("distance equality constraints were removed in MuJoCo 2.2.2");
     int type = -1;
     for (const Keyword& k : kEqualityTypes) {
@@ -112,6 +114,13 @@ void Reader::ReadEquality(const XmlElement& e, EqualitySpec* eq, bool in_default
       ReadBodyOrSites(e, eq);
     } else if (eq->type == kEqFlex || eq->type == kEqFlexVert) {
       e.RequiredText("flex", &eq->name1);
+    } else if (eq->type == kEqFlexStrain) {
+      // (the compiler checks the cell against the flex's cells; MuJoCo reads past them
+      // when cell is left out)
+      e.RequiredText("flex", &eq->name1);
+      if (e.Numbers("cell", eq->data.data(), 3) == 0) {
+        e.Fail("missing cell: the cell's x, y, z indices (or 'f -1 -1' for face f of a shell)");
+      }
     } else {
       ReadCoupling(e, eq);
     }

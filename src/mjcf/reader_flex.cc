@@ -25,9 +25,9 @@ const std::initializer_list<Keyword> kFlexcompTypes = {
     {"direct", kFcompDirect}};
 const std::initializer_list<Keyword> kFlexcompDofs = {
     {"full", kFcompDofFull}, {"radial", kFcompDofRadial}, {"trilinear", kFcompDofTrilinear},
-    {"quadratic", kFcompDofQuadratic}};
+    {"quadratic", kFcompDofQuadratic}, {"2d", kFcompDof2D}};
 const std::initializer_list<Keyword> kFlexEdgeEqualities = {
-    {"false", 0}, {"true", 1}, {"vert", 2}};
+    {"false", 0}, {"true", 1}, {"vert", 2}, {"strain", 3}};
 
 
 // The first child element named `tag`, if any.
@@ -84,7 +84,7 @@ void ReadFlexLook(const XmlElement& e, FlexSpec* flex) {
 
 void Reader::ReadFlex(const XmlElement& e, FlexSpec* flex) {
   e.CheckAttributes({"name", "group", "dim", "radius", "material", "rgba", "flatskin", "body",
-                     "vertex", "element", "texcoord", "elemtexcoord", "node"});
+                     "vertex", "element", "texcoord", "elemtexcoord", "node", "dof", "cellcount"});
   flex->src = e.src();
   ReadFlexLook(e, flex);
   if (!e.Has("body")) e.Fail("missing required attribute 'body'");
@@ -95,6 +95,12 @@ void Reader::ReadFlex(const XmlElement& e, FlexSpec* flex) {
   flex->elem = ReadList(e, "element", ParseInt);
   flex->texcoord = ReadList(e, "texcoord", ParseFloat);
   flex->elemtexcoord = ReadList(e, "elemtexcoord", ParseInt);
+  // (MuJoCo 3.12: the nodes' interpolation order, and the cells of their lattice)
+  int dof = kFcompDofFull;
+  if (e.Enum("dof", &dof, kFlexcompDofs)) {
+    flex->order = dof == kFcompDofTrilinear ? 1 : dof == kFcompDofQuadratic ? 2 : 0;
+  }
+  e.Ints("cellcount", flex->cellcount.data(), 3);
 
   // Children: contact, edge (stiffness and damping only), elasticity.
   for (pugi::xml_node n : e.node().children()) {
@@ -117,7 +123,7 @@ void Reader::ReadFlex(const XmlElement& e, FlexSpec* flex) {
 // ---------------------------------------------------------------- <flexcomp>
 
 void Reader::Flexcomp(const XmlElement& e, BodySpec* body, const DefaultClass* def) {
-  e.CheckAttributes({"name", "type", "group", "dim", "dof", "count", "spacing", "radius",
+  e.CheckAttributes({"name", "type", "group", "dim", "dof", "count", "cellcount", "spacing", "radius",
                      "rigid", "mass", "inertiabox", "scale", "file", "point", "element",
                      "texcoord", "material", "rgba", "flatskin", "pos", "quat", "axisangle",
                      "xyaxes", "zaxis", "euler", "origin"});
@@ -126,6 +132,7 @@ void Reader::Flexcomp(const XmlElement& e, BodySpec* body, const DefaultClass* d
   e.RequiredText("name", &fc.name);
   e.Enum("type", &fc.type, kFlexcompTypes);
   e.Ints("count", fc.count.data(), 3);
+  e.Ints("cellcount", fc.cellcount.data(), 3);
   e.Numbers("spacing", fc.spacing);
   e.Numbers("scale", fc.scale);
   e.Number("mass", &fc.mass);
@@ -186,7 +193,16 @@ void Reader::FlexcompChildren(const XmlElement& e, FlexcompSpec* fc) {
       Unknown(c);
     }
   }
-  if (fc->flex.elastic2d >= 2 && fc->equality) {
+  // Strain (MuJoCo 3.12) keeps the stiff modes of an interpolated flex's elements;
+  // the other equalities keep 3.5.1's rule.
+  if (fc->equality == 3) {
+    if (fc->flex.elastic2d != kElastic2DBend && fc->flex.young > 0) {
+      e.Fail("flex constraints and elasticity (young) cannot both be present");
+    }
+    if (fc->dof != kFcompDofTrilinear && fc->dof != kFcompDofQuadratic) {
+      e.Fail("strain equality needs an interpolated flexcomp (dof trilinear or quadratic)");
+    }
+  } else if (fc->flex.elastic2d >= 2 && fc->equality) {
     e.Fail("elasticity and edge constraints cannot both be present");
   }
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "compiler/flex_cells.h"
 #include "mjcf/flexcomp.h"
 #include "mjcf/limits.h"
 #include "mjcf/reader.h"
@@ -18,6 +19,55 @@ namespace {
 
 bool IsDirect(int type) { return type == kFcompDirect || type == kFcompMesh || type == kFcompGmsh; }
 bool IsInterpolated(int dof) { return dof == kFcompDofTrilinear || dof == kFcompDofQuadratic; }
+int InterpolationOrder(int dof) { return dof == kFcompDofTrilinear ? 1 : dof == kFcompDofQuadratic ? 2 : 0; }
+
+// The edge equality that keeps an interpolated flex's strain (MuJoCo 3.12's "strain").
+constexpr int kFcompEqualityStrain = 3;
+
+// Does this flexcomp follow MuJoCo 3.12's cells (an interpolated flex with more than one
+// cell, a shell: 2D elasticity, or strain equality)? Others expand as MuJoCo 3.5.1 does.
+bool UsesCells(const FlexcompSpec& fc) {
+  if (!IsInterpolated(fc.dof)) return false;
+  const std::array<int, 3>& c = fc.cellcount;
+  bool many = c[0] >= 0 && c[0] * c[1] * c[2] > 1;
+  return many || fc.flex.elastic2d != kElastic2DNone || fc.equality == kFcompEqualityStrain;
+}
+
+// The lattice of an interpolated flexcomp's nodes (one cell unless cellcount says).
+FlexLattice NodeLattice(const FlexcompSpec& fc) {
+  FlexLattice g;
+  g.order = InterpolationOrder(fc.dof);
+  if (fc.cellcount[0] >= 0) {
+    for (int k = 0; k < 3; k++) g.cells[k] = fc.cellcount[k];
+  }
+  g.shell = fc.flex.elastic2d != kElastic2DNone;
+  return g;
+}
+
+// cellcount: positive numbers of cells for an interpolated flexcomp, within the budget
+// of its node bodies and its element stiffness.
+void CheckCellcount(const XmlElement& e, const FlexcompSpec& fc) {
+  if (!e.Has("cellcount")) return;
+  if (!IsInterpolated(fc.dof)) e.Fail("cellcount requires dof=\"trilinear\" or \"quadratic\"");
+  for (int c : fc.cellcount) {
+    if (c == 0) e.Fail("cellcount cannot be 0 in any dimension when interpolation order > 0");
+    if (c < 0) e.Fail("cellcount must be positive");
+  }
+  FlexLattice g = NodeLattice(fc);
+  uint64_t nodes = 1, cells = 1;
+  for (int c : fc.cellcount) {
+    nodes = MulBytes(nodes, static_cast<uint64_t>(c) * g.order + 1);
+    cells = MulBytes(cells, static_cast<uint64_t>(c));
+  }
+  uint64_t bytes = MulBytes(nodes, sizeof(BodySpec) + 3 * sizeof(JointSpec));
+  uint64_t ndof = 3 * static_cast<uint64_t>(g.NodesPerCell());
+  uint64_t stiffness = MulBytes(MulBytes(cells, ndof * ndof), sizeof(double));
+  std::string request = AttrText("cellcount", e.node().attribute("cellcount").value());
+  if (bytes > kMaxArrayBytes) e.Fail(OverBudget(request, bytes, "flexcomp node bodies", kMaxArrayBytes));
+  if (stiffness > kMaxArrayBytes) {
+    e.Fail(OverBudget(request, stiffness, "flex cell stiffness", kMaxArrayBytes));
+  }
+}
 
 // The checks MuJoCo makes before building: name, dim, counts, spacing, scale, mass.
 void CheckFlexcomp(const XmlElement& e, const FlexcompSpec& fc, bool named_parent) {
@@ -50,6 +100,7 @@ void CheckFlexcomp(const XmlElement& e, const FlexcompSpec& fc, bool named_paren
     e.Fail(OverBudget(AttrText("count", e.node().attribute("count").value()), bytes,
                       "flexcomp bodies", kMaxArrayBytes));
   }
+  CheckCellcount(e, fc);
 }
 
 // The shape's points and elements, by type (a file's loader makes MuJoCo's checks).
@@ -190,9 +241,10 @@ void DropUnusedPoints(FlexcompSpec* fc, int nnode) {
 }
 
 // A body for a point or node: at `pos` in the parent, with the flexcomp's mass share
-// and box inertia, and three orthogonal sliders (or one radial slider).
+// and box inertia, and sliders by `dof`: three orthogonal ones (full), one radial
+// (radial) or two along the parent's x and y (2d).
 BodySpec* AddPointBody(BodySpec* parent, const FlexcompSpec& fc, const DefaultClass* def,
-                       const std::string& name, const double pos[3], double mass, bool radial) {
+                       const std::string& name, const double pos[3], double mass, int dof) {
   auto body = std::make_unique<BodySpec>();
   body->src = fc.src;
   body->src.tag = "body";
@@ -204,7 +256,8 @@ BodySpec* AddPointBody(BodySpec* parent, const FlexcompSpec& fc, const DefaultCl
   body->mass = mass;
   double inertia = mass * (2.0 * fc.inertiabox * fc.inertiabox) / 3.0;
   body->inertia = {inertia, inertia, inertia};
-  int nslider = radial ? 1 : 3;
+  bool radial = dof == kFcompDofRadial;
+  int nslider = radial ? 1 : dof == kFcompDof2D ? 2 : 3;
   for (int j = 0; j < nslider; j++) {
     JointSpec joint = def->joint;
     joint.src = fc.src;
@@ -252,7 +305,7 @@ void AddVertexBodies(FlexcompSpec* fc, BodySpec* body, const DefaultClass* def, 
       continue;
     }
     std::string name = fc->name + "_" + std::to_string(i);
-    BodySpec* pb = AddPointBody(body, *fc, def, name, p, mass, fc->dof == kFcompDofRadial);
+    BodySpec* pb = AddPointBody(body, *fc, def, name, p, mass, fc->dof);
     if (flex.vertcollide) AddVertexSphere(pb, *fc, def, 4);
     flex.vertbody.push_back(name);
     if (!centered) p[0] = p[1] = p[2] = 0;
@@ -285,13 +338,160 @@ void AddNodeBodies(FlexcompSpec* fc, BodySpec* body, const DefaultClass* def,
                                  : fc->mass * quadratic_mass[i] * quadratic_mass[j] * quadratic_mass[k];
         std::string name = fc->name + "_" + std::to_string(i) + "_" + std::to_string(j) + "_" +
                            std::to_string(k);
-        BodySpec* pb = AddPointBody(body, *fc, def, name, pos, mass, false);
+        BodySpec* pb = AddPointBody(body, *fc, def, name, pos, mass, kFcompDofFull);
         if (flex.vertcollide) {
           // (MuJoCo adds the node's sphere before its joints, in the default group.)
           AddVertexSphere(pb, *fc, def, -1);
         }
         flex.nodebody.push_back(name);
       }
+    }
+  }
+  flex.node = std::move(node);
+}
+
+// The equalities a flexcomp asks for (<edge equality>): one on its edges (1) or its
+// vertices (2); for strain (3) one per element of its node lattice, in MuJoCo's order:
+// a shell's faces (data[0] the face, data[1-2] -1), else the cells that hold elements
+// (data[0-2] the cell's indices along x, y, z).
+void AddFlexcompEqualities(const FlexcompSpec& fc, const FlexSpec& flex,
+                           std::vector<EqualitySpec>* out) {
+  EqualitySpec eq = fc.eq;  // MuJoCo's defaults, with the edge's solref and solimp
+  eq.src = fc.src;
+  eq.src.tag = "equality";
+  eq.src.name.clear();
+  eq.active = true;
+  eq.name1 = fc.name;
+  if (fc.equality != 3) {
+    eq.type = fc.equality == 1 ? kEqFlex : kEqFlexVert;
+    out->push_back(std::move(eq));
+    return;
+  }
+  eq.type = kEqFlexStrain;
+  const std::array<int, 3>& c = flex.cellcount;
+  if (flex.elastic2d != kElastic2DNone) {
+    int nface = 2 * (c[1] * c[2] + c[0] * c[2] + c[0] * c[1]);
+    for (int face = 0; face < nface; face++) {
+      eq.data[0] = face;
+      eq.data[1] = eq.data[2] = -1;
+      out->push_back(eq);
+    }
+    return;
+  }
+  for (int i = 0; i < c[0]; i++) {
+    for (int j = 0; j < c[1]; j++) {
+      for (int k = 0; k < c[2]; k++) {
+        size_t cell = (static_cast<size_t>(i) * c[1] + j) * c[2] + k;
+        if (!flex.cell_empty.empty() && flex.cell_empty[cell]) continue;
+        eq.data[0] = i;
+        eq.data[1] = j;
+        eq.data[2] = k;
+        out->push_back(eq);
+      }
+    }
+  }
+}
+
+// The nodes of a flexcomp made of cells that nothing moves: in MuJoCo 3.12, those in
+// empty cells only (a volume), or off the lattice's boundary (a shell, whose interior
+// follows the boundary). pinned is indexed by node.
+void PinCellNodes(const FlexLattice& g, FlexcompSpec* fc, const double minmax[6]) {
+  FlexSpec& flex = fc->flex;
+  int nx = g.Nodes(0), ny = g.Nodes(1), nz = g.Nodes(2);
+  if (g.shell) {
+    for (int i = 0; i < nx; i++) {
+      for (int j = 0; j < ny; j++) {
+        for (int k = 0; k < nz; k++) {
+          bool boundary = i == 0 || i == nx - 1 || j == 0 || j == ny - 1 || k == 0 || k == nz - 1;
+          if (!boundary) fc->pinned[g.Node(i, j, k)] = true;
+        }
+      }
+    }
+    return;
+  }
+  flex.cell_empty = compiler::EmptyFlexCells(g.cells, fc->shape.point, flex.elem, flex.dim, minmax);
+  auto cell_range = [&](int node, int axis, int* lo, int* hi) {
+    *lo = std::max(0, node == 0 ? 0 : (node - 1) / g.order);
+    *hi = std::min(g.cells[axis] - 1, node / g.order);
+  };
+  for (int i = 0; i < nx; i++) {
+    for (int j = 0; j < ny; j++) {
+      for (int k = 0; k < nz; k++) {
+        // Every cell holding the node is empty.
+        int lo[3], hi[3];
+        cell_range(i, 0, &lo[0], &hi[0]);
+        cell_range(j, 1, &lo[1], &hi[1]);
+        cell_range(k, 2, &lo[2], &hi[2]);
+        bool all_empty = true;
+        for (int ci = lo[0]; ci <= hi[0] && all_empty; ci++) {
+          for (int cj = lo[1]; cj <= hi[1] && all_empty; cj++) {
+            for (int ck = lo[2]; ck <= hi[2] && all_empty; ck++) {
+              all_empty = flex.cell_empty[(ci * g.cells[1] + cj) * g.cells[2] + ck];
+            }
+          }
+        }
+        if (all_empty) fc->pinned[g.Node(i, j, k)] = true;
+      }
+    }
+  }
+}
+
+// The node lattice of a flexcomp made of cells over the points' bounding box: bodies
+// NAME_i_j_k with three sliders for the nodes that move, their masses (one per node
+// trilinear, Simpson's weights quadratic, a node shared by two cells along an axis
+// counting twice) scaled to the flexcomp's mass (MuJoCo 3.12's Make).
+void AddCellNodeBodies(FlexcompSpec* fc, BodySpec* body, const DefaultClass* def,
+                       const double minmax[6], const std::string& parent) {
+  FlexSpec& flex = fc->flex;
+  FlexLattice g = NodeLattice(*fc);
+  flex.order = g.order;
+  flex.cellcount = g.cells;
+  PinCellNodes(g, fc, minmax);
+  int nx = g.Nodes(0), ny = g.Nodes(1), nz = g.Nodes(2);
+  std::vector<double> node(3 * static_cast<size_t>(nx) * ny * nz, 0);
+  std::vector<std::pair<BodySpec*, double>> bodies;  // and their unscaled masses
+  const double simpson[2] = {1. / 6., 2. / 3.};
+  int idx = 0;
+  for (int i = 0; i < nx; i++) {
+    for (int j = 0; j < ny; j++) {
+      for (int k = 0; k < nz; k++, idx++) {
+        int at[3] = {i, j, k};
+        double pos[3];
+        for (int a = 0; a < 3; a++) {
+          double s = static_cast<double>(at[a]) / (g.cells[a] * g.order);
+          pos[a] = minmax[a] + s * (minmax[a + 3] - minmax[a]);
+        }
+        if (fc->pinned[idx]) {
+          for (int a = 0; a < 3; a++) node[3 * idx + a] = pos[a];
+          flex.nodebody.push_back(parent);
+          continue;
+        }
+        double mass = 1.0;
+        if (g.order == 2) {
+          for (int a = 0; a < 3; a++) mass *= simpson[at[a] % 2];
+          for (int a = 0; a < 3; a++) {
+            bool shared = at[a] > 0 && at[a] < g.Nodes(a) - 1 && at[a] % 2 == 0;
+            mass *= shared ? 2 : 1;
+          }
+        }
+        std::string name = fc->name + "_" + std::to_string(i) + "_" + std::to_string(j) + "_" +
+                           std::to_string(k);
+        BodySpec* pb = AddPointBody(body, *fc, def, name, pos, mass, kFcompDofFull);
+        if (flex.vertcollide) AddVertexSphere(pb, *fc, def, -1);
+        bodies.push_back({pb, mass});
+        flex.nodebody.push_back(name);
+      }
+    }
+  }
+
+  // The masses (and inertias) scaled to the flexcomp's.
+  double total = 0;
+  for (const auto& b : bodies) total += b.second;
+  if (total > 0) {
+    double scale = fc->mass / total;
+    for (auto& b : bodies) {
+      b.first->mass *= scale;
+      for (double& inertia : b.first->inertia) inertia *= scale;
     }
   }
   flex.node = std::move(node);
@@ -320,7 +520,11 @@ void Reader::MakeFlexcomp(const XmlElement& e, FlexcompSpec* fc, BodySpec* body,
       minmax[k + 3] = std::max(minmax[k + 3], fc->shape.point[3 * i + k]);
     }
   }
-  int nnode = fc->dof == kFcompDofTrilinear ? 8 : fc->dof == kFcompDofQuadratic ? 27 : 0;
+  int nnode = 0;
+  if (IsInterpolated(fc->dof)) {
+    FlexLattice g = NodeLattice(*fc);
+    nnode = UsesCells(*fc) ? g.Nodes(0) * g.Nodes(1) * g.Nodes(2) : g.NodesPerCell();
+  }
   bool centered = false;
   PinPoints(e, fc, npoint, nnode, &centered);
   if (IsDirect(fc->type)) DropUnusedPoints(fc, nnode);
@@ -341,21 +545,17 @@ void Reader::MakeFlexcomp(const XmlElement& e, FlexcompSpec* fc, BodySpec* body,
     return;
   }
   AddVertexBodies(fc, body, def, centered, parent);
-  if (IsInterpolated(fc->dof)) AddNodeBodies(fc, body, def, minmax, parent);
+  if (UsesCells(*fc)) {
+    AddCellNodeBodies(fc, body, def, minmax, parent);
+  } else if (IsInterpolated(fc->dof)) {
+    AddNodeBodies(fc, body, def, minmax, parent);
+  }
   if (!centered || IsInterpolated(fc->dof)) flex.vert = std::move(fc->shape.point);
   spec_->flexes.push_back(std::move(flex));
 
-  // The equality that keeps the edges (or the vertices' metric) at their lengths.
-  if (fc->equality) {
-    EqualitySpec eq = fc->eq;  // MuJoCo's defaults, with the edge's solref and solimp
-    eq.src = fc->src;
-    eq.src.tag = "equality";
-    eq.src.name.clear();
-    eq.type = fc->equality == 1 ? kEqFlex : kEqFlexVert;
-    eq.active = true;
-    eq.name1 = fc->name;
-    spec_->equalities.push_back(std::move(eq));
-  }
+  // The equality that keeps the edges (or the vertices' metric) at their lengths, or
+  // the strain equalities of the flex's elements.
+  if (fc->equality) AddFlexcompEqualities(*fc, spec_->flexes.back(), &spec_->equalities);
 }
 
 }  // namespace simlab::mjcf

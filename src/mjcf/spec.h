@@ -494,6 +494,11 @@ struct FlexSpec {
   std::vector<int> elem, elemtexcoord;
   std::vector<float> texcoord;
   int order = 0;  // interpolation order set by a flexcomp (0: from the node count)
+  // The cells of the node grid along x, y, z (MuJoCo 3.12's cellcount): the nodes form a
+  // (cx order + 1) x (cy order + 1) x (cz order + 1) lattice, x slowest; and the cells a
+  // flexcomp found empty of elements (cx cy cz flags, or none: the compiler finds them).
+  std::array<int, 3> cellcount = {1, 1, 1};
+  std::vector<bool> cell_empty;
 };
 
 // A texture asset (MuJoCo's mjsTexture): a builtin pattern or image files.

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# make_goldens.sh — flex features newer than the npm oracle (MuJoCo 3.5.1): MuJoCo 3.12's
+# models rolled out by native MuJoCo 3.12 built from source ($MUJOCO_NATIVE, default
+# /work/mujoco-native; its `rollout` has rollout.mjs's arguments and format), with
+# musl's sines and cosines preloaded ($MUSL_TRIG, default
+# /work/mujoco-oracle-era3/musl_trig.so, when it exists), as simlab computes them.
+#
+# Usage:  tests/conformance/flex_native/make_goldens.sh      (from any working directory)
+#
+#   Each line of MODELS: a model path (from the repository's root), the steps, how often
+#   to record, the tolerance, and optionally a control file (CSV, from the root; none:
+#   zero controls). Writes goldens/<name>.jsonl and tests/conformance/flex_native_cases.txt.
+#   MuJoCo 3.12 thins flex contacts per collision pair (filterFlexContacts) and simlab
+#   does not: a model that makes flex contacts is rolled out up to its first one, and its
+#   copy without contacts (models/<name>_nocontact.xml) over the whole run.
+# Requirements: bash, python3, and the native build.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
+NATIVE="${MUJOCO_NATIVE:-/work/mujoco-native}"
+ROLLOUT="$NATIVE/rollout"
+MUSL_TRIG="${MUSL_TRIG:-/work/mujoco-oracle-era3/musl_trig.so}"
+[ -x "$ROLLOUT" ] || { echo "no $ROLLOUT: build native MuJoCo with ../shared/oracle/native/build.sh" >&2; exit 1; }
+PRELOAD=""
+[ -f "$MUSL_TRIG" ] && PRELOAD="$MUSL_TRIG"
+cd "$ROOT"
+OUT=tests/conformance/flex_native
+CASES=tests/conformance/flex_native_cases.txt
+FLEX=../shared/corpus/mujoco/model/flex
+MODELS=(
+  # cellcount: trilinear bunnies on a 3 x 3 x 3 lattice of cells (nodes only in empty
+  # cells pinned), a volume with elasticity and a shell (interior nodes pinned, bending
+  # between faces, strain equality), up to their first flex contact (step 42); the
+  # volume bunny without contacts until just before it goes unstable (t = 0.248)
+  "$FLEX/bunny_multicell.xml 41 10 1e-9"
+  "$FLEX/bunny_shell.xml 41 10 1e-9"
+  "$OUT/models/bunny_multicell_nocontact.xml 120 10 1e-9"
+  "$OUT/models/bunny_shell_nocontact.xml 200 20 1e-9"
+  # a solid and a hollow (shell) 6 x 1 x 6-cell grid kept by strain equality, up to their
+  # first contact (step 55), and without contacts
+  "$FLEX/hollow_vs_solid.xml 54 27 1e-9"
+  "$OUT/models/hollow_vs_solid_nocontact.xml 200 50 1e-9"
+  # dof="2d": a fin-ray gripper's fingers of vertex bodies with two slide joints each
+  # (edge equality and damping) under smooth controls (ctrl/gripper_2d.csv, by hand),
+  # up to step 80 (MuJoCo 3.12 solves the cylinder's floor contact differently from 3.5.1
+  # from step 82, and the fingers touch it at step 94), and without contacts
+  "$FLEX/gripper_2d.xml 80 10 1e-9 $OUT/ctrl/gripper_2d.csv"
+  "$OUT/models/gripper_2d_nocontact.xml 200 10 1e-9 $OUT/ctrl/gripper_2d.csv"
+  # strain equality: trilinear boxes pinned at one end (a flexstrain per cell, a row per
+  # stiff mode), up to their first contact (step 155), without contacts, the same with
+  # quadratic boxes (75 modes a cell, a sparse Jacobian), and explicit <flexstrain>
+  # elements before a connect read by a force sensor (MuJoCo's cfrc_ext pass skips the
+  # connect; free-falling boxes whose strain forces are the solver's noise: 1e-7)
+  "$FLEX/strain.xml 150 10 1e-9"
+  "$OUT/models/strain_nocontact.xml 400 20 1e-9"
+  "$OUT/models/strain_quadratic_nocontact.xml 300 20 1e-9"
+  "$OUT/models/strain_sensor.xml 100 10 1e-7"
+)
+
+rm -rf "$OUT/goldens"
+mkdir -p "$OUT/goldens"
+: > "$CASES"
+for line in "${MODELS[@]}"; do
+  read -r model steps every tol ctrl <<< "$line"
+  name=$(basename "$model" .xml)
+  golden="$OUT/goldens/$name.jsonl"
+  args=(--steps "$steps" --every "$every" --out "$golden")
+  [ -z "${ctrl:-}" ] || args+=(--ctrl "$ctrl")
+  LD_PRELOAD="$PRELOAD" "$ROLLOUT" "$model" "${args[@]}"
+  ! grep -qiE 'null|nan|infinity' "$golden" || { echo "$golden: non-finite values" >&2; exit 1; }
+  echo "$model $golden $steps - ${ctrl:--} $tol" >> "$CASES"
+  echo "$name: $(wc -c < "$golden") bytes"
+done
