@@ -2,6 +2,7 @@
 //
 //   energy[0] = -sum_b m_b g . xipos_b + sum over joints k/2 |q - q_spring|^2
 //               + sum over tendons k/2 (length outside lengthspring)^2
+//               + sum over the edges of cables (1D flexes) k/2 (length - length0)^2
 //   energy[1] = qvel' M qvel / 2
 //
 // Forward computes them when the energy flag is enabled; the e_potential and e_kinetic
@@ -62,6 +63,18 @@ double TendonSpringEnergy(const Model& m, const Data& d, int i) {
   return 0.5 * m.tendon_stiffness[i] * stretch * stretch;
 }
 
+// Spring energy of a cable's (1D flex's) edges that can stretch, at its edge stiffness;
+// 2D and 3D flexes' elasticity has no energy here, as in MuJoCo. Added edge by edge.
+void AddCableSpringEnergy(const Model& m, const Data& d, int f, double* energy) {
+  double k = m.flex_edgestiffness[f];
+  if (m.flex_rigid[f] || k == 0 || m.flex_dim[f] > 1) return;
+  for (int e = m.flex_edgeadr[f]; e < m.flex_edgeadr[f] + m.flex_edgenum[f]; e++) {
+    if (m.flexedge_rigid[e]) continue;
+    double stretch = m.flexedge_length0[e] - d.flexedge_length[e];
+    *energy += 0.5 * k * stretch * stretch;
+  }
+}
+
 }  // namespace
 
 void EnergyPos(const Model& m, Data& d) {
@@ -72,6 +85,7 @@ void EnergyPos(const Model& m, Data& d) {
       if (m.jnt_stiffness[j] != 0) AddJointSpringEnergy(m, d, j, &d.energy[0]);
     }
     for (int i = 0; i < m.ntendon; i++) d.energy[0] += TendonSpringEnergy(m, d, i);
+    for (int f = 0; f < m.nflex; f++) AddCableSpringEnergy(m, d, f, &d.energy[0]);
   }
   d.flg_energypos = true;
 }

@@ -14,6 +14,7 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/flex_implicit.h"
 #include "engine/sleep.h"
 #include "engine/stack.h"
 #include "engine/timer.h"
@@ -245,18 +246,10 @@ void SolveImplicitMatrix(const Model& m, const Data& d, const double* qfrc, doub
   }
 }
 
-// qacc = (M - h qDeriv)^-1 qfrc, by the sparse LU of M - h qDeriv (no pivoting: the
-// matrix is dominated by the positive definite M for any sensible step).
-void SolveImplicitFull(const Model& m, Data& d, const double* qfrc, double* qacc) {
-  BuildImplicitMatrix(m, d);
-  FactorImplicitMatrix(m, d);
-  SolveImplicitMatrix(m, d, qfrc, qacc);
-}
-
-// qacc = (M - h qDeriv restricted to M's sparsity)^-1 qfrc, by L^T D L. MuJoCo's M
-// stores no off-diagonal entries in the rows of simple bodies' dofs, so their qDeriv
-// couplings (fluid drag on a free body, say) are dropped there.
-void SolveImplicitFast(const Model& m, Data& d, const double* qfrc, double* qacc) {
+// qH = M - h qDeriv restricted to M's sparsity. MuJoCo's M stores no off-diagonal
+// entries in the rows of simple bodies' dofs, so their qDeriv couplings (fluid drag on a
+// free body, say) are dropped there.
+void BuildFastMatrix(const Model& m, Data& d) {
   double h = m.opt.timestep;
   for (int i = 0; i < m.nv; i++) {
     bool simple = m.body_simple[m.dof_bodyid[i]] != 0;
@@ -267,9 +260,16 @@ void SolveImplicitFast(const Model& m, Data& d, const double* qfrc, double* qacc
       d.qH[adr] = simple && m.M_colind[adr] != i ? d.M[adr] : d.M[adr] - h * deriv[s];
     }
   }
-  FactorSparse(m, d.qH.data(), d.qHDiagInv.data());
-  std::copy(qfrc, qfrc + m.nv, qacc);
-  SolveSparse(m, d.qH.data(), d.qHDiagInv.data(), qacc);
+}
+
+// The step matrix as built, before it is factored: M - h qDeriv in D's layout (qLU,
+// implicit) or M's (qH, implicitfast).
+StepMatrix StepMatrixOf(const Model& m, const Data& d) {
+  if (m.opt.integrator == kIntegratorImplicit) {
+    return StepMatrix{d.qLU.data(), m.D_rownnz.data(), m.D_rowadr.data(), m.D_colind.data(),
+                      false};
+  }
+  return StepMatrix{d.qH.data(), m.M_rownnz.data(), m.M_rowadr.data(), m.M_colind.data(), true};
 }
 
 }  // namespace
@@ -280,13 +280,32 @@ void ImplicitIntegrate(const Model& m, Data& d) {
   double* qfrc = frame.Alloc(m.nv);
   double* qacc = frame.Alloc(m.nv);
   for (int v = 0; v < m.nv; v++) qfrc[v] = d.qfrc_smooth[v] + d.qfrc_constraint[v];
-  if (m.opt.integrator == kIntegratorImplicit) {
-    SmoothVelocityDerivative(m, d, true);
-    SolveImplicitFull(m, d, qfrc, qacc);
+  bool implicit = m.opt.integrator == kIntegratorImplicit;
+
+  // The step matrix M - h qDeriv: with qDeriv's RNE part (implicit) or without it.
+  SmoothVelocityDerivative(m, d, implicit);
+  if (implicit) {
+    BuildImplicitMatrix(m, d);
   } else {
-    SmoothVelocityDerivative(m, d, false);
-    SolveImplicitFast(m, d, qfrc, qacc);
+    BuildFastMatrix(m, d);
   }
+
+  // Interpolated flexes: their nodes' block, with their stiffness, set apart first.
+  SolverFrame flex_frame(d.solver_scratch);
+  FlexImplicitSystem flex;
+  if (UsesFlexImplicitSystem(m, d)) flex = BuildFlexImplicitSystem(m, d, StepMatrixOf(m, d), flex_frame);
+
+  // qacc = (M - h qDeriv)^-1 qfrc: by sparse LU (no pivoting: the matrix is dominated by
+  // the positive definite M for any sensible step) or by L^T D L.
+  if (implicit) {
+    FactorImplicitMatrix(m, d);
+    SolveImplicitMatrix(m, d, qfrc, qacc);
+  } else {
+    FactorSparse(m, d.qH.data(), d.qHDiagInv.data());
+    std::copy(qfrc, qfrc + m.nv, qacc);
+    SolveSparse(m, d.qH.data(), d.qHDiagInv.data(), qacc);
+  }
+  SolveFlexImplicitSystem(m, d, flex, qfrc, qacc);
   Advance(m, d, d.act_dot.data(), qacc, nullptr);
 }
 
