@@ -114,6 +114,13 @@ TEST(MjcfErrors, NotSupportedYet) {
               "<body><freejoint/><geom name=\"ball\" size=\".1\"/></body>\n</worldbody>\n</mujoco>",
               {"bad.xml:7:", "<geom name=\"ground\">", "nativeccd flag disabled are not supported yet",
                "'ball'"});
+  ExpectError("<mujoco>\n<option><flag nativeccd=\"disable\"/></option>\n<asset>\n"
+              "<hfield name=\"h\" nrow=\"2\" ncol=\"2\" size=\"1 1 .1 .1\"/>\n</asset>\n<worldbody>\n"
+              "<geom name=\"ground\" type=\"hfield\" hfield=\"h\"/>\n"
+              "<flexcomp name=\"cloth\" type=\"grid\" count=\"2 2 1\" spacing=\".1 .1 .1\" dim=\"2\"/>\n"
+              "</worldbody>\n</mujoco>",
+              {"bad.xml:7:", "<geom name=\"ground\">", "nativeccd flag disabled are not supported yet",
+               "flex 'cloth'"});
   ExpectError("<mujoco>\n<worldbody>\n<body>\n<composite/>\n</body>\n</worldbody>\n</mujoco>",
               {"bad.xml:4:", "<composite> is not supported yet"});
   ExpectError("<mujoco>\n<worldbody>\n<body><joint name=\"j\"/><geom size=\".1\"/></body>\n</worldbody>\n"

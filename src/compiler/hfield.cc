@@ -104,7 +104,8 @@ void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& stat
   // Height fields collide through MuJoCo's native CCD; with the nativeccd flag disabled
   // MuJoCo switches to libccd's MPR, which is not supported yet. A pair is skipped when
   // both geoms are welded to the same body (static geoms included); any other pair that
-  // passes the type/affinity test, or is a <pair>, could collide.
+  // passes the type/affinity test, or is a <pair>, could collide, and so could any flex
+  // that passes it.
   if (!(spec.option.disableflags & kDisableNativeccd)) return;
   const std::string refusal =
       "hfield collisions with the nativeccd flag disabled are not supported yet";
@@ -122,6 +123,14 @@ void CheckHFieldCollisions(const mjcf::ModelSpec& spec, const CompileState& stat
                               ? "at line " + std::to_string(g.spec->src.line)
                               : "'" + g.spec->src.name + "'";
       ThrowAt(h.spec->src, refusal + " (the hfield can touch geom " + other +
+                               "; set contype and conaffinity to 0)");
+    }
+    // Flex elements meet height fields through the same prisms (mjc_HFieldElem).
+    for (const mjcf::FlexSpec& f : spec.flexes) {
+      if (!(h.spec->contype & f.conaffinity) && !(f.contype & h.spec->conaffinity)) continue;
+      std::string other = f.src.name.empty() ? "at line " + std::to_string(f.src.line)
+                                             : "'" + f.src.name + "'";
+      ThrowAt(h.spec->src, refusal + " (the hfield can touch flex " + other +
                                "; set contype and conaffinity to 0)");
     }
   }

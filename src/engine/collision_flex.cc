@@ -183,7 +183,7 @@ void CollideGeomElem(const Model& m, Data& d, int g, int f, int e) {
       for (int i = 0; i < num; i++) math::Scale3(con[i].frame, con[i].frame, -1);
     }
   } else if (type == kGeomHfield) {
-    num = 0;  // height fields against flex elements: not modelled yet
+    num = HFieldElem(m, d, con, g, f, e, margin);
   } else if (type == kGeomSphere && dim == 2) {
     num = SphereTriangle(con, margin, geom.pos, geom.size[0], t[0], t[1], t[2], radius);
   } else if (type == kGeomBox && dim == 2) {

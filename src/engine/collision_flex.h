@@ -33,6 +33,12 @@ int CapsuleTriangle(Contact* con, double margin, const double* pos, const double
 int ConvexElem(const Model& m, const Data& d, Contact* con, int g1, int f1, int e1, int v1,
                int f2, int e2, double margin);
 
+// Height field g against element e of flex f (mjc_HFieldElem): the element, in the
+// field's frame, against the prisms under its vertices' box, one contact per penetrating
+// prism (collision_hfield.cc's walk).
+int HFieldElem(const Model& m, const Data& d, Contact* con, int g, int f, int e,
+               double margin);
+
 }  // namespace simlab
 
 #endif  // SIMLAB_ENGINE_COLLISION_FLEX_H_

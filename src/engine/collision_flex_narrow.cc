@@ -1,6 +1,6 @@
 // Narrow phase of flex elements and vertices (MuJoCo's mjraw_SphereTriangle,
-// mjraw_BoxTriangle, mjraw_CapsuleTriangle and mjc_ConvexElem with mjc_fixNormal), in
-// MuJoCo's arithmetic so that contacts agree to the bit.
+// mjraw_BoxTriangle, mjraw_CapsuleTriangle, mjc_ConvexElem with mjc_fixNormal and
+// mjc_HFieldElem), in MuJoCo's arithmetic so that contacts agree to the bit.
 #include <algorithm>
 #include <cmath>
 
@@ -348,6 +348,36 @@ int ConvexElem(const Model& m, const Data& d, Contact* con, int g1, int f1, int 
     for (int i = 0; i < n; i++) NormalFromGeom(m, d, con + i, g1);
   }
   return n;
+}
+
+// ---------------------------------------------------------------- height fields
+
+int HFieldElem(const Model& m, const Data& d, Contact* con, int g, int f, int e,
+               double margin) {
+  // The element in the field's frame: its vertices and its box's centre (GJK's start).
+  const double* hpos = &d.geom_xpos[3 * g];
+  const double* hmat = &d.geom_xmat[9 * g];
+  ccd::ConvexShape elem = FlexShape(m, d, f, e, -1, margin);
+  double local[4][3], dif[3];
+  for (int i = 0; i < elem.nflexpoint; i++) {
+    math::Sub3(dif, elem.flexpoint[i], hpos);
+    math::MulMatTVec3(local[i], hmat, dif);
+    elem.flexpoint[i] = local[i];
+  }
+  math::Sub3(dif, elem.pos, hpos);
+  math::MulMatTVec3(elem.pos, hmat, dif);
+
+  // Its box there: the vertices' only (neither radius nor margin).
+  double lo[3], hi[3];
+  math::Copy3(lo, local[0]);
+  math::Copy3(hi, local[0]);
+  for (int i = 1; i < elem.nflexpoint; i++) {
+    for (int k = 0; k < 3; k++) {
+      lo[k] = std::min(lo[k], local[i][k]);
+      hi[k] = std::max(hi[k], local[i][k]);
+    }
+  }
+  return CollideHFieldShape(m, d, con, g, &elem, lo, hi, margin);
 }
 
 }  // namespace simlab

@@ -136,6 +136,14 @@ namespace simlab {
 int QueryContacts(const Model& m, ccd::ConvexShape* s1, ccd::ConvexShape* s2, Contact* con,
                   int max_contacts, double margin);
 
+// A convex shape posed in height field g's frame, whose box there (without its margin)
+// is [lo, hi], against the field's prisms under that box (collision_hfield.cc): one
+// contact per penetrating prism, normals from the field to the shape; returns how many.
+// MuJoCo's prism walk of mjc_ConvexHField and mjc_HFieldElem.
+int CollideHFieldShape(const Model& m, const Data& d, Contact* con, int g,
+                       ccd::ConvexShape* shape, const double lo[3], const double hi[3],
+                       double margin);
+
 }  // namespace simlab
 
 #endif  // SIMLAB_ENGINE_COLLISION_GJK_H_

@@ -1,13 +1,14 @@
-// Height fields against convex geoms (MuJoCo's mjc_ConvexHField).
+// Height fields against convex geoms (MuJoCo's mjc_ConvexHField) and against flex
+// elements (mjc_HFieldElem, whose shape collision_flex_narrow.cc builds).
 //
 // The height field is a grid of elevations; each grid cell is split into two triangles,
 // and each triangle, extruded down to the field's base, is a convex prism. The convex
-// geom is expressed in the height field's frame, its bounding box picks the cells below
+// shape is expressed in the height field's frame, its bounding box picks the cells below
 // it, and GJK/EPA (collision_gjk.cc) runs once per prism: every penetrating prism gives
 // one contact, in the order of the grid walk (rows, then columns, then the two triangles
 // of a cell), at most kMaxContactPair of them.
 //
-// Margins as MuJoCo: the prisms' tops are raised by the margin, the geom is inflated by
+// Margins as MuJoCo: the prisms' tops are raised by the margin, the shape is inflated by
 // half the margin, and the reported distance is the penetration of these inflated shapes
 // (no margin is added back).
 #include <algorithm>
@@ -140,7 +141,7 @@ bool BoundsMissBox(const HFieldGrid& grid, const Bounds& b, double margin) {
          b.lo[2] - margin > size[2] || b.hi[2] + margin < -size[3];
 }
 
-// The grid points under the geom's box: columns [cmin, cmax], rows [rmin, rmax].
+// The grid points under the shape's box: columns [cmin, cmax], rows [rmin, rmax].
 struct SubGrid {
   int cmin, cmax, rmin, rmax;
 };
@@ -168,9 +169,9 @@ SubGrid CellsUnder(const HFieldGrid& grid, const Bounds& b) {
 
 // ---------------------------------------------------------------- one prism
 
-// GJK/EPA between the prism and the geom (both in the field's frame). On penetration
+// GJK/EPA between the prism and the shape (both in the field's frame). On penetration
 // writes the contact in world coordinates (field pose pos1, mat1) and returns true.
-bool PrismContact(const Model& m, const Prism& p, int g1, ConvexShape* geom,
+bool PrismContact(const Model& m, const Prism& p, int g1, ConvexShape* shape,
                   const double* pos1, const double* mat1, Contact* con) {
   ConvexShape prism = PrismShape(p, g1);
   PrismCentre(p, prism.pos);
@@ -180,10 +181,10 @@ bool PrismContact(const Model& m, const Prism& p, int g1, ConvexShape* geom,
   config.max_contacts = 1;
   config.dist_cutoff = 0;
   ccd::CcdStatus status;
-  double dist = ccd::Collide(config, &status, &prism, geom);
+  double dist = ccd::Collide(config, &status, &prism, shape);
   if (!(dist < 0)) return false;
 
-  // normal from the prism's witness point to the geom's, contact halfway between
+  // normal from the prism's witness point to the shape's, contact halfway between
   double normal[3], mid[3];
   math::Sub3(normal, status.x1, status.x2);
   math::Normalize3(normal);
@@ -198,7 +199,50 @@ bool PrismContact(const Model& m, const Prism& p, int g1, ConvexShape* geom,
 
 }  // namespace
 
-// ---------------------------------------------------------------- entry point
+// ---------------------------------------------------------------- entry points
+
+int CollideHFieldShape(const Model& m, const Data& d, Contact* con, int g1,
+                       ccd::ConvexShape* shape, const double lo[3], const double hi[3],
+                       double margin) {
+  const double* pos1 = &d.geom_xpos[3 * g1];
+  const double* mat1 = &d.geom_xmat[9 * g1];
+  HFieldGrid grid = GridOf(m, g1);
+
+  // the shape's box must reach the field
+  Bounds bounds;
+  math::Copy3(bounds.lo, lo);
+  math::Copy3(bounds.hi, hi);
+  if (BoundsMissBox(grid, bounds, margin)) return 0;
+  SubGrid sub = CellsUnder(grid, bounds);
+  // no column under the shape (it overhangs an edge within the margin): no prism, and
+  // the walk's first points would lie outside the grid
+  if (sub.cmin > sub.cmax) return 0;
+
+  // walk the strip of each row pair: point (r+1, c) then (r, c) closes two prisms
+  Prism prism;
+  for (int k = 0; k < 3; k++) prism.v[k][2] = -grid.size[3];
+  int ncon = 0;
+  for (int r = sub.rmin; r < sub.rmax; r++) {
+    PushGridPoint(&prism, grid, r + 1, sub.cmin, margin);
+    PushGridPoint(&prism, grid, r, sub.cmin, margin);
+    for (int c = sub.cmin + 1; c <= sub.cmax; c++) {
+      for (int row : {r + 1, r}) {
+        PushGridPoint(&prism, grid, row, c, margin);
+
+        // prisms whose top lies below the shape cannot touch it
+        const double(*v)[3] = prism.v;
+        if (v[3][2] < bounds.lo[2] && v[4][2] < bounds.lo[2] && v[5][2] < bounds.lo[2]) {
+          continue;
+        }
+        if (PrismContact(m, prism, g1, shape, pos1, mat1, con + ncon) &&
+            ++ncon >= kMaxContactPair) {
+          return ncon;
+        }
+      }
+    }
+  }
+  return ncon;
+}
 
 int CollideHFieldConvex(const Model& m, const Data& d, Contact* con, int g1, int g2,
                         double margin) {
@@ -212,42 +256,14 @@ int CollideHFieldConvex(const Model& m, const Data& d, Contact* con, int g1, int
   math::MulMatTVec3(pos, mat1, dif);
   if (SphereMissesBox(grid, pos, m.geom_rbound[g2] + margin)) return 0;
 
-  // the geom as a shape posed in the field's frame; its box must reach the field
+  // the geom as a shape posed in the field's frame, its box from its support points
+  // (without the margin, which inflates it for GJK only)
   ConvexShape geom = ccd::GeomShape(m, d, g2, 0);
   math::Copy3(geom.pos, pos);
   math::MulMatTMat3(geom.mat, mat1, &d.geom_xmat[9 * g2]);
   Bounds bounds = SupportBounds(&geom);
-  if (BoundsMissBox(grid, bounds, margin)) return 0;
-  SubGrid sub = CellsUnder(grid, bounds);
-  // no column under the geom (it overhangs an edge within the margin): no prism, and
-  // the walk's first points would lie outside the grid
-  if (sub.cmin > sub.cmax) return 0;
   geom.margin = margin;
-
-  // walk the strip of each row pair: point (r+1, c) then (r, c) closes two prisms
-  Prism prism;
-  for (int k = 0; k < 3; k++) prism.v[k][2] = -grid.size[3];
-  int ncon = 0;
-  for (int r = sub.rmin; r < sub.rmax; r++) {
-    PushGridPoint(&prism, grid, r + 1, sub.cmin, margin);
-    PushGridPoint(&prism, grid, r, sub.cmin, margin);
-    for (int c = sub.cmin + 1; c <= sub.cmax; c++) {
-      for (int row : {r + 1, r}) {
-        PushGridPoint(&prism, grid, row, c, margin);
-
-        // prisms whose top lies below the geom cannot touch it
-        const double(*v)[3] = prism.v;
-        if (v[3][2] < bounds.lo[2] && v[4][2] < bounds.lo[2] && v[5][2] < bounds.lo[2]) {
-          continue;
-        }
-        if (PrismContact(m, prism, g1, &geom, pos1, mat1, con + ncon) &&
-            ++ncon >= kMaxContactPair) {
-          return ncon;
-        }
-      }
-    }
-  }
-  return ncon;
+  return CollideHFieldShape(m, d, con, g1, &geom, bounds.lo, bounds.hi, margin);
 }
 
 }  // namespace simlab

@@ -56,6 +56,18 @@ MODELS=(
   # a cable (1D flex) with edge springs swinging from a pin, its potential energy (edge
   # springs included) read by an e_potential sensor
   "tests/conformance/flex/models/cable_energy.xml 300 50 1e-9 none"
+  # a cloth, a soft block and a cable dropped onto a bumpy height field (first contacts
+  # at steps 77-88, up to 311 contacts): the field's prisms under each flex element
+  # (mjc_HFieldElem)
+  "tests/conformance/flex/models/hfield_cloth.xml 400 100 1e-9 none"
+  "tests/conformance/flex/models/hfield_softbody.xml 400 100 1e-9 none"
+  "tests/conformance/flex/models/hfield_cable.xml 400 50 1e-9 none"
+  # MuJoCo's own engine test models with flexes and skins (test/engine/testdata at the
+  # oracle's commit, copied under testdata/): a humanoid in a hammock of 178 equalities and
+  # tendons, a skinned box grid, a ray test's swinging flex
+  "tests/conformance/flex/testdata/hammock/hammock.xml 200 50 1e-9"
+  "tests/conformance/flex/testdata/skingroup.xml 200 50 1e-9 none"
+  "tests/conformance/flex/testdata/ray/flex.xml 200 50 1e-9 none"
   # a poncho on a mannequin kept by the vertex equality (flexvert) before MuJoCo's own
   # run goes unstable (step 10)
   "$FLEX/poncho.xml 9 3 1e-9 none"
