@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/sleep.h"
 #include "load_error.h"
 #include "simlab/simlab.h"
 
@@ -345,6 +346,88 @@ TEST(Flex, BadStrainEqualitiesAreClearErrors) {
        {"bad.xml:2", "rigid flex 'x' in equality constraint"}},
   };
   for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
+}
+
+// A cable of three vertices held by its edge equality, resting on the floor with sleep
+// enabled, and a ball that falls on it after about 0.35 s (MuJoCo 3.12's
+// test/engine/testdata/sleep/flex_contact.xml); `ball_z` places the ball.
+std::string SleepingCable(const std::string& ball_z) {
+  return "<mujoco><option integrator='implicitfast' viscosity='2' sleep_tolerance='0.1'>"
+         "<flag sleep='enable'/></option><worldbody><geom type='plane' size='5 5 .01'/>"
+         "<body name='cable' pos='0 0 0.01'><flexcomp name='c' type='grid' dim='1' count='3 1 1' "
+         "spacing='.05 .05 .05' radius='.01' mass='1'><edge equality='true' solref='0.15 0.2'/>"
+         "</flexcomp></body><body name='ball' pos='0 0.01 " +
+         ball_z + "'><freejoint/><geom type='sphere' size='.05'/></body></worldbody></mujoco>";
+}
+
+// Are all of flex f's trees asleep (awake)?
+bool FlexTreesAre(const Model& m, const Data& d, int f, bool awake) {
+  for (int v = m.flex_vertadr[f]; v < m.flex_vertadr[f] + m.flex_vertnum[f]; v++) {
+    if (d.tree_awake[m.body_treeid[m.flex_vertbodyid[v]]] != awake) return false;
+  }
+  return true;
+}
+
+// Steps until flex 0 sleeps (at most n steps); true if it did.
+bool StepUntilFlexSleeps(const Model& m, Data& d, int n) {
+  for (int i = 0; i < n && !FlexTreesAre(m, d, 0, false); i++) Step(m, d);
+  return FlexTreesAre(m, d, 0, false);
+}
+
+// A constrained flex may sleep (MuJoCo 3.12): left resting, its trees fall asleep
+// together, still and without contacts; the ball landing on it wakes them all.
+TEST(Flex, RestingConstrainedFlexSleepsAndWakesWhenTouched) {
+  Model m = LoadXmlString(SleepingCable("0.5"), "cable.xml");
+  ASSERT_EQ(m.ntree, 4);
+  for (int t = 0; t < 3; t++) EXPECT_EQ(m.tree_sleep_policy[t], kSleepAutoAllowed);
+  Data d = MakeData(m);
+  ASSERT_TRUE(StepUntilFlexSleeps(m, d, 50));
+  EXPECT_TRUE(d.tree_awake[3]);  // (the ball, still falling)
+  for (int v = 0; v < 9; v++) EXPECT_EQ(d.qvel[v], 0.0);
+  Step(m, d);
+  EXPECT_EQ(d.ncon, 0);  // asleep on the floor: no contacts
+  EXPECT_EQ(d.ne, 0);    // nor equality rows
+
+  // The ball lands on it: every tree of the flex wakes, in contact with the ball.
+  int step = 0;
+  while (step < 400 && FlexTreesAre(m, d, 0, false)) Step(m, d), step++;
+  ASSERT_TRUE(FlexTreesAre(m, d, 0, true)) << "still asleep after " << step << " steps";
+  bool touched = false;
+  for (int c = 0; c < d.ncon; c++) {
+    touched = touched || d.contact[c].flex[0] == 0 || d.contact[c].flex[1] == 0;
+  }
+  EXPECT_TRUE(touched);
+  EXPECT_GT(d.ne, 0);
+
+  // An unconstrained flex never sleeps.
+  std::string free_cable = SleepingCable("0.5");
+  free_cable.replace(free_cable.find("<edge equality='true' solref='0.15 0.2'/>"), 41, "");
+  Model free_m = LoadXmlString(free_cable, "free_cable.xml");
+  for (int t = 0; t < 3; t++) EXPECT_EQ(free_m.tree_sleep_policy[t], kSleepAutoNever);
+}
+
+// A sleeping flex wakes with its equality partners: pushing one vertex wakes the
+// whole cable; and a tree of the flex awake among sleeping ones (each in its own sleeping
+// island) wakes the others through the flex's equality, one island per pass.
+TEST(Flex, SleepingFlexWakesWithItsEqualityPartners) {
+  Model m = LoadXmlString(SleepingCable("2"), "cable.xml");
+  Data d = MakeData(m);
+  ASSERT_TRUE(StepUntilFlexSleeps(m, d, 50));
+  d.xfrc_applied[6 * m.flex_vertbodyid[2] + 2] = 1;
+  Step(m, d);
+  EXPECT_TRUE(FlexTreesAre(m, d, 0, true));
+  EXPECT_NE(d.qvel[m.body_dofadr[m.flex_vertbodyid[2]] + 2], 0.0);  // (its z slider)
+  d.xfrc_applied[6 * m.flex_vertbodyid[2] + 2] = 0;
+
+  ASSERT_TRUE(StepUntilFlexSleeps(m, d, 100));
+  for (int t = 0; t < 3; t++) d.tree_asleep[t] = t;  // each tree its own island
+  d.tree_asleep[0] = -(1 + kMinAwake);
+  UpdateSleep(m, d);
+  Forward(m, d);
+  EXPECT_TRUE(d.tree_awake[1]);
+  EXPECT_FALSE(d.tree_awake[2]);
+  Forward(m, d);
+  EXPECT_TRUE(FlexTreesAre(m, d, 0, true));
 }
 
 }  // namespace

@@ -92,9 +92,21 @@ int ActuatorTree(const Model& m, int a) {
   return body >= 0 ? m.body_treeid[body] : -1;
 }
 
+// May the trees of flex f sleep? MuJoCo 3.12 lets a flex whose edges an equality holds
+// sleep (its trees then share an island), and no other. MuJoCo 3.5.1 let no flex sleep
+// and refused to step a flex equality with sleep enabled: its choice is kept where it
+// could run the model, with sleep disabled and an edge or vertex equality (a strain
+// equality is 3.12's).
+bool FlexMaySleep(const Model& m, int f) {
+  int equality = m.flex_edgeequality[f];
+  bool sleep = (m.opt.enableflags & kEnableSleep) != 0;
+  return equality != 0 && (sleep || equality == kFlexEdgeStrain);
+}
+
 // Automatic policies: actuated trees never sleep, nor do trees a tendon couples with
 // stiffness or damping or across more than two trees (an error when the model asked
-// that such a tree sleep), nor do trees of flexes; every other automatic tree may.
+// that such a tree sleep), nor do trees of flexes that may not (FlexMaySleep); every
+// other automatic tree may.
 void AutomaticPolicies(const CompileState& state, Model* m) {
   auto never = [m](int tree) {
     if (tree >= 0 && m->tree_sleep_policy[tree] == kSleepAuto) m->tree_sleep_policy[tree] = kSleepAutoNever;
@@ -120,8 +132,9 @@ void AutomaticPolicies(const CompileState& state, Model* m) {
       never(tree);
     }
   }
-  // Trees that carry a flex's vertices (or nodes) never sleep.
+  // Trees that carry the vertices (or nodes) of a flex that may not sleep.
   for (int f = 0; f < m->nflex; f++) {
+    if (FlexMaySleep(*m, f)) continue;
     bool nodes = m->flex_interp[f] != 0;
     int begin = nodes ? m->flex_nodeadr[f] : m->flex_vertadr[f];
     int count = nodes ? m->flex_nodenum[f] : m->flex_vertnum[f];

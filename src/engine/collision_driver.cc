@@ -397,6 +397,13 @@ bool BodyPairFiltered(const Model& m, const int* body_awake, int b1, int b2, boo
   return filterparent && weld1 != 0 && weld2 != 0 && (weld1 == parent2 || weld2 == parent1);
 }
 
+// Does body-or-flex b (b >= nbody: flex b - nbody) move and is it awake? A flex is as its
+// trees (ElementSleepState), a body must be awake and on a tree.
+bool MovesAwake(const Model& m, const Data& d, int b) {
+  if (b >= m.nbody) return ElementSleepState(m, d, kObjFlex, b - m.nbody) == kAwake;
+  return d.body_awake[b] == kAwake && m.body_treeid[b] >= 0;
+}
+
 // The principal frame (rows) of the moving points, geoms' centres and flex vertices not
 // on the world: sweep-and-prune runs along its first axis, where the bodies spread most.
 // False, with no frame, when there are no moving points.
@@ -504,7 +511,10 @@ void BroadPhase(const Model& m, Data& d) {
     for (int b2 = 0; b2 < m.nbody; b2++) {
       if (CanCollide(m, b2) && !BodyPairFiltered(m, sleeping, b1, b2, true)) add(b1, b2);
     }
-    for (int f = 0; f < m.nflex; f++) add(b1, m.nbody + f);
+    // (not a sleeping flex)
+    for (int f = 0; f < m.nflex; f++) {
+      if (!sleeping || ElementSleepState(m, d, kObjFlex, f) != kAsleep) add(b1, m.nbody + f);
+    }
   }
   // Other bodies and flexes meet when their boxes overlap in the principal frame of the
   // moving geoms and flex vertices (there is none when every one is the world's).
@@ -525,9 +535,13 @@ void BroadPhase(const Model& m, Data& d) {
       }
     }
     SweepAndPrune(d.broadphase, boxes, [&](int b1, int b2) {
-      // (the weld and sleep filters are for body pairs only)
+      // (the weld filter is for body pairs only; while trees sleep, a pair with a flex
+      // is kept when either side moves awake)
       bool two_bodies = b1 < m.nbody && b2 < m.nbody;
-      if (!two_bodies || !BodyPairFiltered(m, sleeping, b1, b2, false)) add(b1, b2);
+      if (two_bodies ? !BodyPairFiltered(m, sleeping, b1, b2, false)
+                     : !sleeping || MovesAwake(m, d, b1) || MovesAwake(m, d, b2)) {
+        add(b1, b2);
+      }
     });
   }
   std::sort(pairs.begin(), pairs.end());
@@ -699,7 +713,7 @@ void Collision(const Model& m, Data& d) {
   }
   // Explicit pairs past the last body pair.
   while (pairadr < m.npair) CollideGeoms(m, d, -1, -1, pairadr++);
-  // Flexes with themselves.
+  // Flexes with themselves (not while asleep).
   CollideFlexSelf(m, d);
 }
 

@@ -53,7 +53,8 @@ bool BoxesApartOriented(const double* aabb1, const double* pos1, const double* m
 // Collides a body or flex with a flex: bodyflex ids b1 < b2, b2 >= nbody (a flex
 // f = b2 - nbody), as MuJoCo's driver does for such a broad-phase pair.
 void CollideWithFlex(const Model& m, Data& d, int b1, int b2);
-// Every flex's collisions with itself (internal and between its active elements).
+// Every flex's collisions with itself (internal and between its active elements),
+// but a sleeping flex's.
 void CollideFlexSelf(const Model& m, Data& d);
 // A flex's box in the rows of `frame`: its vertices' extent grown by radius and margin.
 void FlexBox(const Model& m, const Data& d, int f, const double* frame, double* lo,

@@ -23,6 +23,7 @@
 #include "engine/collision_geom.h"
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/sleep.h"
 #include "engine/stack.h"
 #include "math/math.h"
 
@@ -569,8 +570,10 @@ void CollideWithFlex(const Model& m, Data& d, int b1, int b2) {
 }
 
 void CollideFlexSelf(const Model& m, Data& d) {
+  bool any_asleep = AnyAsleep(m, d);
   for (int f = 0; f < m.nflex; f++) {
     if (m.flex_rigid[f] || !(m.flex_contype[f] & m.flex_conaffinity[f])) continue;
+    if (any_asleep && ElementSleepState(m, d, kObjFlex, f) == kAsleep) continue;  // (asleep)
     if (m.flex_internal[f]) CollideFlexInternal(m, d, f);
     if (m.flex_selfcollide[f] != kFlexSelfNone) CollideFlexElements(m, d, f);
   }

@@ -87,6 +87,57 @@ int WakeFromAwakePartner(Data& d, int ntree, int a, int b) {
   return WakeTree(d, ntree, sleeper, d.tree_asleep[awake_a ? a : b]);
 }
 
+// The bodies that move flex f, n of them: its nodes' (interpolated) or its vertices'.
+const int* FlexMovers(const Model& m, int f, int* n) {
+  if (m.flex_interp[f]) {
+    *n = m.flex_nodenum[f];
+    return &m.flex_nodebodyid[m.flex_nodeadr[f]];
+  }
+  *n = m.flex_vertnum[f];
+  return &m.flex_vertbodyid[m.flex_vertadr[f]];
+}
+
+// A flex's sleep state: its first moving body's (the flex's trees share one island, so
+// they sleep and wake together), or static when none moves (MuJoCo 3.12's mjOBJ_FLEX).
+SleepState FlexSleepState(const Model& m, const Data& d, int f) {
+  int n;
+  const int* body = FlexMovers(m, f, &n);
+  for (int j = 0; j < n; j++) {
+    if (m.body_treeid[body[j]] >= 0) return static_cast<SleepState>(d.body_awake[body[j]]);
+  }
+  return kStatic;
+}
+
+// The body that stands for side k of contact c (MuJoCo 3.12's mj_flexBody): a geom's; a
+// vertex's; else an element's first vertex's, or an interpolated flex's first node's.
+int ContactSideBody(const Model& m, const Contact& c, int k) {
+  if (c.geom[k] >= 0) return m.geom_bodyid[c.geom[k]];
+  int f = c.flex[k];
+  if (m.flex_interp[f]) return m.flex_nodebodyid[m.flex_nodeadr[f]];
+  int vert = c.vert[k];
+  if (vert < 0) vert = m.flex_elem[m.flex_elemdataadr[f] + c.elem[k] * (m.flex_dim[f] + 1)];
+  return m.flex_vertbodyid[m.flex_vertadr[f] + vert];
+}
+
+// Flex equality on flex f: once any of the flex's trees is awake, the island of its
+// first sleeping tree wakes, to that awake tree's count (MuJoCo 3.12). Returns how many
+// trees woke.
+int WakeFlexEquality(const Model& m, Data& d, int f) {
+  int n;
+  const int* body = FlexMovers(m, f, &n);
+  auto tree_of = [&](int j) { return m.body_treeid[body[j]]; };
+  int awake = -1;
+  for (int j = 0; j < n && awake < 0; j++) {
+    if (tree_of(j) >= 0 && d.tree_awake[tree_of(j)]) awake = tree_of(j);
+  }
+  if (awake < 0) return 0;
+  for (int j = 0; j < n; j++) {
+    int t = tree_of(j);
+    if (t >= 0 && !d.tree_awake[t]) return WakeTree(d, m.ntree, t, d.tree_asleep[awake]);
+  }
+  return 0;
+}
+
 // The trees of equality e's two sides (-1: the world), for the types that can wake.
 bool EqualityTrees(const Model& m, int e, int* a, int* b) {
   int id1 = m.eq_obj1id[e], id2 = m.eq_obj2id[e];
@@ -103,7 +154,7 @@ bool EqualityTrees(const Model& m, int e, int* a, int* b) {
     case kEqTendon:
       throw std::runtime_error("tendon equality does not yet support sleeping");
     default:
-      // (flex, flexvert, flexstrain: the trees that carry a flex never sleep)
+      // (flex, flexvert, flexstrain: WakeFlexEquality)
       return false;
   }
 }
@@ -175,7 +226,9 @@ SleepState EqualitySleepState(const Model& m, const Data& d, int e) {
     case kEqWeld: type = m.eq_objtype[e]; break;
     case kEqJoint: type = kObjJoint; break;
     case kEqTendon: type = kObjTendon; break;
-    // (flex equalities: the trees that carry a flex never sleep)
+    case kEqFlex:
+    case kEqFlexVert:
+    case kEqFlexStrain: type = kObjFlex; break;
     default: return kAwake;
   }
   int id1 = m.eq_obj1id[e], id2 = m.eq_obj2id[e];
@@ -274,9 +327,9 @@ int WakeOnContact(const Model& m, Data& d) {
   if (!SleepEnabled(m)) return 0;
   int woke = 0;
   for (int c = 0; c < d.ncon; c++) {
+    // (a flex side by the body that stands for it)
     const Contact& con = d.contact[c];
-    if (con.geom[0] < 0 || con.geom[1] < 0) continue;
-    int a = m.body_treeid[m.geom_bodyid[con.geom[0]]], b = m.body_treeid[m.geom_bodyid[con.geom[1]]];
+    int a = m.body_treeid[ContactSideBody(m, con, 0)], b = m.body_treeid[ContactSideBody(m, con, 1)];
     if (a < 0 || b < 0) continue;
     if (!d.tree_awake[a] && !d.tree_awake[b]) {
       throw std::logic_error("sleep: contact between sleeping trees " + std::to_string(a) + " and " +
@@ -301,8 +354,14 @@ int WakeOnEquality(const Model& m, Data& d) {
   if (!SleepEnabled(m)) return 0;
   int woke = 0;
   for (int e = 0; e < m.neq; e++) {
+    if (!d.eq_active[e]) continue;
+    int type = m.eq_type[e];
+    if (type == kEqFlex || type == kEqFlexVert || type == kEqFlexStrain) {
+      woke += WakeFlexEquality(m, d, m.eq_obj1id[e]);
+      continue;
+    }
     int a, b;
-    if (!d.eq_active[e] || !EqualityTrees(m, e, &a, &b)) continue;
+    if (!EqualityTrees(m, e, &a, &b)) continue;
     SleepState sa = a >= 0 ? static_cast<SleepState>(d.tree_awake[a]) : kStatic;
     SleepState sb = b >= 0 ? static_cast<SleepState>(d.tree_awake[b]) : kStatic;
     if (sa != kAsleep && sb != kAsleep) continue;
@@ -398,6 +457,7 @@ SleepState ElementSleepState(const Model& m, const Data& d, int type, int id) {
     case kObjTendon: return TendonSleepState(m, d, id);
     case kObjActuator: return ActuatorSleepState(m, d, id);
     case kObjSensor: return SensorSleepState(m, d, id);
+    case kObjFlex: return FlexSleepState(m, d, id);
     default: return kAwake;
   }
 }

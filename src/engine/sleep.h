@@ -3,6 +3,10 @@
 // with every tree its constraints join it to (its island), is put to sleep: its qvel and
 // qacc are zeroed and the pipeline skips it until something wakes it (a force applied to
 // it, a contact, tendon limit or equality with an awake tree, or a change of its state).
+// Flexes sleep as MuJoCo 3.12 lets them: a flex held by an edge equality (whose trees may
+// sleep, compiler/trees.cc) sleeps with its trees; asleep, it collides only with awake
+// moving bodies and flexes (not itself), its equality makes no rows, and a contact or its
+// equality with an awake tree wakes it.
 //
 // Data::tree_asleep is the state: < 0 awake (counting up from -(1 + kMinAwake) to -1 while
 // the tree is slow), >= 0 asleep, the next tree of the island's cycle of sleeping trees.
@@ -56,11 +60,14 @@ void UpdateSleep(const Model& m, Data& d, bool static_awake = false);
 // Kinematics found moved (it sets their tree_awake), or every tree when sleep is
 // disabled. Returns how many woke (then UpdateSleep).
 int WakeChanged(const Model& m, Data& d);
-// Wakes asleep trees in contact with awake ones (after the collision stage).
+// Wakes asleep trees in contact with awake ones (after the collision stage); a flex's
+// side of a contact is the body of its vertex, its element's first vertex or its first
+// node.
 int WakeOnContact(const Model& m, Data& d);
 // Wakes asleep trees joined to awake ones by an active tendon limit (after the tendons).
 int WakeOnTendonLimit(const Model& m, Data& d);
-// Wakes asleep trees joined to awake ones (or to another island) by an active equality.
+// Wakes asleep trees joined to awake ones (or to another island) by an active equality;
+// a flex's equality wakes its sleeping trees once one of them is awake.
 int WakeOnEquality(const Model& m, Data& d);
 
 // Counts the awake trees' slow steps and puts whole islands (and unconstrained trees)

@@ -55,6 +55,23 @@ MODELS=(
   "$OUT/models/strain_nocontact.xml 400 20 1e-9"
   "$OUT/models/strain_quadratic_nocontact.xml 300 20 1e-9"
   "$OUT/models/strain_sensor.xml 100 10 1e-7"
+  # sleeping flexes (MuJoCo 3.12's sleep tests): a three-vertex cable held by its edge
+  # equality falls asleep with its trees as one island, and wakes by a contact with an
+  # awake body (a ball falling on it); an unconstrained one never sleeps; a sleeping
+  # flex meets neither the floor nor a static or mocap body (3.12's thinning of flex
+  # contacts removes none of these cables' contacts)
+  "$OUT/models/sleep_flex_nocnstr.xml 300 5 1e-9"
+  "$OUT/models/sleep_flex_state.xml 300 5 1e-9"
+  "$OUT/models/sleep_flex_edge.xml 300 5 1e-9"
+  "$OUT/models/sleep_flex_mocap.xml 300 5 1e-9"
+  "$OUT/models/sleep_flex_static.xml 300 5 1e-9"
+  "$OUT/models/sleep_flex_contact.xml 300 5 1e-9"
+  # flexes that never sleep, with sleeping bodies: a box asleep on a flex pinned whole
+  # (no contacts once it sleeps), and a box asleep on the floor woken by a cable falling
+  # on it (MuJoCo 3.5.1 refuses to step both; 3.12's thinning removes none of their flex
+  # contacts either)
+  "$OUT/models/sleep_box_on_pinned_flex.xml 300 5 1e-9"
+  "$OUT/models/sleep_cable_on_box.xml 400 5 1e-9"
 )
 
 rm -rf "$OUT/goldens"
