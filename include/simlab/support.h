@@ -39,6 +39,14 @@ double RayCast(const Model& m, const Data& d, const double pnt[3], const double 
                const unsigned char* geomgroup, bool include_static, int bodyexclude,
                int* geomid, double normal[3] = nullptr);
 
+// Distance along pnt + x vec (x >= 0) to flex `flexid`, or -1 (mj_rayFlex): the parts hit
+// are those the viewer draws (vertices, edges, faces of layer `flex_layer` for a 3D flex,
+// or the skin); *vertid (if not null): the flex's vertex nearest the hit; normal (if not
+// null): the surface normal there.
+double RayCastFlex(const Model& m, const Data& d, int flex_layer, bool vertices, bool edges,
+                   bool faces, bool skin, int flexid, const double pnt[3], const double vec[3],
+                   int* vertid, double normal[3] = nullptr);
+
 // ---------------------------------------------------------------- the inertia matrix
 
 // dst (nv x nv, row-major) = the full symmetric matrix of M given in MuJoCo's legacy

@@ -223,6 +223,21 @@ void DefineQueries(py::module_& m) {
   }, py::arg("m"), py::arg("d"), py::arg("pnt"), py::arg("vec"), py::arg("geomgroup"),
      py::arg("flg_static"), py::arg("bodyexclude"), py::arg("geomid"),
      py::arg("normal") = py::none());
+  m.def("mj_rayFlex", [](const PyModel& mw, const PyData& dw, int flex_layer, int flg_vert,
+                         int flg_edge, int flg_face, int flg_skin, int flexid, const InArray& pnt,
+                         const InArray& vec, py::handle vertid, py::handle normal) {
+    CheckCompatible(mw, dw);
+    CheckedId(flexid, mw.model->nflex, "flex");
+    int hit = -1;
+    double distance = RayCastFlex(*mw.model, dw.data, flex_layer, flg_vert != 0, flg_edge != 0,
+                                  flg_face != 0, flg_skin != 0, flexid, Input(pnt, 3, "pnt"),
+                                  Input(vec, 3, "vec"), &hit,
+                                  Output<double>(normal, 3, "normal", true));
+    if (int* out = Output<int>(vertid, 1, "vertid", true); out && distance >= 0) *out = hit;
+    return distance;
+  }, py::arg("m"), py::arg("d"), py::arg("flex_layer"), py::arg("flg_vert"), py::arg("flg_edge"),
+     py::arg("flg_face"), py::arg("flg_skin"), py::arg("flexid"), py::arg("pnt"), py::arg("vec"),
+     py::arg("vertid"), py::arg("normal") = py::none());
   m.def("mj_fullM", [](const PyModel& mw, py::handle dst, const InArray& M) {
     const Model& model = *mw.model;
     FullM(model, Output<double>(dst, model.nv * model.nv, "dst", false), Input(M, model.nM, "M"));

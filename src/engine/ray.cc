@@ -407,6 +407,145 @@ double RayPrimitive(const double pos[3], const double mat[9], const double size[
   }
 }
 
+// ---------------------------------------------------------------- flexes
+
+namespace {
+
+// The nearest hit so far on a flex: its distance (-1 for none), vertex and normal.
+struct FlexHit {
+  double x = -1;
+  int vertid = -1;
+  double normal[3] = {0, 0, 0};
+
+  // Keeps sol when it is a hit nearer than the one kept.
+  bool Nearer(double sol, const double sol_normal[3]) {
+    if (sol < 0 || (x >= 0 && sol >= x)) return false;
+    x = sol;
+    math::Copy3(normal, sol_normal);
+    return true;
+  }
+};
+
+// Does the ray meet the box of flex f's vertices grown by its radius?
+bool RayMeetsFlexBox(const Model& m, const Data& d, int f, const double pnt[3],
+                     const double vec[3]) {
+  const double* vert = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
+  double lo[3], hi[3];
+  math::Copy3(lo, vert);
+  math::Copy3(hi, vert);
+  for (int i = 1; i < m.flex_vertnum[f]; i++) {
+    for (int k = 0; k < 3; k++) {
+      lo[k] = std::min(lo[k], vert[3 * i + k]);
+      hi[k] = std::max(hi[k], vert[3 * i + k]);
+    }
+  }
+  double pos[3], size[3];
+  const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (int k = 0; k < 3; k++) {
+    lo[k] -= m.flex_radius[f];
+    hi[k] += m.flex_radius[f];
+    pos[k] = 0.5 * (lo[k] + hi[k]);
+    size[k] = 0.5 * (hi[k] - lo[k]);
+  }
+  return RayBox(pos, identity, size, pnt, vec, nullptr, nullptr) >= 0;
+}
+
+// The distance between two points (MuJoCo's mju_dist3).
+double Distance3(const double a[3], const double b[3]) {
+  double dif[3];
+  math::Sub3(dif, a, b);
+  return std::sqrt(dif[0] * dif[0] + dif[1] * dif[1] + dif[2] * dif[2]);
+}
+
+// The point pnt + sol vec.
+void PointAlong(const double pnt[3], const double vec[3], double sol, double point[3]) {
+  for (int k = 0; k < 3; k++) point[k] = pnt[k] + vec[k] * sol;
+}
+
+// Each edge of flex f as a capsule of the flex's radius; the nearer end is the vertex.
+void RayFlexEdges(const Model& m, const Data& d, int f, const double pnt[3], const double vec[3],
+                  FlexHit* hit) {
+  const double* vert = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
+  for (int e = m.flex_edgeadr[f]; e < m.flex_edgeadr[f] + m.flex_edgenum[f]; e++) {
+    const int* ends = &m.flex_edge[2 * e];
+    const double* v1 = vert + 3 * ends[0];
+    const double* v2 = vert + 3 * ends[1];
+    double pos[3], dif[3], size[3] = {m.flex_radius[f], 0, 0}, quat[4], mat[9], normal[3];
+    for (int k = 0; k < 3; k++) pos[k] = (v1[k] + v2[k]) * 0.5;
+    math::Sub3(dif, v2, v1);
+    size[1] = 0.5 * math::Normalize3(dif);
+    math::QuatZToVec(quat, dif);
+    math::QuatToMat(mat, quat);
+    double sol = RayPrimitive(pos, mat, size, pnt, vec, kGeomCapsule, normal);
+    if (!hit->Nearer(sol, normal)) continue;
+    double point[3];
+    PointAlong(pnt, vec, sol, point);
+    hit->vertid = Distance3(v1, point) < Distance3(v2, point) ? ends[0] : ends[1];
+  }
+}
+
+// Each vertex of flex f as a sphere of the flex's radius.
+void RayFlexVertices(const Model& m, const Data& d, int f, const double pnt[3],
+                     const double vec[3], FlexHit* hit) {
+  const double* vert = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
+  const double size[3] = {m.flex_radius[f], 0, 0};
+  for (int v = 0; v < m.flex_vertnum[f]; v++) {
+    double normal[3];
+    double sol = RayPrimitive(vert + 3 * v, nullptr, size, pnt, vec, kGeomSphere, normal);
+    if (hit->Nearer(sol, normal)) hit->vertid = v;
+  }
+}
+
+// Each face of flex f's elements (a triangle, or a tetrahedron's four, of the layer asked
+// for or, for the skin, of the outer layer); the nearest corner is the vertex.
+void RayFlexFaces(const Model& m, const Data& d, int f, const RayFlexParts& parts,
+                  const double pnt[3], const double vec[3], FlexHit* hit) {
+  static constexpr int kTetFaces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  int dim = m.flex_dim[f];
+  const double* vert = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
+  double b0[3], b1[3];
+  NormalPlaneBasis(vec, b0, b1);
+  for (int e = 0; e < m.flex_elemnum[f]; e++) {
+    int layer = m.flex_elemlayer[m.flex_elemadr[f] + e];
+    if (dim == 3 && ((parts.skin && layer > 0) || (!parts.skin && layer != parts.layer))) continue;
+    const int* elem = &m.flex_elem[m.flex_elemdataadr[f] + e * (dim + 1)];
+    for (int i = 0; i < (dim == 2 ? 1 : 4); i++) {
+      double v[3][3], normal[3];
+      for (int j = 0; j < 3; j++) math::Copy3(v[j], vert + 3 * elem[kTetFaces[i][j]]);
+      double sol = RayTriangle(v, pnt, vec, b0, b1, normal);
+      if (!hit->Nearer(sol, normal)) continue;
+      double point[3], dist[3];
+      PointAlong(pnt, vec, sol, point);
+      for (int j = 0; j < 3; j++) dist[j] = Distance3(v[j], point);
+      int corner = dist[0] <= dist[1] && dist[0] <= dist[2] ? 0 : (dist[1] <= dist[2] ? 1 : 2);
+      hit->vertid = elem[kTetFaces[i][corner]];
+    }
+  }
+}
+
+}  // namespace
+
+double RayFlex(const Model& m, const Data& d, int f, const RayFlexParts& parts,
+               const double pnt[3], const double vec[3], int* vertid, double normal[3]) {
+  ClearNormal(normal);
+  if (!RayMeetsFlexBox(m, d, f, pnt, vec)) return -1;
+
+  // Edges (a 2D or 3D flex's skin shows them too), else vertices; then faces.
+  FlexHit hit;
+  bool skin_edges = m.flex_dim[f] > 1 && parts.skin;
+  if (parts.edges || skin_edges) {
+    RayFlexEdges(m, d, f, pnt, vec, &hit);
+  } else if (parts.vertices) {
+    RayFlexVertices(m, d, f, pnt, vec, &hit);
+  }
+  if (m.flex_dim[f] > 1 && (parts.faces || parts.skin)) RayFlexFaces(m, d, f, parts, pnt, vec, &hit);
+  if (hit.x >= 0) {
+    if (normal) math::Copy3(normal, hit.normal);
+    if (vertid) *vertid = hit.vertid;
+  }
+  return hit.x;
+}
+
 namespace {
 
 // The ray in geom g's frame, after clearing the normal; false when it misses the geom's

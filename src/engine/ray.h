@@ -37,6 +37,24 @@ double RayMesh(const Model& m, const Data& d, int geom, const double pnt[3], con
 double RayHfield(const Model& m, const Data& d, int geom, const double pnt[3],
                  const double vec[3], double normal[3]);
 
+// What of a flex a ray can hit (mj_rayFlex's flags, as the viewer draws the flex): its
+// vertices' spheres, its edges' capsules, its elements' faces (of a 3D flex, those of
+// layer `layer` only), or its skin (the outer faces and, for 2D and 3D flexes, the
+// edges).
+struct RayFlexParts {
+  int layer = 0;
+  bool vertices = false;
+  bool edges = false;
+  bool faces = false;
+  bool skin = false;
+};
+
+// Ray against flex f (MuJoCo mj_rayFlex): distance to the nearest hit or -1; *vertid (if
+// given) the flex vertex nearest the hit, normal (if given) the hit's unit normal, zero
+// without a hit.
+double RayFlex(const Model& m, const Data& d, int f, const RayFlexParts& parts,
+               const double pnt[3], const double vec[3], int* vertid, double normal[3]);
+
 }  // namespace simlab
 
 #endif  // SIMLAB_ENGINE_RAY_H_

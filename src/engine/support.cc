@@ -52,6 +52,18 @@ double RayCast(const Model& m, const Data& d, const double pnt[3], const double 
   return Ray(m, d, pnt, vec, filter, geomid, normal);
 }
 
+double RayCastFlex(const Model& m, const Data& d, int flex_layer, bool vertices, bool edges,
+                   bool faces, bool skin, int flexid, const double pnt[3], const double vec[3],
+                   int* vertid, double normal[3]) {
+  RayFlexParts parts;
+  parts.layer = flex_layer;
+  parts.vertices = vertices;
+  parts.edges = edges;
+  parts.faces = faces;
+  parts.skin = skin;
+  return RayFlex(m, d, flexid, parts, pnt, vec, vertid, normal);
+}
+
 // ---------------------------------------------------------------- the inertia matrix
 
 void FullM(const Model& m, double* dst, const double* M) {
