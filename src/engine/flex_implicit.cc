@@ -283,11 +283,20 @@ FlexImplicitSystem BuildFlexImplicitSystem(const Model& m, Data& d, const StepMa
     }
   }
 
-  // Plus the flexes' stiffness, then factored.
+  // Plus the flexes' stiffness, then factored; with each flex's stiffness in the world at
+  // hand, also its velocity correction -h K v (each flex at its own h^2 + h b, divided
+  // back by the first flex's, as MuJoCo does), which depends on the state only.
+  double* velocity = frame.Reals(m.nv);
   ForEachWorldStiffness(m, d, [&](const WorldStiffness& w, SolverFrame& scratch) {
     SubtractStiffness(m, w, s.local, s.n, s.H, scratch);
+    AddStiffnessTimesVec(m, w, d.qvel.data(), velocity, scratch);
   });
   CholeskyFactor(s.H, s.n, kMinVal);
+  double h = m.opt.timestep;
+  double first = h * h + h * (m.nflex > 0 ? m.flex_damping[0] : 0);
+  double factor = first > kMinVal ? h / first : 0;
+  s.velocity_term = frame.RealsToWrite(s.n);
+  for (int i = 0; i < s.n; i++) s.velocity_term[i] = velocity[dofs[i]] * factor;
   return s;
 }
 
@@ -296,17 +305,7 @@ void SolveFlexImplicitSystem(const Model& m, Data& d, const FlexImplicitSystem& 
   if (s.n == 0) return;
   SolverFrame frame(d.solver_scratch);
   double* rhs = frame.RealsToWrite(s.n);
-  double* res = frame.Reals(m.nv);
-
-  // The velocity correction -h K v (each flex at its own h^2 + h b, divided back by the
-  // first flex's, as MuJoCo does).
-  ForEachWorldStiffness(m, d, [&](const WorldStiffness& w, SolverFrame& scratch) {
-    AddStiffnessTimesVec(m, w, d.qvel.data(), res, scratch);
-  });
-  double h = m.opt.timestep;
-  double first = h * h + h * (m.nflex > 0 ? m.flex_damping[0] : 0);
-  double factor = first > kMinVal ? h / first : 0;
-  for (int i = 0; i < s.n; i++) rhs[i] = qfrc[s.dofs[i]] + res[s.dofs[i]] * factor;
+  for (int i = 0; i < s.n; i++) rhs[i] = qfrc[s.dofs[i]] + s.velocity_term[i];
 
   // Less the couplings to the other dofs' accelerations, then solved into qacc.
   for (int k = 0; k < s.ncoupling; k++) {

@@ -34,6 +34,7 @@ struct FlexImplicitSystem {
   int* dofs = nullptr;
   int* local = nullptr;
   double* H = nullptr;
+  double* velocity_term = nullptr;  // the stiffness's velocity correction on the n dofs
   int ncoupling = 0;
   double* coupling_val = nullptr;
   int* coupling_row = nullptr;
@@ -50,8 +51,8 @@ FlexImplicitSystem BuildFlexImplicitSystem(const Model& m, Data& d, const StepMa
                                            SolverFrame& frame);
 
 // After the sparse solve: the node dofs' accelerations from the reduced system, with the
-// stiffness's velocity correction (mjd_flexInterp_mulKD) and the couplings to the other
-// dofs' accelerations in qacc, overwritten into qacc.
+// stiffness's velocity correction (mjd_flexInterp_mulKD, computed with the system) and
+// the couplings to the other dofs' accelerations in qacc, overwritten into qacc.
 void SolveFlexImplicitSystem(const Model& m, Data& d, const FlexImplicitSystem& s,
                              const double* qfrc, double* qacc);
 
