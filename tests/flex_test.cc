@@ -197,6 +197,48 @@ TEST(Flex, BadFlexesAreClearErrors) {
   for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
 }
 
+// A model follows MuJoCo 3.12 (Model::release) when it uses what only 3.12 defines: a
+// flexcomp's cells, shell, strain equality or dof="2d", a flex's dof or cellcount, a
+// flexstrain equality; otherwise 3.5.1, the oracle's.
+TEST(Flex, ModelsUsingNewerConstructsFollowMuJoCo312) {
+  auto release = [](const std::string& xml) { return LoadXmlString(xml, "release.xml").release; };
+  EXPECT_EQ(release(Flexcomp("type='grid' count='3 3 1' spacing='.1 .1 .1'")), Release::k3_5_1);
+  const std::string no_self = "<contact selfcollide='none'/>";
+  EXPECT_EQ(release(Flexcomp("type='grid' count='3 3 1' spacing='.1 .1 .1' dof='trilinear'",
+                             no_self)),
+            Release::k3_5_1);
+  EXPECT_EQ(release(Flexcomp("type='grid' count='3 3 1' spacing='.1 .1 .1' dof='2d'")),
+            Release::k3_12);
+  EXPECT_EQ(release(Flexcomp("type='box' count='4 4 4' spacing='.1 .1 .1' dim='3' "
+                             "dof='trilinear' cellcount='2 1 1'", no_self)),
+            Release::k3_12);
+  EXPECT_EQ(release(Flexcomp("type='box' count='4 4 4' spacing='.1 .1 .1' dim='3' "
+                             "dof='trilinear'", no_self + "<edge equality='strain'/>")),
+            Release::k3_12);
+}
+
+// A cloth laid flat on the floor touches it at every vertex: a 3.5.1 model keeps every
+// contact, a 3.12 model (made one here by dof="2d") keeps kMaxContactPair of them per
+// collision pair.
+TEST(Flex, MuJoCo312ModelsThinFlexContactsPerPair) {
+  auto contacts = [](const std::string& extra) {
+    std::string xml = "<mujoco><worldbody><geom type='plane' size='1 1 .1'/>"
+                      "<flexcomp name='f' type='grid' count='9 9 1' spacing='.02 .02 .02' "
+                      "radius='.01' pos='0 0 .005' " + extra + "><contact selfcollide='none'/>"
+                      "</flexcomp></worldbody></mujoco>";
+    Model m = LoadXmlString(xml, "thin.xml");
+    Data d = MakeData(m);
+    Forward(m, d);
+    return std::make_pair(m.release, d.ncon);
+  };
+  auto [old_release, all] = contacts("");
+  EXPECT_EQ(old_release, Release::k3_5_1);
+  EXPECT_EQ(all, 81);
+  auto [new_release, thinned] = contacts("dof='2d'");
+  EXPECT_EQ(new_release, Release::k3_12);
+  EXPECT_EQ(thinned, 50);
+}
+
 // dof='2d': a body per point with two sliders, along its parent's x and y. Under a
 // parent turned 90 degrees about x the sheet's plane holds the world's z: the cloth,
 // pinned along one row, falls in that plane and never leaves it.

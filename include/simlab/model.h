@@ -809,10 +809,23 @@ struct FieldView {
 
 // ---------------------------------------------------------------- Model
 
+// The MuJoCo release whose behaviour a model follows where releases differ.
+enum class Release : int {
+  k3_5_1,  // the conformance oracle's (npm mujoco 3.5.1): every model it can load
+  k3_12,   // MuJoCo 3.12: a model that uses a construct 3.5.1 does not define
+};
+
 struct Model {
 #define SIMLAB_X(size) int size = 0;
   SIMLAB_MODEL_SIZES(SIMLAB_X)
 #undef SIMLAB_X
+
+  // 3.12 when the model uses a construct only MuJoCo 3.12 defines (a flex's cellcount or
+  // node dof, a flexcomp's cells, shell, strain equality or dof="2d", a flexstrain
+  // equality): 3.5.1 cannot run it, so 3.12 is its only reference, and the engine
+  // follows 3.12 where the two differ (flex contacts thinned per collision pair; flexes
+  // held by equalities may sleep). Set by the compiler.
+  Release release = Release::k3_5_1;
 
   Option opt;
   Statistic stat;

@@ -95,12 +95,10 @@ int ActuatorTree(const Model& m, int a) {
 // May the trees of flex f sleep? MuJoCo 3.12 lets a flex whose edges an equality holds
 // sleep (its trees then share an island), and no other. MuJoCo 3.5.1 let no flex sleep
 // and refused to step a flex equality with sleep enabled: its choice is kept where it
-// could run the model, with sleep disabled and an edge or vertex equality (a strain
-// equality is 3.12's).
+// could run the model, with sleep disabled in a model that follows 3.5.1 (Model::release).
 bool FlexMaySleep(const Model& m, int f) {
-  int equality = m.flex_edgeequality[f];
   bool sleep = (m.opt.enableflags & kEnableSleep) != 0;
-  return equality != 0 && (sleep || equality == kFlexEdgeStrain);
+  return m.flex_edgeequality[f] != 0 && (sleep || m.release == Release::k3_12);
 }
 
 // Automatic policies: actuated trees never sleep, nor do trees a tendon couples with

@@ -7,8 +7,11 @@
 // without trees, every geom with every element. The contacts from the trees are then
 // sorted by what they touch, as MuJoCo does.
 //
-// The reference is MuJoCo as the npm oracle runs it (3.5.1 before its commit 8ba68cee3):
-// a pair's flex contacts are not yet thinned to mjMAXCONPAIR (filterFlexContacts).
+// The reference is MuJoCo as the npm oracle runs it (3.5.1, before its commit 8ba68cee3):
+// a pair's flex contacts are not thinned. A model only MuJoCo 3.12 defines
+// (Model::release) follows 3.12: each flex collision pair (a body or flex with a flex,
+// per geom without the trees; a flex's internal and its element contacts) keeps at most
+// kMaxContactPair of its contacts, spread apart (ThinFlexContacts).
 //
 // A flex collides with itself when its contype meets its conaffinity: internally
 // (element-vertex pairs the compiler found, and each tetrahedron's vertices against its
@@ -515,6 +518,52 @@ void CollideFlexElements(const Model& m, Data& d, int f) {
   }
 }
 
+// A flex pair's contacts [first, d.ncon) thinned to kMaxContactPair as MuJoCo 3.12's
+// filterFlexContacts (only for models that follow 3.12): the deepest contact first, then
+// again and again the one farthest from all chosen so far. Each choice is swapped into the
+// next slot but the marks of the chosen stay with the slots they were chosen in, and the
+// last choice is not moved: which contacts survive depends on this, so it is kept as is.
+void ThinFlexContacts(const Model& m, Data& d, int first) {
+  int n = d.ncon - first;
+  if (m.release != Release::k3_12 || n <= kMaxContactPair) return;
+  Contact* con = d.contact.data() + first;
+  SolverFrame frame(d.solver_scratch);
+  int* chosen = frame.Ints(n);
+  double* nearest = frame.RealsToWrite(n);  // squared distance to the nearest chosen
+  std::fill(nearest, nearest + n, kMaxVal);
+
+  // The deepest contact (the first of equals).
+  int best = 0;
+  for (int i = 1; i < n; i++) {
+    if (con[i].dist < con[best].dist) best = i;
+  }
+  // Choose, and find the unchosen slot farthest from every choice (the first of equals).
+  int nchosen = 0;
+  while (nchosen < kMaxContactPair && best >= 0) {
+    chosen[best] = 1;
+    const double* at = con[best].pos;
+    int next = -1;
+    double farthest = -1;
+    for (int i = 0; i < n; i++) {
+      if (chosen[i]) continue;
+      double dx = con[i].pos[0] - at[0], dy = con[i].pos[1] - at[1], dz = con[i].pos[2] - at[2];
+      double d2 = dx * dx + dy * dy + dz * dz;
+      nearest[i] = std::min(nearest[i], d2);
+      if (nearest[i] > farthest) {
+        farthest = nearest[i];
+        next = i;
+      }
+    }
+    if (nchosen < kMaxContactPair - 1) {
+      std::swap(con[nchosen], con[best]);
+      if (next == nchosen) next = best;
+    }
+    nchosen++;
+    best = next;
+  }
+  d.ncon = first + nchosen;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- entry points
@@ -544,6 +593,7 @@ void CollideWithFlex(const Model& m, Data& d, int b1, int b2) {
   int first = d.ncon;
   if (!MidphaseDisabled(m) && bvh1 >= 0 && m.flex_bvhadr[f2] >= 0) {
     CollideTreesWithFlex(m, d, b1, b2);
+    ThinFlexContacts(m, d, first);
     SortContacts(d, first);
     return;
   }
@@ -553,6 +603,7 @@ void CollideWithFlex(const Model& m, Data& d, int b1, int b2) {
     for (int e1 = 0; e1 < m.flex_elemnum[f1]; e1++) {
       for (int e2 = 0; e2 < m.flex_elemnum[f2]; e2++) CollideElems(m, d, f1, e1, f2, e2);
     }
+    ThinFlexContacts(m, d, first);
     return;
   }
   // Every geom of the body with every element (planes with every vertex).
@@ -561,11 +612,13 @@ void CollideWithFlex(const Model& m, Data& d, int b1, int b2) {
                        m.flex_conaffinity[f2])) {
       continue;
     }
+    int geom_first = d.ncon;
     if (m.geom_type[g] == kGeomPlane) {
       CollidePlaneFlex(m, d, g, f2);
     } else {
       for (int e = 0; e < m.flex_elemnum[f2]; e++) CollideGeomElem(m, d, g, f2, e);
     }
+    ThinFlexContacts(m, d, geom_first);
   }
 }
 
@@ -574,8 +627,12 @@ void CollideFlexSelf(const Model& m, Data& d) {
   for (int f = 0; f < m.nflex; f++) {
     if (m.flex_rigid[f] || !(m.flex_contype[f] & m.flex_conaffinity[f])) continue;
     if (any_asleep && ElementSleepState(m, d, kObjFlex, f) == kAsleep) continue;  // (asleep)
+    int first = d.ncon;
     if (m.flex_internal[f]) CollideFlexInternal(m, d, f);
+    ThinFlexContacts(m, d, first);
+    first = d.ncon;
     if (m.flex_selfcollide[f] != kFlexSelfNone) CollideFlexElements(m, d, f);
+    ThinFlexContacts(m, d, first);
   }
 }
 

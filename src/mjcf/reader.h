@@ -89,6 +89,8 @@ class Reader {
   void Deformable(const XmlElement& e);
   // flexes (reader_flex.cc) and flexcomps (reader_flex.cc, expanded in reader_flexcomp.cc)
   void ReadFlex(const XmlElement& e, FlexSpec* flex);
+  // Records e as the model's first construct only MuJoCo 3.12 defines (newer_construct).
+  void NoteNewerConstruct(const XmlElement& e);
   void Flexcomp(const XmlElement& e, BodySpec* body, const DefaultClass* def);
   void FlexcompChildren(const XmlElement& e, struct FlexcompSpec* fc);
   void MakeFlexcomp(const XmlElement& e, struct FlexcompSpec* fc, BodySpec* body,

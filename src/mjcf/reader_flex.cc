@@ -29,10 +29,6 @@ const std::initializer_list<Keyword> kFlexcompDofs = {
 const std::initializer_list<Keyword> kFlexEdgeEqualities = {
     {"false", 0}, {"true", 1}, {"vert", 2}, {"strain", 3}};
 
-
-// The first child element named `tag`, if any.
-pugi::xml_node FirstChild(const XmlElement& e, const char* tag) { return e.node().child(tag); }
-
 // <contact> of a flex or flexcomp: how the flex collides.
 void ReadFlexContact(const XmlElement& c, FlexSpec* flex) {
   c.CheckAttributes({"contype", "conaffinity", "condim", "priority", "friction", "solmix",
@@ -82,6 +78,10 @@ void ReadFlexLook(const XmlElement& e, FlexSpec* flex) {
 
 // ---------------------------------------------------------------- <flex>
 
+void Reader::NoteNewerConstruct(const XmlElement& e) {
+  if (spec_->newer_construct.tag.empty()) spec_->newer_construct = e.src();
+}
+
 void Reader::ReadFlex(const XmlElement& e, FlexSpec* flex) {
   e.CheckAttributes({"name", "group", "dim", "radius", "material", "rgba", "flatskin", "body",
                      "vertex", "element", "texcoord", "elemtexcoord", "node", "dof", "cellcount"});
@@ -96,6 +96,7 @@ void Reader::ReadFlex(const XmlElement& e, FlexSpec* flex) {
   flex->texcoord = ReadList(e, "texcoord", ParseFloat);
   flex->elemtexcoord = ReadList(e, "elemtexcoord", ParseInt);
   // (MuJoCo 3.12: the nodes' interpolation order, and the cells of their lattice)
+  if (e.Has("dof") || e.Has("cellcount")) NoteNewerConstruct(e);
   int dof = kFcompDofFull;
   if (e.Enum("dof", &dof, kFlexcompDofs)) {
     flex->order = dof == kFcompDofTrilinear ? 1 : dof == kFcompDofQuadratic ? 2 : 0;

@@ -629,6 +629,9 @@ struct ModelSpec {
   std::vector<TextureSpec> textures;
   std::vector<MaterialSpec> materials;
   std::vector<KeySpec> keys;
+  // The first construct read that only MuJoCo 3.12 defines (see Model::release); an
+  // empty tag when there is none.
+  Source newer_construct;
   int nkey = 0;  // <size nkey>: at least this many keyframes
   int nuser_sensor = -1;  // <size nuser_sensor>; -1: the longest sensor user data
   Source size_src;        // the <size> element, if any (for messages about its sizes)

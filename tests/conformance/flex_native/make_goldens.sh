@@ -10,9 +10,11 @@
 #   Each line of MODELS: a model path (from the repository's root), the steps, how often
 #   to record, the tolerance, and optionally a control file (CSV, from the root; none:
 #   zero controls). Writes goldens/<name>.jsonl and tests/conformance/flex_native_cases.txt.
-#   MuJoCo 3.12 thins flex contacts per collision pair (filterFlexContacts) and simlab
-#   does not: a model that makes flex contacts is rolled out up to its first one, and its
-#   copy without contacts (models/<name>_nocontact.xml) over the whole run.
+#   These models follow MuJoCo 3.12 (Model::release), flex contacts thinned per collision
+#   pair as 3.12 does. 3.12 also rewrote its solvers' line search: once contacts occur,
+#   the two engines stop at different iterates of the model's own tolerance, so a model is
+#   rolled out at its tolerance up to where that shows, converged (models/<name>_tight.xml)
+#   over more steps, and without contacts (models/<name>_nocontact.xml) over the whole run.
 # Requirements: bash, python3, and the native build.
 set -euo pipefail
 
@@ -30,15 +32,18 @@ FLEX=../shared/corpus/mujoco/model/flex
 MODELS=(
   # cellcount: trilinear bunnies on a 3 x 3 x 3 lattice of cells (nodes only in empty
   # cells pinned), a volume with elasticity and a shell (interior nodes pinned, bending
-  # between faces, strain equality), up to their first flex contact (step 42); the
-  # volume bunny without contacts until just before it goes unstable (t = 0.248)
-  "$FLEX/bunny_multicell.xml 41 10 1e-9"
-  "$FLEX/bunny_shell.xml 41 10 1e-9"
+  # between faces, strain equality), falling on the floor from step 42 (92 contacts
+  # thinned to 50): until the solvers part (steps 54 and 108), converged over 200 steps,
+  # and without contacts (the volume bunny until just before it goes unstable, t = 0.248)
+  "$FLEX/bunny_multicell.xml 53 3 1e-9"
+  "$FLEX/bunny_shell.xml 107 6 1e-9"
+  "$OUT/models/bunny_shell_tight.xml 200 20 1e-5"
   "$OUT/models/bunny_multicell_nocontact.xml 120 10 1e-9"
   "$OUT/models/bunny_shell_nocontact.xml 200 20 1e-9"
   # a solid and a hollow (shell) 6 x 1 x 6-cell grid kept by strain equality, up to their
-  # first contact (step 55), and without contacts
+  # first contact (step 55), converged over 200 steps, and without contacts
   "$FLEX/hollow_vs_solid.xml 54 27 1e-9"
+  "$OUT/models/hollow_vs_solid_tight.xml 200 40 1e-4"
   "$OUT/models/hollow_vs_solid_nocontact.xml 200 50 1e-9"
   # dof="2d": a fin-ray gripper's fingers of vertex bodies with two slide joints each
   # (edge equality and damping) under smooth controls (ctrl/gripper_2d.csv, by hand),
@@ -47,11 +52,13 @@ MODELS=(
   "$FLEX/gripper_2d.xml 80 10 1e-9 $OUT/ctrl/gripper_2d.csv"
   "$OUT/models/gripper_2d_nocontact.xml 200 10 1e-9 $OUT/ctrl/gripper_2d.csv"
   # strain equality: trilinear boxes pinned at one end (a flexstrain per cell, a row per
-  # stiff mode), up to their first contact (step 155), without contacts, the same with
+  # stiff mode), up to their first contact (step 155, 4 pairs thinned to 50 contacts
+  # each), converged past it (the solvers part again from step 164), without contacts, the same with
   # quadratic boxes (75 modes a cell, a sparse Jacobian), and explicit <flexstrain>
   # elements before a connect read by a force sensor (MuJoCo's cfrc_ext pass skips the
   # connect; free-falling boxes whose strain forces are the solver's noise: 1e-7)
-  "$FLEX/strain.xml 150 10 1e-9"
+  "$FLEX/strain.xml 154 10 1e-9"
+  "$OUT/models/strain_tight.xml 160 4 1e-5"
   "$OUT/models/strain_nocontact.xml 400 20 1e-9"
   "$OUT/models/strain_quadratic_nocontact.xml 300 20 1e-9"
   "$OUT/models/strain_sensor.xml 100 10 1e-7"
