@@ -217,6 +217,31 @@ TEST(Flex, ModelsUsingNewerConstructsFollowMuJoCo312) {
             Release::k3_12);
 }
 
+// A bending cloth pinned to a static body: MuJoCo 3.5.1 refuses it, 3.12 accepts it (the
+// pins carry the bending forces), so such a model follows 3.12. Pinned to a moving
+// body it is refused, with the message of the release the model follows.
+TEST(Flex, BendingClothPinnedToAStaticBodyFollowsMuJoCo312) {
+  // A cloth in body `name` at x, hinged or not, pinned along one side.
+  auto cloth = [](const std::string& name, int x, bool hinged) {
+    return "<body name='" + name + "' pos='" + std::to_string(x) + " 0 1'>" +
+           (hinged ? "<joint type='hinge'/><geom size='.01'/>" : "") + "<flexcomp name='" + name +
+           "' type='grid' count='4 4 1' spacing='.05 .05 .05' radius='.005' dim='2'>"
+           "<elasticity young='3e4' poisson='.2' thickness='.01' elastic2d='bend'/>"
+           "<pin id='0 4 8 12'/><contact selfcollide='none'/></flexcomp></body>";
+  };
+  auto model = [](const std::string& bodies) {
+    return "<mujoco><worldbody>" + bodies + "</worldbody></mujoco>";
+  };
+  EXPECT_EQ(LoadXmlString(model(cloth("a", 0, false)), "pinned.xml").release, Release::k3_12);
+  std::string hinged = model(cloth("b", 1, true));
+  ExpectMessageParts(XmlLoadError(hinged), {"bad.xml", "pins are not supported for bending"}, hinged);
+  std::string both = model(cloth("a", 0, false) + cloth("b", 1, true));
+  ExpectMessageParts(XmlLoadError(both),
+                     {"bad.xml", "pinned flex vertices with bending require a static (jointless) "
+                                 "pin body, body 'b' has joints"},
+                     both);
+}
+
 // A cloth laid flat on the floor touches it at every vertex: a 3.5.1 model keeps every
 // contact, a 3.12 model (made one here by dof="2d") keeps kMaxContactPair of them per
 // collision pair.

@@ -144,6 +144,7 @@ Model Compile(const mjcf::ModelSpec& spec, ElementSources* sources) {
   // Sizes, then every array.
   Model m;
   CompileOption(spec, &m);
+  m.release = state.release;
   m.vis = spec.vis;
   TreeSizes(state, &m);
   m.ncam = CameraCount(state);

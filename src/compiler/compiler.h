@@ -169,6 +169,8 @@ struct SiteState {
 // Everything the section compilers share.
 struct CompileState {
   const mjcf::ModelSpec* spec = nullptr;
+  // The MuJoCo release the model follows (Model::release; CompileFlexes decides).
+  Release release = Release::k3_5_1;
   std::vector<BodyState> bodies;
   std::vector<JointState> joints;
   std::vector<GeomState> geoms;

@@ -117,18 +117,27 @@ void FlexTexcoords(const mjcf::FlexSpec& f, FlexState* flex) {
   }
 }
 
-// The body of each vertex and node, by name.
+// Does flex f bend its triangles between vertices of its own (not an interpolated flex's,
+// which ride on its nodes)?
+bool BendsVertices(const mjcf::FlexSpec& f) {
+  bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
+  return f.dim == 2 && bending && f.nodebody.empty();
+}
+
+// The body of each vertex and node, by name. A bending flex's vertices each need three
+// slide joints, or (MuJoCo 3.12) none: pinned to a static body.
 void FindFlexBodies(const mjcf::FlexSpec& f, const CompileState& state, const NameIndex& bodies,
                     FlexState* flex) {
   for (const std::string& name : f.vertbody) {
     int id = bodies.Find(name);
     if (id < 0) ThrowAt(f.src, "unknown body '" + name + "' in flex");
     int njoint = state.bodies[id].joint_num;
-    bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
-    // (an interpolated flex's vertices ride on its nodes)
-    bool interpolated = !f.nodebody.empty();
-    if (njoint != 3 && f.dim == 2 && bending && !interpolated) {
-      ThrowAt(f.src, "pins are not supported for bending");
+    if (njoint != 3 && BendsVertices(f)) {
+      if (state.release == Release::k3_5_1) ThrowAt(f.src, "pins are not supported for bending");
+      if (njoint != 0) {
+        ThrowAt(f.src, "pinned flex vertices with bending require a static (jointless) pin body, body '" +
+                           name + "' has joints");
+      }
     }
     flex->vertbodyid.push_back(id);
   }
@@ -487,10 +496,26 @@ FlexState CompileFlex(const mjcf::FlexSpec& f, bool strain, const CompileState& 
   return flex;
 }
 
+// The release the model follows: MuJoCo 3.12 when it uses a construct only 3.12 defines
+// (the reader found it), or one 3.5.1 refuses and 3.12 accepts: a bending flex's vertex
+// pinned to a static body.
+Release ModelRelease(const mjcf::ModelSpec& spec, const CompileState& state, const NameIndex& bodies) {
+  if (!spec.newer_construct.tag.empty()) return Release::k3_12;
+  for (const mjcf::FlexSpec& f : spec.flexes) {
+    if (!BendsVertices(f)) continue;
+    for (const std::string& name : f.vertbody) {
+      int id = bodies.Find(name);
+      if (id >= 0 && state.bodies[id].joint_num == 0) return Release::k3_12;
+    }
+  }
+  return Release::k3_5_1;
+}
+
 }  // namespace
 
 void CompileFlexes(const mjcf::ModelSpec& spec, CompileState* state) {
   NameIndex bodies = BodyNames(*state);
+  state->release = ModelRelease(spec, *state, bodies);
   NameIndex materials = MaterialNames(spec);
   std::vector<double> xpos, xquat;
   BodyFramesAtQpos0(*state, &xpos, &xquat);

@@ -117,6 +117,26 @@ void FlexNearestRotation(double quat[4], const double mat[9]) {
 
 namespace {
 
+// A flap's bending forces (world frame) into its vertices' slide dofs as MuJoCo 3.12 puts
+// them: turned into each vertex body's frame, where its sliders are; a pinned vertex (not
+// three dofs) takes none, its pin carries them.
+void ApplyBendingInBodyFrames(const Model& m, Data& d, int f, const int v[4], bool spring,
+                              bool damper, const double* spring_force, const double* damper_force) {
+  const int* bodyid = &m.flex_vertbodyid[m.flex_vertadr[f]];
+  for (int i = 0; i < 4; i++) {
+    int body = bodyid[v[i]];
+    if (m.body_dofnum[body] != 3) continue;
+    double spring_local[3], damper_local[3];
+    math::MulMatTVec3(spring_local, &d.xmat[9 * body], spring_force + 3 * i);
+    math::MulMatTVec3(damper_local, &d.xmat[9 * body], damper_force + 3 * i);
+    int dofadr = m.body_dofadr[body];
+    for (int x = 0; x < 3; x++) {
+      if (spring) d.qfrc_spring[dofadr + x] -= spring_local[x];
+      if (damper) d.qfrc_damper[dofadr + x] -= damper_local[x] * m.flex_damping[f];
+    }
+  }
+}
+
 // Thin-plate bending of triangle flex f: each inner edge's flap.
 void BendingForces(const Model& m, Data& d, int f, bool spring, bool damper) {
   const double* xpos = &d.flexvert_xpos[3 * m.flex_vertadr[f]];
@@ -136,18 +156,30 @@ void BendingForces(const Model& m, Data& d, int f, bool spring, bool damper) {
     math::Cross3(frc[3], ed[0], ed[1]);
     for (int x = 0; x < 3; x++) frc[0][x] = -(frc[1][x] + frc[2][x] + frc[3][x]);
 
-    // B x + b16 frc, and B qvel (the vertices' dofs are world translations).
-    int dofadr[4];
-    for (int i = 0; i < 4; i++) dofadr[i] = m.body_dofadr[bodyid[v[i]]];
+    // B x + b16 frc, and B qvel: MuJoCo 3.5.1 reads the vertices' dofs as world
+    // translations; 3.12 (a model that follows it) takes a pinned vertex (a static body,
+    // no dofs of its own) as still.
+    bool newer = m.release == Release::k3_12;
+    static const double kStill[3] = {0, 0, 0};
+    const double* vel[4];
+    for (int i = 0; i < 4; i++) {
+      int body = bodyid[v[i]];
+      bool pinned = newer && m.body_dofnum[body] != 3;
+      vel[i] = pinned ? kStill : &d.qvel[m.body_dofadr[body]];
+    }
     double spring_force[12] = {}, damper_force[12] = {};
     for (int i = 0; i < 4; i++) {
       for (int x = 0; x < 3; x++) {
         for (int j = 0; j < 4; j++) {
           if (spring) spring_force[3 * i + x] += b[4 * i + j] * xpos[3 * v[j] + x];
-          if (damper) damper_force[3 * i + x] += b[4 * i + j] * d.qvel[dofadr[j] + x];
+          if (damper) damper_force[3 * i + x] += b[4 * i + j] * vel[j][x];
         }
         if (spring) spring_force[3 * i + x] += b[16] * frc[i][x];
       }
+    }
+    if (newer) {
+      ApplyBendingInBodyFrames(m, d, f, v, spring, damper, spring_force, damper_force);
+      continue;
     }
 
     // Into the vertices' dofs.

@@ -84,6 +84,7 @@ void Reader::Unknown(const XmlElement& e) const {
 void Reader::Root(pugi::xml_node root) {
   XmlElement top = Element(root);
   top.CheckAttributes({"model"});
+  FindNewerConstruct(root);
   top.Text("model", &spec_->model_name);
 
   // Check every section name before reading any.

@@ -89,8 +89,11 @@ class Reader {
   void Deformable(const XmlElement& e);
   // flexes (reader_flex.cc) and flexcomps (reader_flex.cc, expanded in reader_flexcomp.cc)
   void ReadFlex(const XmlElement& e, FlexSpec* flex);
-  // Records e as the model's first construct only MuJoCo 3.12 defines (newer_construct).
-  void NoteNewerConstruct(const XmlElement& e);
+  // The document's first element that only MuJoCo 3.12 defines (a <flexstrain>, a <flex>
+  // with dof or cellcount, a <flexcomp> with cellcount, dof="2d", or interpolated with
+  // a shell or strain equality), into newer_construct before anything is read: a model
+  // that follows 3.12 is read by 3.12's rules where they differ.
+  void FindNewerConstruct(pugi::xml_node root);
   void Flexcomp(const XmlElement& e, BodySpec* body, const DefaultClass* def);
   void FlexcompChildren(const XmlElement& e, struct FlexcompSpec* fc);
   void MakeFlexcomp(const XmlElement& e, struct FlexcompSpec* fc, BodySpec* body,

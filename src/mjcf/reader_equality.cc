@@ -97,7 +97,6 @@ void Reader::Equality(const XmlElement& e) {
     const DefaultClass* cls = FindClass(c, "class");
     EqualitySpec eq = cls ? cls->equality : classes_.at("main")->equality;
     eq.type = type;
-    if (type == kEqFlexStrain) NoteNewerConstruct(c);
     ReadEquality(c, &eq, false);
     spec_->equalities.push_back(std::move(eq));
   }

@@ -78,8 +78,32 @@ void ReadFlexLook(const XmlElement& e, FlexSpec* flex) {
 
 // ---------------------------------------------------------------- <flex>
 
-void Reader::NoteNewerConstruct(const XmlElement& e) {
-  if (spec_->newer_construct.tag.empty()) spec_->newer_construct = e.src();
+namespace {
+
+// Is this element, as written, one that only MuJoCo 3.12 defines?
+bool IsNewerConstruct(pugi::xml_node n) {
+  std::string tag = n.name();
+  if (tag == "flexstrain") return true;
+  if (tag == "flex") return n.attribute("dof") || n.attribute("cellcount");
+  if (tag != "flexcomp") return false;
+  std::string dof = n.attribute("dof").as_string("full");
+  std::string equality = n.child("edge").attribute("equality").as_string("false");
+  if (n.attribute("cellcount") || dof == "2d" || equality == "strain") return true;
+  std::string elastic2d = n.child("elasticity").attribute("elastic2d").as_string("none");
+  return (dof == "trilinear" || dof == "quadratic") && elastic2d != "none";
+}
+
+}  // namespace
+
+void Reader::FindNewerConstruct(pugi::xml_node root) {
+  for (pugi::xml_node n : root.children()) {
+    if (n.type() != pugi::node_element || !spec_->newer_construct.tag.empty()) continue;
+    if (IsNewerConstruct(n)) {
+      spec_->newer_construct = Element(n).src();
+    } else {
+      FindNewerConstruct(n);
+    }
+  }
 }
 
 void Reader::ReadFlex(const XmlElement& e, FlexSpec* flex) {
@@ -96,7 +120,6 @@ void Reader::ReadFlex(const XmlElement& e, FlexSpec* flex) {
   flex->texcoord = ReadList(e, "texcoord", ParseFloat);
   flex->elemtexcoord = ReadList(e, "elemtexcoord", ParseInt);
   // (MuJoCo 3.12: the nodes' interpolation order, and the cells of their lattice)
-  if (e.Has("dof") || e.Has("cellcount")) NoteNewerConstruct(e);
   int dof = kFcompDofFull;
   if (e.Enum("dof", &dof, kFlexcompDofs)) {
     flex->order = dof == kFcompDofTrilinear ? 1 : dof == kFcompDofQuadratic ? 2 : 0;
@@ -194,17 +217,21 @@ void Reader::FlexcompChildren(const XmlElement& e, FlexcompSpec* fc) {
       Unknown(c);
     }
   }
-  // Strain (MuJoCo 3.12) keeps the stiff modes of an interpolated flex's elements;
-  // the other equalities keep 3.5.1's rule.
-  if (fc->equality == 3) {
-    if (fc->flex.elastic2d != kElastic2DBend && fc->flex.young > 0) {
-      e.Fail("flex constraints and elasticity (young) cannot both be present");
+  // An equality and elasticity together: MuJoCo 3.5.1 refuses stretching elasticity with
+  // any equality; 3.12 (a model that follows it) refuses a Young's modulus unless the
+  // elasticity only bends, and keeps strain (the stiff modes of an interpolated flex's
+  // elements) to interpolated flexcomps.
+  if (spec_->newer_construct.tag.empty()) {
+    if (fc->flex.elastic2d >= 2 && fc->equality) {
+      e.Fail("elasticity and edge constraints cannot both be present");
     }
-    if (fc->dof != kFcompDofTrilinear && fc->dof != kFcompDofQuadratic) {
-      e.Fail("strain equality needs an interpolated flexcomp (dof trilinear or quadratic)");
-    }
-  } else if (fc->flex.elastic2d >= 2 && fc->equality) {
-    e.Fail("elasticity and edge constraints cannot both be present");
+    return;
+  }
+  if (fc->equality && fc->flex.elastic2d != kElastic2DBend && fc->flex.young > 0) {
+    e.Fail("flex constraints and elasticity (young) cannot both be present");
+  }
+  if (fc->equality == 3 && fc->dof != kFcompDofTrilinear && fc->dof != kFcompDofQuadratic) {
+    e.Fail("strain equality needs an interpolated flexcomp (dof trilinear or quadratic)");
   }
 }
 

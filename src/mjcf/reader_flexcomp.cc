@@ -502,7 +502,6 @@ void AddCellNodeBodies(FlexcompSpec* fc, BodySpec* body, const DefaultClass* def
 void Reader::MakeFlexcomp(const XmlElement& e, FlexcompSpec* fc, BodySpec* body,
                           const DefaultClass* def) {
   CheckFlexcomp(e, *fc, !body->src.name.empty() || IsWorld(body));
-  if (UsesCells(*fc) || fc->dof == kFcompDof2D) NoteNewerConstruct(e);
   MakeShape(e, fc, spec_->assets.get());
   FlexSpec& flex = fc->flex;
   if (fc->type == kFcompBox || fc->type == kFcompCylinder ||

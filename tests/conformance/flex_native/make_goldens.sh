@@ -62,6 +62,8 @@ MODELS=(
   "$OUT/models/strain_nocontact.xml 400 20 1e-9"
   "$OUT/models/strain_quadratic_nocontact.xml 300 20 1e-9"
   "$OUT/models/strain_sensor.xml 100 10 1e-7"
+  # bending with static pins (3.12 only), forces in the vertex bodies' tilted frames
+  "$OUT/models/pinned_bend.xml 300 30 1e-9"
   # sleeping flexes (MuJoCo 3.12's sleep tests): a three-vertex cable held by its edge
   # equality falls asleep with its trees as one island, and wakes by a contact with an
   # awake body (a ball falling on it); an unconstrained one never sleeps; a sleeping
