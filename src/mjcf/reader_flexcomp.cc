@@ -520,10 +520,13 @@ void Reader::MakeFlexcomp(const XmlElement& e, FlexcompSpec* fc, BodySpec* body,
       minmax[k + 3] = std::max(minmax[k + 3], fc->shape.point[3 * i + k]);
     }
   }
+  // (a model that follows MuJoCo 3.12 lays out every interpolated flexcomp's nodes as 3.12
+  // does: masses shared by the nodes that move)
+  bool cell_nodes = IsInterpolated(fc->dof) && (UsesCells(*fc) || !spec_->newer_construct.tag.empty());
   int nnode = 0;
   if (IsInterpolated(fc->dof)) {
     FlexLattice g = NodeLattice(*fc);
-    nnode = UsesCells(*fc) ? g.Nodes(0) * g.Nodes(1) * g.Nodes(2) : g.NodesPerCell();
+    nnode = cell_nodes ? g.Nodes(0) * g.Nodes(1) * g.Nodes(2) : g.NodesPerCell();
   }
   bool centered = false;
   PinPoints(e, fc, npoint, nnode, &centered);
@@ -545,7 +548,7 @@ void Reader::MakeFlexcomp(const XmlElement& e, FlexcompSpec* fc, BodySpec* body,
     return;
   }
   AddVertexBodies(fc, body, def, centered, parent);
-  if (UsesCells(*fc)) {
+  if (cell_nodes) {
     AddCellNodeBodies(fc, body, def, minmax, parent);
   } else if (IsInterpolated(fc->dof)) {
     AddNodeBodies(fc, body, def, minmax, parent);

@@ -62,6 +62,7 @@ MODELS=(
   "$OUT/models/strain_nocontact.xml 400 20 1e-9"
   "$OUT/models/strain_quadratic_nocontact.xml 300 20 1e-9"
   "$OUT/models/strain_sensor.xml 100 10 1e-7"
+  "$OUT/models/strain_explicit_pinned.xml 300 30 1e-9"
   # bending with static pins (3.12 only), forces in the vertex bodies' tilted frames
   "$OUT/models/pinned_bend.xml 300 30 1e-9"
   # sleeping flexes (MuJoCo 3.12's sleep tests): a three-vertex cable held by its edge
