@@ -7,6 +7,13 @@
 // rank-one changes as rows change state; CG: Polak-Ribiere on M^-1 grad), then an exact
 // line search along it: the cost along a line is piecewise quadratic, so the search
 // brackets the minimum with Newton steps on the one-dimensional derivative.
+//
+// A model that follows MuJoCo 3.12 (Model::release) gets 3.12's iteration: the line search
+// measures costs as changes from the line's start (friction and cone rows in forms without
+// cancellation) and accepts only points that lower it; before the first step the start is
+// kept when it already certifies (half the M^-1-norm of the gradient below the tolerance,
+// and for Newton the gradient itself too, then the Newton decrement); the iteration also
+// stops on the Newton decrement; CG's directions are Hager and Zhang's.
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
@@ -343,7 +350,7 @@ struct Primal {
   int* oldstate;
   // Dofs: M a, M search, the gradient, its preconditioned form and the direction; CG
   // keeps the previous gradients and the change of the preconditioned one.
-  double *ma, *mv, *grad, *mgrad, *search, *gradold, *mgradold, *mgrad_change;
+  double *ma, *mv, *grad, *mgrad, *search, *gradold, *mgradold, *mgrad_change, *grad_change;
   // Sparse rows (p.sparse()): J^T by dofs, for J^T f.
   SparseRows jt;
   // Newton: the rows of J by their nonzeros (`rows`: p's own compressed rows, or the
@@ -362,6 +369,10 @@ struct Primal {
   double quad_gauss[3] = {0, 0, 0};
   int ncone = 0;  // rows in the cone state
   int ls_iter = 0;
+  // MuJoCo 3.12's solver (a model that follows 3.12, Model::release): line-search costs
+  // taken as differences from the line's start, a convergence certificate before the
+  // first step, the Newton decrement as a stopping test, and Hager-Zhang CG directions.
+  bool newer = false;
 
   Primal(ConstraintProblem& problem, bool is_newton, bool is_elliptic, SolverFrame& frame)
       : p(problem), newton(is_newton), elliptic(is_elliptic) {
@@ -371,7 +382,7 @@ struct Primal {
     quad = frame.Reals(3 * static_cast<size_t>(nefc));
     oldstate = frame.Ints(nefc);
     for (double** dof_array :
-         {&ma, &mv, &grad, &mgrad, &search, &gradold, &mgradold, &mgrad_change}) {
+         {&ma, &mv, &grad, &mgrad, &search, &gradold, &mgradold, &mgrad_change, &grad_change}) {
       *dof_array = frame.Reals(nv);
     }
     if (p.sparse()) {
@@ -418,18 +429,29 @@ void UpdateConstraint(Primal& s) {
   s.cost += gauss;
 }
 
-// grad = M a - qfrc_smooth - qfrc_constraint, and the preconditioned gradient.
-void UpdateGradient(Primal& s) {
+// grad = M a - qfrc_smooth - qfrc_constraint.
+void ComputeGradient(Primal& s) {
   ConstraintProblem& p = s.p;
   for (int v = 0; v < p.nv; v++) s.grad[v] = s.ma[v] - p.qfrc_smooth[v] - p.qfrc_constraint[v];
-  if (s.newton && s.sparse_factor()) {
+}
+
+// The preconditioned gradient: H^-1 grad with the Newton factor, else M^-1 grad.
+void PreconditionGradient(Primal& s, bool hessian) {
+  ConstraintProblem& p = s.p;
+  if (hessian && s.sparse_factor()) {
     SolveCholesky(s.chol, s.NewtonFactor(), s.grad, s.mgrad);
-  } else if (s.newton) {
+  } else if (hessian) {
     CholSolve(s.NewtonFactor(), p.nv, s.grad, s.mgrad);
   } else {
     std::copy(s.grad, s.grad + p.nv, s.mgrad);
     SolveSparseLayout(p.nv, p.M_rownnz, p.M_rowadr, p.M_colind, p.qLD, p.qLDiagInv, s.mgrad);
   }
+}
+
+// grad and the preconditioned gradient.
+void UpdateGradient(Primal& s) {
+  ComputeGradient(s);
+  PreconditionGradient(s, s.newton);
 }
 
 // C^T J for one cone-zone contact (rows i..i+dim-1), C the Cholesky factor of its cost's
@@ -666,8 +688,149 @@ void EvalCone(const Primal& s, int i, double alpha, double total[3], double* cos
   deriv[1] += Dm * (gap1 * gap1 + gap * (-mu * T2));
 }
 
+// A line point's cost and derivatives: the rows' quadratic total at alpha plus what the
+// rows outside it (cone-zone contacts, friction changes) summed in cost and deriv.
+void FinishLinePoint(Primal& s, double alpha, const double total[3], double cost,
+                     const double deriv[2], LinePoint* point) {
+  point->cost = cost + (alpha * alpha * total[2] + alpha * total[1] + total[0]);
+  point->deriv[0] = deriv[0] + (2 * alpha * total[2] + total[1]);
+  point->deriv[1] = deriv[1] + 2 * total[2];
+  // Not convex (should not occur): counted, reported by the caller as a warning.
+  if (point->deriv[1] <= 0) {
+    s.p.nonconvex++;
+    point->deriv[1] = kMinVal;
+  }
+  s.ls_iter++;
+}
+
+// ------------------------------------------------ MuJoCo 3.12's line costs, from the start
+
+// A friction row's Huber cost at x: quadratic 0.5 D x^2 inside the bound, linear outside.
+double FrictionCost(double x, double f, double bound, double D) {
+  if (-bound < x && x < bound) return 0.5 * D * x * x;
+  return x <= -bound ? f * (-0.5 * bound - x) : f * (-0.5 * bound + x);
+}
+
+// A friction row's cost at x less its cost at start: within one zone, in a form without
+// cancellation; across zones, the two costs subtracted.
+double FrictionCostChange(double start, double x, double f, double bound, double D) {
+  auto zone = [bound](double y) { return -bound < y && y < bound ? 0 : (y <= -bound ? -1 : 1); };
+  int from = zone(start), to = zone(x);
+  if (from == 0 && to == 0) return 0.5 * D * (x - start) * (x + start);
+  if (from == -1 && to == -1) return f * (start - x);
+  if (from == 1 && to == 1) return f * (x - start);
+  return FrictionCost(x, f, bound, D) - FrictionCost(start, f, bound, D);
+}
+
+// An elliptic contact's zone for normal N and squared tangent norm Tsqr (T its root):
+// 1 top (free), 2 bottom (quadratic), 3 middle (the cone).
+int ConeZone(double N, double Tsqr, double mu, double* T) {
+  *T = 0;
+  if (Tsqr <= 0) return N < 0 ? 2 : 1;
+  *T = std::sqrt(Tsqr);
+  if (N >= mu * *T) return 1;
+  return mu * N + *T <= 0 ? 2 : 3;
+}
+
+// An elliptic contact's cost at alpha less its cost at 0 (q prepared by PrepareCone, Dm
+// its cone mass), per the pair of zones; within the cone in rationalized form.
+double ConeCostChange(const double* q, double alpha, double mu, double Dm) {
+  double U0 = q[3], V0 = q[4], UU = q[5], UV = q[6], VV = q[7];
+  double T0, T;
+  int from = ConeZone(U0, UU, mu, &T0);
+  double N = U0 + alpha * V0;
+  int to = ConeZone(N, UU + alpha * (2 * UV + alpha * VV), mu, &T);
+  double bottom = alpha * alpha * q[2] + alpha * q[1];  // the quadratic's change
+  if (from == 1 && to == 1) return 0;
+  if (from == 2 && to == 2) return bottom;
+  if (from == 3 && to == 3) {
+    double T_change = alpha * (2 * UV + alpha * VV) / (T + T0);
+    double r_change = alpha * V0 - mu * T_change;
+    return 0.5 * Dm * r_change * (2 * (U0 - mu * T0) + r_change);
+  }
+  if (from == 3 && to == 2) {
+    double edge0 = mu * U0 + T0;
+    return alpha * (alpha * q[2] + q[1]) + 0.5 * Dm * edge0 * edge0;
+  }
+  if (from == 2 && to == 3) {
+    double edge = mu * N + T;
+    return alpha * (alpha * q[2] + q[1]) - 0.5 * Dm * edge * edge;
+  }
+  if (from == 1 && to == 2) return bottom + q[0];
+  if (from == 1 && to == 3) return 0.5 * Dm * (N - mu * T) * (N - mu * T);
+  if (from == 3 && to == 1) return -0.5 * Dm * (U0 - mu * T0) * (U0 - mu * T0);
+  if (from == 2 && to == 1) return -q[0];
+  return 0;
+}
+
+// An elliptic contact's derivatives along the line at alpha (its zone there).
+void ConeDerivatives(const Primal& s, int i, double alpha, double deriv[2]) {
+  const double* q = &s.quad[3 * i];
+  double mu = s.p.contact[s.p.id[i]].mu;
+  double N = q[3] + alpha * q[4], T;
+  int zone = ConeZone(N, q[5] + alpha * (2 * q[6] + alpha * q[7]), mu, &T);
+  if (zone == 2) {
+    deriv[0] += 2 * alpha * q[2] + q[1];
+    deriv[1] += 2 * q[2];
+  } else if (zone == 3) {
+    double Dm = q[8];
+    double N1 = q[4];
+    double T1 = (q[6] + alpha * q[7]) / T;
+    double T2 = q[7] / T - (q[6] + alpha * q[7]) * T1 / (T * T);
+    deriv[0] += Dm * (N - mu * T) * (N1 - mu * T1);
+    deriv[1] += Dm * ((N1 - mu * T1) * (N1 - mu * T1) + (N - mu * T) * (-mu * T2));
+  }
+}
+
+// Cost at alpha less the cost at the line's start, and its derivatives (MuJoCo 3.12's
+// PrimalEval): the Gauss term and quadratic rows without their constant part, friction
+// and cone rows by their changes, inequality rows less their cost at the start.
+void EvalLineFromStart(Primal& s, LinePoint* point) {
+  ConstraintProblem& p = s.p;
+  double alpha = point->alpha;
+  double total[3] = {0, s.quad_gauss[1], s.quad_gauss[2]};
+  double cost = 0, deriv[2] = {0, 0};
+  for (int r = 0; r < p.nefc; r++) {
+    const double* q = &s.quad[3 * r];
+    if (r < p.ne) {
+      total[1] += q[1];
+      total[2] += q[2];
+    } else if (r < p.ne + p.nf) {
+      double start = s.jaref[r], dir = s.jv[r], x = start + alpha * dir;
+      double f = p.frictionloss[r], D = p.D[r], bound = p.R[r] * f;
+      cost += FrictionCostChange(start, x, f, bound, D);
+      if (-bound < x && x < bound) {
+        deriv[0] += D * x * dir;
+        deriv[1] += D * dir * dir;
+      } else {
+        deriv[0] += x <= -bound ? -f * dir : f * dir;
+      }
+    } else if (p.type[r] == kCnstrContactElliptic) {
+      const Contact& con = p.contact[p.id[r]];
+      cost += ConeCostChange(q, alpha, con.mu, q[8]);
+      ConeDerivatives(s, r, alpha, deriv);
+      r += con.dim - 1;
+    } else {
+      double start = s.jaref[r], x = start + alpha * s.jv[r];
+      double cost0 = start < 0 ? q[0] : 0;
+      if (x < 0) {
+        total[0] += q[0] - cost0;
+        total[1] += q[1];
+        total[2] += q[2];
+      } else {
+        cost -= cost0;
+      }
+    }
+  }
+  FinishLinePoint(s, alpha, total, cost, deriv, point);
+}
+
 // Cost and its derivatives at alpha along the search direction.
 void EvalLine(Primal& s, LinePoint* point) {
+  if (s.newer) {
+    EvalLineFromStart(s, point);
+    return;
+  }
   ConstraintProblem& p = s.p;
   double alpha = point->alpha;
   double total[3] = {s.quad_gauss[0], s.quad_gauss[1], s.quad_gauss[2]};
@@ -695,15 +858,7 @@ void EvalLine(Primal& s, LinePoint* point) {
       AddQuadratic(total, &s.quad[3 * r]);
     }
   }
-  point->cost = cost + (alpha * alpha * total[2] + alpha * total[1] + total[0]);
-  point->deriv[0] = deriv[0] + (2 * alpha * total[2] + total[1]);
-  point->deriv[1] = deriv[1] + 2 * total[2];
-  // Not convex (should not occur): counted, reported by the caller as a warning.
-  if (point->deriv[1] <= 0) {
-    s.p.nonconvex++;
-    point->deriv[1] = kMinVal;
-  }
-  s.ls_iter++;
+  FinishLinePoint(s, alpha, total, cost, deriv, point);
 }
 
 // Replaces bracket end `end` by a candidate on the same side of the minimum with a
@@ -724,9 +879,12 @@ bool UpdateBracket(Primal& s, LinePoint* end, const LinePoint candidates[3], Lin
   return moved;
 }
 
-// The step length along `search` (0: no improvement possible). MuJoCo's PrimalSearch.
-double LineSearch(const Model& m, Primal& s) {
+// The step length along `search` (0: no improvement possible). MuJoCo's PrimalSearch;
+// under 3.12's rules (s.newer) a converged point must also lower the cost (its cost is
+// the change from the start), and `improvement` is set to the decrease.
+double LineSearch(const Model& m, Primal& s, double* improvement) {
   ConstraintProblem& p = s.p;
+  *improvement = 0;
   int ls_iterations = m.opt.ls_iterations;
   s.ls_iter = 0;
   double snorm = std::sqrt(Dot(s.search, s.search, p.nv));
@@ -742,7 +900,13 @@ double LineSearch(const Model& m, Primal& s) {
   EvalLine(s, &p0);
   p1.alpha = p0.alpha - p0.deriv[0] / p0.deriv[1];
   EvalLine(s, &p1);
-  if (std::abs(p1.deriv[0]) < gtol) return p1.alpha;
+  // (the step taken, with the decrease it brings under 3.12's rules)
+  auto take = [improvement](const LinePoint& point) {
+    *improvement = -point.cost;
+    return point.alpha;
+  };
+  bool lowers = !s.newer || p1.alpha == 0 || p1.cost < 0;
+  if (std::abs(p1.deriv[0]) < gtol && lowers) return take(p1);
 
   // One-sided Newton steps until the derivative changes sign.
   int dir = p1.deriv[0] < 0 ? 1 : -1;
@@ -751,9 +915,9 @@ double LineSearch(const Model& m, Primal& s) {
     p2 = p1;
     p1.alpha -= p1.deriv[0] / p1.deriv[1];
     EvalLine(s, &p1);
-    if (std::abs(p1.deriv[0]) < gtol) return p1.alpha;
+    if (std::abs(p1.deriv[0]) < gtol && (!s.newer || p1.cost < 0)) return take(p1);
   }
-  if (s.ls_iter >= ls_iterations) return p1.alpha;
+  if (s.ls_iter >= ls_iterations) return take(p1);
 
   // Bracketed search between p1 and p2.
   LinePoint p2next = p1, p1next;
@@ -773,76 +937,167 @@ double LineSearch(const Model& m, Primal& s) {
         best = i;
       }
     }
-    if (best >= 0) return candidates[best].alpha;
+    if (best >= 0) return take(candidates[best]);
 
     bool moved1 = UpdateBracket(s, &p1, candidates, &p1next);
     bool moved2 = UpdateBracket(s, &p2, candidates, &p2next);
-    if (!moved1 && !moved2) return mid.alpha;
+    if (!moved1 && !moved2) return take(mid);
   }
 
   // Out of iterations: the better bracket end, if it improves on the start.
-  if (p1.cost <= p2.cost && p1.cost < p0.cost) return p1.alpha;
-  if (p2.cost <= p1.cost && p2.cost < p0.cost) return p2.alpha;
+  double start = s.newer ? 0 : p0.cost;
+  if (p1.cost <= p2.cost && p1.cost < start) return take(p1);
+  if (p2.cost <= p1.cost && p2.cost < start) return take(p2);
   return 0;
 }
 
-}  // namespace
-
 // ---------------------------------------------------------------- the iteration
 
-void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton, SolverScratch& scratch) {
+// Moves the iterate alpha along the search direction and updates states, forces, the
+// Newton factor and the gradient there.
+void Advance(Primal& s, double alpha) {
+  ConstraintProblem& p = s.p;
   int nv = p.nv, nefc = p.nefc;
-  SolverFrame frame(scratch);
-  Primal s(p, newton, m.opt.cone == kConeElliptic, frame);
-
-  // Start: M a, J a - aref, states, gradient, direction = -preconditioned gradient.
-  MulSym(p, p.qacc, s.ma);
-  MulJ(p, p.qacc, s.jaref);
-  for (int r = 0; r < nefc; r++) s.jaref[r] -= p.aref[r];
+  for (int v = 0; v < nv; v++) {
+    p.qacc[v] += alpha * s.search[v];
+    s.ma[v] += alpha * s.mv[v];
+  }
+  for (int r = 0; r < nefc; r++) s.jaref[r] += alpha * s.jv[r];
+  if (!s.newton) {
+    std::copy(s.grad, s.grad + nv, s.gradold);
+    std::copy(s.mgrad, s.mgrad + nv, s.mgradold);
+  }
+  std::copy(p.state, p.state + nefc, s.oldstate);
   UpdateConstraint(s);
-  if (newton) FactorHessian(s);
+  if (s.newton) UpdateHessian(s);
+  UpdateGradient(s);
+}
+
+// The next CG direction -M^-1 grad + beta search, beta by Polak-Ribiere (reset when
+// negative): MuJoCo 3.5.1's.
+void PolakRibiereDirection(Primal& s) {
+  int nv = s.p.nv;
+  for (int v = 0; v < nv; v++) s.mgrad_change[v] = s.mgrad[v] - s.mgradold[v];
+  double beta = Dot(s.grad, s.mgrad_change, nv) / std::max(kMinVal, Dot(s.gradold, s.mgradold, nv));
+  beta = std::max(0.0, beta);
+  for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v] + beta * s.search[v];
+}
+
+// The next CG direction with beta by Hager and Zhang, bounded below so that the direction
+// stays away from orthogonal to the gradient, and 0 when the last step lost conjugacy:
+// MuJoCo 3.12's.
+void HagerZhangDirection(Primal& s) {
+  int nv = s.p.nv;
+  for (int v = 0; v < nv; v++) {
+    s.grad_change[v] = s.grad[v] - s.gradold[v];
+    s.mgrad_change[v] = s.mgrad[v] - s.mgradold[v];
+  }
+  double beta = 0;
+  double d_y = Dot(s.search, s.grad_change, nv);
+  if (d_y >= kMinVal) {
+    double y_My = Dot(s.grad_change, s.mgrad_change, nv);
+    double y_Mgrad = Dot(s.grad_change, s.mgrad, nv);
+    double d_grad = Dot(s.search, s.grad, nv);
+    double beta_hz = (y_Mgrad - 2 * (y_My / d_y) * d_grad) / d_y;
+    double d_norm = std::sqrt(Dot(s.search, s.search, nv));
+    double grad_norm = std::sqrt(Dot(s.grad, s.grad, nv));
+    double bound = -1.0 / std::max(kMinVal, d_norm * std::min(0.01, grad_norm));
+    beta = std::max(bound, beta_hz);
+  }
+  for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v] + beta * s.search[v];
+}
+
+// MuJoCo 3.5.1's iteration from the start's states: steps until the cost or the gradient
+// (scaled) is not worth another. Returns the iterations.
+int IterateAsMuJoCo351(const Model& m, Primal& s) {
+  ConstraintProblem& p = s.p;
+  int nv = p.nv;
+  if (s.newton) FactorHessian(s);
   UpdateGradient(s);
   for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v];
-
   int iter = 0;
   while (iter < m.opt.iterations) {
-    double alpha = LineSearch(m, s);
+    double unused;
+    double alpha = LineSearch(m, s, &unused);
     if (alpha == 0) break;
-
-    // Move along the line; update states, Hessian and gradient.
-    for (int v = 0; v < nv; v++) {
-      p.qacc[v] += alpha * s.search[v];
-      s.ma[v] += alpha * s.mv[v];
-    }
-    for (int r = 0; r < nefc; r++) s.jaref[r] += alpha * s.jv[r];
-    if (!newton) {
-      std::copy(s.grad, s.grad + nv, s.gradold);
-      std::copy(s.mgrad, s.mgrad + nv, s.mgradold);
-    }
-    std::copy(p.state, p.state + nefc, s.oldstate);
     double oldcost = s.cost;
-    UpdateConstraint(s);
-    if (newton) UpdateHessian(s);
-    UpdateGradient(s);
-
-    // Stop when neither the cost nor the gradient (scaled) is worth another step.
+    Advance(s, alpha);
     double improvement = p.scale * (oldcost - s.cost);
     double gradient = p.scale * std::sqrt(Dot(s.grad, s.grad, nv));
     iter++;
     if (improvement < m.opt.tolerance || gradient < m.opt.tolerance) break;
-
-    // Next direction: Newton, or Polak-Ribiere conjugate gradient (reset when negative).
-    if (newton) {
+    if (s.newton) {
       for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v];
     } else {
-      for (int v = 0; v < nv; v++) s.mgrad_change[v] = s.mgrad[v] - s.mgradold[v];
-      double beta = Dot(s.grad, s.mgrad_change, nv) /
-                    std::max(kMinVal, Dot(s.gradold, s.mgradold, nv));
-      beta = std::max(0.0, beta);
-      for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v] + beta * s.search[v];
+      PolakRibiereDirection(s);
     }
   }
-  p.niter = iter;
+  return iter;
+}
+
+// 0.5 grad' mgrad scaled, never negative: with mgrad = M^-1 grad a bound on how far the
+// cost is above its minimum, with H^-1 grad the Newton decrement.
+double HalfGradientNorm(const Primal& s) {
+  return std::max(0.0, 0.5 * s.p.scale * Dot(s.grad, s.mgrad, s.p.nv));
+}
+
+// MuJoCo 3.12's iteration: done before any step when the start already certifies (the
+// gap bound, and for Newton the gradient too, below the tolerance; then Newton's decrement);
+// then steps until the line search's decrease, the gradient or the Newton decrement is
+// below it. Returns the iterations.
+int IterateAsMuJoCo312(const Model& m, Primal& s) {
+  ConstraintProblem& p = s.p;
+  int nv = p.nv;
+  double tolerance = m.opt.tolerance;
+  ComputeGradient(s);
+  PreconditionGradient(s, false);
+  bool small_gradient = p.scale * std::sqrt(Dot(s.grad, s.grad, nv)) < tolerance;
+  bool done = HalfGradientNorm(s) < tolerance && (!s.newton || small_gradient);
+  if (!done && s.newton) {
+    FactorHessian(s);
+    PreconditionGradient(s, true);
+    done = small_gradient && HalfGradientNorm(s) < tolerance;
+  }
+  if (!done) {
+    for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v];
+  }
+  int iter = 0;
+  while (!done && iter < m.opt.iterations) {
+    double decrease;
+    double alpha = LineSearch(m, s, &decrease);
+    if (alpha == 0) break;
+    Advance(s, alpha);
+    double improvement = p.scale * decrease;
+    double gradient = p.scale * std::sqrt(Dot(s.grad, s.grad, nv));
+    double decrement = s.newton ? HalfGradientNorm(s) : 0;
+    iter++;
+    if ((improvement > 0 && improvement < tolerance) || gradient < tolerance ||
+        (s.newton && decrement < tolerance)) {
+      break;
+    }
+    if (s.newton) {
+      for (int v = 0; v < nv; v++) s.search[v] = -s.mgrad[v];
+    } else {
+      HagerZhangDirection(s);
+    }
+  }
+  return iter;
+}
+
+}  // namespace
+
+void SolvePrimal(const Model& m, ConstraintProblem& p, bool newton, SolverScratch& scratch) {
+  int nefc = p.nefc;
+  SolverFrame frame(scratch);
+  Primal s(p, newton, m.opt.cone == kConeElliptic, frame);
+  s.newer = m.release == Release::k3_12;
+
+  // Start: M a, J a - aref, states and forces; then the release's iteration.
+  MulSym(p, p.qacc, s.ma);
+  MulJ(p, p.qacc, s.jaref);
+  for (int r = 0; r < nefc; r++) s.jaref[r] -= p.aref[r];
+  UpdateConstraint(s);
+  p.niter = s.newer ? IterateAsMuJoCo312(m, s) : IterateAsMuJoCo351(m, s);
 }
 
 }  // namespace simlab
