@@ -230,9 +230,10 @@ std::vector<std::array<double, 3>> LatticeNodes(const std::vector<double>& xs, i
   return nodes;
 }
 
-// Interpolated flexes whose nodes do not fit their cellcount and dof are refused as
-// MuJoCo 3.12 refuses them (its messages) instead of being simulated with nodes the
-// interpolation does not read or a wrapped cell count.
+// Interpolated flexes whose nodes do not fit their cellcount and dof, or whose shell has
+// a flat face, are refused as MuJoCo 3.12 refuses them (its messages) instead of being
+// simulated with nodes the interpolation does not read, a wrapped cell count or NaN
+// stiffness.
 TEST(Flex, BadCellFlexesAreClearErrors) {
   const auto cube = LatticeNodes({0, 1});
   const auto cube27 = LatticeNodes({0, .5, 1}, 3, 3);
@@ -254,12 +255,19 @@ TEST(Flex, BadCellFlexesAreClearErrors) {
        "body='p p p p' vertex='0 0 0 1 0 0 0 1 0 0 0 1' element='0 1 2 3' dof='trilinear'/>"
        "</deformable></mujoco>",
        {"bad.xml:2", "number of nodes (0) does not match cellcount and dof expected (8)"}},
+      {NodeFlex(LatticeNodes({0, 1, 1}), "dof='trilinear' cellcount='2 1 1'",
+                "<elasticity young='100' poisson='.3' elastic2d='stretch' thickness='.1'/>"),
+       {"bad.xml:2", "<flex name=\"f\">", "degenerate 2D element with zero extent"}},
   };
   for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
 
   // The same lattices with nodes that fit load.
   EXPECT_EQ(XmlLoadError(NodeFlex(cube, "dof='trilinear' cellcount='1 1 1'")), "");
   EXPECT_EQ(XmlLoadError(NodeFlex(cube27, "dof='quadratic'")), "");
+  EXPECT_EQ(XmlLoadError(NodeFlex(LatticeNodes({0, 1, 2}), "dof='trilinear' cellcount='2 1 1'",
+                                  "<elasticity young='100' poisson='.3' elastic2d='stretch' "
+                                  "thickness='.1'/>")),
+            "");
 }
 
 // A model follows MuJoCo 3.12 (Model::release) when it uses what only 3.12 defines: a

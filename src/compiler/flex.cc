@@ -235,8 +235,9 @@ void MakeCellElasticity(const mjcf::FlexSpec& f, bool strain, FlexState* flex) {
     ThrowAt(f.src, "Poisson ratio must be in [0, 0.5)");
   }
   if (f.young > 0 || strain) {
-    FlexCellStiffness(flex->lattice, flex->cell_empty, flex->nodelocal, f.young, f.poisson,
-                      f.thickness, strain, &flex->stiffness);
+    std::string error = FlexCellStiffness(flex->lattice, flex->cell_empty, flex->nodelocal,
+                                          f.young, f.poisson, f.thickness, strain, &flex->stiffness);
+    if (!error.empty()) ThrowAt(f.src, error);
   }
   bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
   if (flex->lattice.shell && bending && f.thickness > 0 && f.young > 0) {

@@ -403,9 +403,9 @@ std::string UnrotatedFlexNodes(const FlexLattice& g, const std::vector<bool>& ce
   return "";
 }
 
-void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty,
-                       const std::vector<double>& nodes, double young, double poisson,
-                       double thickness, bool strain, std::vector<double>* stiffness) {
+std::string FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty,
+                              const std::vector<double>& nodes, double young, double poisson,
+                              double thickness, bool strain, std::vector<double>* stiffness) {
   int npe = g.NodesPerElement(), ndof = 3 * npe, nelem = g.ElementCount();
   size_t size = static_cast<size_t>(ndof) * ndof;
   stiffness->assign(size * nelem, 0.0);
@@ -417,7 +417,9 @@ void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty
 
     // The element's stiffness: a face's membrane, or a cell's volume.
     if (g.shell) {
-      FlexFaceStiffness(e, nu, thickness, g.order, normal, pos.data(), &k);
+      if (!FlexFaceStiffness(e, nu, thickness, g.order, normal, pos.data(), &k)) {
+        return "degenerate 2D element with zero extent (face element " + std::to_string(fe) + ")";
+      }
     } else {
       k.assign(size, 0.0);
       FlexInterpolatedStiffness(e, nu, g.order, pos, &k);
@@ -439,6 +441,7 @@ void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty
     for (int j = 0; j < ndof; j++) mode[j] *= scale;
     out[0] = count + 1;
   }
+  return "";
 }
 
 void FlexShellBending(const FlexLattice& g, const std::vector<double>& nodes, double young,
