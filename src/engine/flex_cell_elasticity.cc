@@ -13,7 +13,6 @@
 // normal's derivative (the projection of r off the normal, crossed with the tangents).
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "engine/engine.h"
 #include "engine/flex_cells.h"
@@ -209,21 +208,24 @@ void ShellBendingForces(const Model& m, Data& d, int f, const double* xpos, doub
   int nedge = static_cast<int>(bending[0]);
   int npe = g.NodesPerFace(), nface = g.FaceCount();
 
-  // Every face's nodes and corotated frame, once.
+  // Every face's nodes and corotated frame, once (their node ids are looked up again per
+  // edge, which is cheap and keeps the step free of allocations).
   StackFrame frame(d);
   double* face_xpos = frame.Alloc(3 * static_cast<size_t>(npe) * nface);
   double* face_quat = frame.Alloc(4 * static_cast<size_t>(nface));
-  std::vector<int> face_ids(static_cast<size_t>(npe) * nface);
+  int ida[9], idb[9];
   for (int fe = 0; fe < nface; fe++) {
-    GatherElement(g, fe, xpos, nullptr, nullptr, &face_ids[npe * fe], face_xpos + 3 * npe * fe,
-                  nullptr, nullptr, face_quat + 4 * fe);
+    GatherElement(g, fe, xpos, nullptr, nullptr, ida, face_xpos + 3 * npe * fe, nullptr, nullptr,
+                  face_quat + 4 * fe);
   }
   for (int e = 0; e < nedge; e++) {
     const double* edge = bending + 1 + e * kFlexShellBendSize;
     if (edge[6] == 0) continue;
     int a = static_cast<int>(edge[0]), b = static_cast<int>(edge[1]);
-    BendEdge(g.order, edge, face_xpos + 3 * npe * a, face_xpos + 3 * npe * b, &face_ids[npe * a],
-             &face_ids[npe * b], face_quat + 4 * a, face_quat + 4 * b, frc);
+    FlexFaceNodes(g, a, ida);
+    FlexFaceNodes(g, b, idb);
+    BendEdge(g.order, edge, face_xpos + 3 * npe * a, face_xpos + 3 * npe * b, ida, idb,
+             face_quat + 4 * a, face_quat + 4 * b, frc);
   }
 }
 
