@@ -270,6 +270,35 @@ TEST(Flex, BadCellFlexesAreClearErrors) {
             "");
 }
 
+// Grid pins on an interpolated flexcomp that is not a grid: MuJoCo checks their
+// coordinates against the node lattice (pingrid) or count (pingridrange) but pins the
+// point at their place in a grid of `count` points, past its arrays when that grid is
+// larger than the flexcomp's points and nodes. simlab refuses such a pin.
+TEST(Flex, GridPinsPastTheFlexcompsPointsAreClearErrors) {
+  auto direct = [](const std::string& attrs, const std::string& pin) {
+    return Flexcomp("type='direct' dim='3' dof='trilinear' radius='.01' " + attrs +
+                        " point='0 0 0 1 0 0 0 1 0 0 0 1' element='0 1 2 3'",
+                    pin + "<contact selfcollide='none'/>");
+  };
+  struct Case {
+    std::string xml;
+    std::vector<std::string> parts;
+  };
+  const std::vector<Case> cases = {
+      {direct("", "<pin grid='1 1 1'/>"), {"bad.xml:1", "<flexcomp", "pingrid out of range"}},
+      {direct("count='1000 1000 1000'", "<pin grid='1 1 1'/>"), {"pingrid out of range"}},
+      {direct("count='100000 100000 100000'", "<pin grid='1 1 1'/>"), {"pingrid out of range"}},
+      {direct("", "<pin gridrange='0 0 0 1 1 1'/>"), {"bad.xml:1", "<flexcomp", "pingridrange out of range"}},
+  };
+  for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
+
+  // A grid pin within the points (and nodes) pins what MuJoCo pins: grid point (0 0 1)
+  // of count 1 1 2 is node 1, which then stays in the parent.
+  Model m = LoadXmlString(direct("count='1 1 2'", "<pin grid='0 0 1'/>"), "pin.xml");
+  EXPECT_EQ(m.body_names[m.flex_nodebodyid[1]], "b");
+  EXPECT_NE(m.body_names[m.flex_nodebodyid[0]], "b");
+}
+
 // A model follows MuJoCo 3.12 (Model::release) when it uses what only 3.12 defines: a
 // flexcomp's cells, shell, strain equality or dof="2d", a flex's dof or cellcount, a
 // flexstrain equality; otherwise 3.5.1, the oracle's.
