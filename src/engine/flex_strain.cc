@@ -108,7 +108,7 @@ double FlexStrainInvWeight(const Model& m, int eq) {
   return sum / el.nnode;
 }
 
-void FlexStrainRows(const Model& m, Data& d, int eq, const FlexStrainRowSink& row) {
+void FlexStrainRows(const Model& m, Data& d, int eq, FlexStrainRowSink row) {
   StrainElement el;
   if (!ElementOf(m, eq, &el)) return;
   const double* modes = ElementModes(m, el);
