@@ -93,13 +93,8 @@ std::vector<bool> OutsideCells(const std::array<int, 3>& cells, const std::vecto
 
 // The positions of element fe's nodes (a cell's or a face's), and a face's normal axis.
 int ElementNodes(const FlexLattice& g, int fe, const std::vector<double>& nodes, double* pos) {
-  int ids[27], normal = -1;
-  if (g.shell) {
-    normal = FlexFaceNodes(g, fe, ids);
-  } else {
-    FlexCellNodes(g, fe / (g.cells[1] * g.cells[2]), (fe / g.cells[2]) % g.cells[1],
-                  fe % g.cells[2], ids);
-  }
+  int ids[27];
+  int normal = FlexElementNodes(g, fe, ids);
   for (int n = 0; n < g.NodesPerElement(); n++) math::Copy3(pos + 3 * n, nodes.data() + 3 * ids[n]);
   return normal;
 }

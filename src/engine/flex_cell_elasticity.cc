@@ -61,13 +61,7 @@ void ApplyNodeForces(const Model& m, Data& d, int f, const double* xpos, const d
 void GatherElement(const FlexLattice& g, int fe, const double* xpos, const double* vel,
                    const double* xpos0, int* ids, double* xe, double* ve, double* x0e,
                    double quat[4]) {
-  int normal = -1;
-  if (g.shell) {
-    normal = FlexFaceNodes(g, fe, ids);
-  } else {
-    int cy = g.cells[1], cz = g.cells[2];
-    FlexCellNodes(g, fe / (cy * cz), (fe / cz) % cy, fe % cz, ids);
-  }
+  int normal = FlexElementNodes(g, fe, ids);
   for (int n = 0; n < g.NodesPerElement(); n++) {
     math::Copy3(xe + 3 * n, xpos + 3 * ids[n]);
     if (ve) math::Copy3(ve + 3 * n, vel + 3 * ids[n]);

@@ -1,7 +1,8 @@
 // MJCF reader: a <flexcomp> expanded as MuJoCo's parser expands it (mjCFlexcomp::Make):
 // the shape's points, pinned points and the flex's rigidity, the bodies with slider
-// joints that carry the points that move (or the nodes that interpolate them), the flex
-// itself, and the edge or vertex equality it asks for.
+// joints that carry the points that move (or the nodes that interpolate them: one cell's,
+// or with MuJoCo 3.12's cells a lattice of them), the flex itself, and the edge or vertex
+// equality it asks for, or the strain equalities of its elements.
 #include <algorithm>
 #include <string>
 
