@@ -237,6 +237,9 @@ std::vector<std::array<double, 3>> LatticeNodes(const std::vector<double>& xs, i
 TEST(Flex, BadCellFlexesAreClearErrors) {
   const auto cube = LatticeNodes({0, 1});
   const auto cube27 = LatticeNodes({0, .5, 1}, 3, 3);
+  std::string flat_strain = NodeFlex(LatticeNodes({0, 1, 1}), "dof='trilinear' cellcount='2 1 1'");
+  flat_strain.insert(flat_strain.rfind("</mujoco>"),
+                     "<equality><flexstrain flex='f' cell='0 0 0'/></equality>");
   struct Case {
     std::string xml;
     std::vector<std::string> parts;
@@ -258,6 +261,13 @@ TEST(Flex, BadCellFlexesAreClearErrors) {
       {NodeFlex(LatticeNodes({0, 1, 1}), "dof='trilinear' cellcount='2 1 1'",
                 "<elasticity young='100' poisson='.3' elastic2d='stretch' thickness='.1'/>"),
        {"bad.xml:2", "<flex name=\"f\">", "degenerate 2D element with zero extent"}},
+      // (a flat cell's stiffness divides by zero: NaN, and with strain equality all its
+      // NaN eigenmodes were kept, one more than its block holds)
+      {NodeFlex(LatticeNodes({0, 1, 1}), "dof='trilinear' cellcount='2 1 1'",
+                "<elasticity young='100' poisson='.3'/>"),
+       {"bad.xml:2", "<flex name=\"f\">", "degenerate 3D element with zero extent (cell 1)"}},
+      {flat_strain,
+       {"bad.xml:2", "<flex name=\"f\">", "degenerate 3D element with zero extent (cell 1)"}},
   };
   for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
 

@@ -141,9 +141,10 @@ void JacobiEigen(std::vector<double>* mat, std::vector<double>* vec, int n) {
 }
 
 // The stiff eigenmodes of k (n x n, stored negated): out[0] their count, then each as
-// sqrt(lambda) v, for the physical eigenvalues lambda above 1e-8 of the largest.
+// sqrt(lambda) v, for the physical eigenvalues lambda above 1e-8 of the largest (never
+// NaN ones, and at most `most`, so that they fit in k's n x n block with their count).
 // Returns the count.
-int StiffModes(const std::vector<double>& k, int n, double* out) {
+int StiffModes(const std::vector<double>& k, int n, int most, double* out) {
   std::vector<double> mat = k, vec;
   JacobiEigen(&mat, &vec, n);
   double largest = 0;
@@ -152,7 +153,7 @@ int StiffModes(const std::vector<double>& k, int n, double* out) {
   int count = 0;
   for (int i = 0; i < n; i++) {
     double lambda = -mat[i * n + i];
-    if (lambda <= threshold) continue;
+    if (!(lambda > threshold) || count == most) continue;
     double scale = std::sqrt(lambda);
     double* w = out + 1 + count * n;
     for (int j = 0; j < n; j++) w[j] = scale * vec[j * n + i];
@@ -416,6 +417,11 @@ std::string FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cel
         return "degenerate 2D element with zero extent (face element " + std::to_string(fe) + ")";
       }
     } else {
+      // (its extents, first node to last, divide: MuJoCo gets NaN from a flat cell)
+      const double* last = pos.data() + 3 * (npe - 1);
+      if (last[0] == pos[0] || last[1] == pos[1] || last[2] == pos[2]) {
+        return "degenerate 3D element with zero extent (cell " + std::to_string(fe) + ")";
+      }
       k.assign(size, 0.0);
       FlexInterpolatedStiffness(e, nu, g.order, pos, &k);
     }
@@ -426,7 +432,9 @@ std::string FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cel
     }
 
     // Strain: the stiff modes, and a face's warp against its plate bending.
-    int count = StiffModes(k, ndof, out);
+    // (room in the element's ndof x ndof block: the count, ndof - 1 modes, or one fewer
+    // with a face's warp mode)
+    int count = StiffModes(k, ndof, g.shell ? ndof - 2 : ndof - 1, out);
     if (!g.shell) continue;
     double warp = WarpStiffness(pos.data(), npe, normal, e, nu, thickness);
     if (warp <= 0) continue;
