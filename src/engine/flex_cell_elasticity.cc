@@ -229,6 +229,10 @@ void FlexCellElasticForces(const Model& m, Data& d, int f, bool spring, bool dam
   int nnode = m.flex_nodenum[f];
   int adr = m.flex_stiffnessadr[f];
   int bendadr = m.flex_bendingadr[f];
+  // (MuJoCo 3.12 asks its first element's first number: the count of modes with strain
+  // equality, else K(0, 0) of cell 0, zero when that cell is empty, and always zero for
+  // a shell, whose face 0 lies across x so that its dof 0 is out of plane: a shell
+  // without strain equality gets no membrane force, here as in 3.12)
   bool stretch = adr >= 0 && m.flex_stiffness[adr] != 0 &&
                  m.flex_edgeequality[f] != kFlexEdgeStrain;
   bool bend = m.flex_interp[f] < 0 && bendadr >= 0 && m.flex_bending[bendadr] != 0;
