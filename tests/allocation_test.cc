@@ -55,5 +55,13 @@ TEST(Allocation, SteadySteppingAllocatesNothing) {
   EXPECT_EQ(AllocationsPerRun("../shared/corpus/mujoco/model/flex/softbox.xml", 400, 100), 0);
 }
 
+// Interpolated flexes made of cells (MuJoCo 3.12): strain equality rows (a cube of cells,
+// a shell with bending), a volume and a shell side by side.
+TEST(Allocation, FlexCellsAndStrainStepWithoutAllocating) {
+  EXPECT_EQ(AllocationsPerRun("../shared/corpus/mujoco/model/flex/strain.xml", 300, 100), 0);
+  EXPECT_EQ(AllocationsPerRun("../shared/corpus/mujoco/model/flex/bunny_shell.xml", 50, 50), 0);
+  EXPECT_EQ(AllocationsPerRun("../shared/corpus/mujoco/model/flex/hollow_vs_solid.xml", 300, 100), 0);
+}
+
 }  // namespace
 }  // namespace simlab

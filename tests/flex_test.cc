@@ -3,7 +3,9 @@
 // conformance goldens: tests/conformance/flex_cases.txt, and the compiler's flex fields
 // in CompilerConformance.Flexes.)
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <utility>
@@ -195,6 +197,116 @@ TEST(Flex, BadFlexesAreClearErrors) {
       {CellFlexcomp("cellcount='2000 2000 2000'"), {"cellcount=", "budget"}},
   };
   for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
+}
+
+// A <flex> interpolated on the nodes at `nodes` (x slowest, bodies n0, n1... with three
+// sliders each) with its four vertices in body p, a tetrahedron, and `attrs`/`children`.
+std::string NodeFlex(const std::vector<std::array<double, 3>>& nodes, const std::string& attrs,
+                     const std::string& children = "") {
+  std::string bodies, names;
+  for (size_t n = 0; n < nodes.size(); n++) {
+    char pos[96];
+    std::snprintf(pos, sizeof(pos), "%g %g %g", nodes[n][0], nodes[n][1], nodes[n][2]);
+    std::string name = "n" + std::to_string(n);
+    bodies += "<body name='" + name + "' pos='" + pos + "'><joint type='slide' axis='1 0 0'/>"
+              "<joint type='slide' axis='0 1 0'/><joint type='slide' axis='0 0 1'/>"
+              "<geom size='.05' mass='.1'/></body>";
+    names += (n ? " " : "") + name;
+  }
+  return "<mujoco><worldbody><body name='p'>" + bodies + "</body></worldbody><deformable>\n"
+         "<flex name='f' dim='3' body='p p p p' vertex='.1 .1 .1  .9 .1 .1  .1 .9 .1  .1 .1 .9' "
+         "element='0 1 2 3' node='" + names + "' " + attrs + ">" + children +
+         "<contact selfcollide='none'/></flex></deformable></mujoco>";
+}
+
+// The nodes of a lattice of cells whose nodes lie at x = xs[i], y and z = 0 or 1.
+std::vector<std::array<double, 3>> LatticeNodes(const std::vector<double>& xs, int ny = 2, int nz = 2) {
+  std::vector<std::array<double, 3>> nodes;
+  for (double x : xs) {
+    for (int j = 0; j < ny; j++) {
+      for (int k = 0; k < nz; k++) nodes.push_back({x, j / (ny - 1.0), k / (nz - 1.0)});
+    }
+  }
+  return nodes;
+}
+
+// Interpolated flexes whose nodes do not fit their cellcount and dof, or whose shell has
+// a flat face, are refused as MuJoCo 3.12 refuses them (its messages) instead of being
+// simulated with nodes the interpolation does not read, a wrapped cell count or NaN
+// stiffness.
+TEST(Flex, BadCellFlexesAreClearErrors) {
+  const auto cube = LatticeNodes({0, 1});
+  const auto cube27 = LatticeNodes({0, .5, 1}, 3, 3);
+  std::string flat_strain = NodeFlex(LatticeNodes({0, 1, 1}), "dof='trilinear' cellcount='2 1 1'");
+  flat_strain.insert(flat_strain.rfind("</mujoco>"),
+                     "<equality><flexstrain flex='f' cell='0 0 0'/></equality>");
+  struct Case {
+    std::string xml;
+    std::vector<std::string> parts;
+  };
+  const std::vector<Case> cases = {
+      {NodeFlex(cube, "dof='trilinear' cellcount='-1 -1 1'"),
+       {"bad.xml:2", "<flex name=\"f\">", "cellcount must be positive"}},
+      // (3 x 3 x 954437177 is 1 modulo 2^32)
+      {NodeFlex(cube, "dof='trilinear' cellcount='3 3 954437177'"),
+       {"bad.xml:2", "<flex name=\"f\">", "number of nodes (8) does not match cellcount and dof"}},
+      {NodeFlex(cube27, "dof='trilinear'"),
+       {"bad.xml:2", "number of nodes (27) does not match cellcount and dof expected (8)"}},
+      {NodeFlex(cube, "dof='quadratic'"),
+       {"bad.xml:2", "number of nodes (8) does not match cellcount and dof expected (27)"}},
+      {"<mujoco><worldbody><body name='p'/></worldbody><deformable>\n<flex name='f' dim='3' "
+       "body='p p p p' vertex='0 0 0 1 0 0 0 1 0 0 0 1' element='0 1 2 3' dof='trilinear'/>"
+       "</deformable></mujoco>",
+       {"bad.xml:2", "number of nodes (0) does not match cellcount and dof expected (8)"}},
+      {NodeFlex(LatticeNodes({0, 1, 1}), "dof='trilinear' cellcount='2 1 1'",
+                "<elasticity young='100' poisson='.3' elastic2d='stretch' thickness='.1'/>"),
+       {"bad.xml:2", "<flex name=\"f\">", "degenerate 2D element with zero extent"}},
+      // (a flat cell's stiffness divides by zero: NaN, and with strain equality all its
+      // NaN eigenmodes were kept, one more than its block holds)
+      {NodeFlex(LatticeNodes({0, 1, 1}), "dof='trilinear' cellcount='2 1 1'",
+                "<elasticity young='100' poisson='.3'/>"),
+       {"bad.xml:2", "<flex name=\"f\">", "degenerate 3D element with zero extent (cell 1)"}},
+      {flat_strain,
+       {"bad.xml:2", "<flex name=\"f\">", "degenerate 3D element with zero extent (cell 1)"}},
+  };
+  for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
+
+  // The same lattices with nodes that fit load.
+  EXPECT_EQ(XmlLoadError(NodeFlex(cube, "dof='trilinear' cellcount='1 1 1'")), "");
+  EXPECT_EQ(XmlLoadError(NodeFlex(cube27, "dof='quadratic'")), "");
+  EXPECT_EQ(XmlLoadError(NodeFlex(LatticeNodes({0, 1, 2}), "dof='trilinear' cellcount='2 1 1'",
+                                  "<elasticity young='100' poisson='.3' elastic2d='stretch' "
+                                  "thickness='.1'/>")),
+            "");
+}
+
+// Grid pins on an interpolated flexcomp that is not a grid: MuJoCo checks their
+// coordinates against the node lattice (pingrid) or count (pingridrange) but pins the
+// point at their place in a grid of `count` points, past its arrays when that grid is
+// larger than the flexcomp's points and nodes. simlab refuses such a pin.
+TEST(Flex, GridPinsPastTheFlexcompsPointsAreClearErrors) {
+  auto direct = [](const std::string& attrs, const std::string& pin) {
+    return Flexcomp("type='direct' dim='3' dof='trilinear' radius='.01' " + attrs +
+                        " point='0 0 0 1 0 0 0 1 0 0 0 1' element='0 1 2 3'",
+                    pin + "<contact selfcollide='none'/>");
+  };
+  struct Case {
+    std::string xml;
+    std::vector<std::string> parts;
+  };
+  const std::vector<Case> cases = {
+      {direct("", "<pin grid='1 1 1'/>"), {"bad.xml:1", "<flexcomp", "pingrid out of range"}},
+      {direct("count='1000 1000 1000'", "<pin grid='1 1 1'/>"), {"pingrid out of range"}},
+      {direct("count='100000 100000 100000'", "<pin grid='1 1 1'/>"), {"pingrid out of range"}},
+      {direct("", "<pin gridrange='0 0 0 1 1 1'/>"), {"bad.xml:1", "<flexcomp", "pingridrange out of range"}},
+  };
+  for (const Case& c : cases) ExpectMessageParts(XmlLoadError(c.xml), c.parts, c.xml);
+
+  // A grid pin within the points (and nodes) pins what MuJoCo pins: grid point (0 0 1)
+  // of count 1 1 2 is node 1, which then stays in the parent.
+  Model m = LoadXmlString(direct("count='1 1 2'", "<pin grid='0 0 1'/>"), "pin.xml");
+  EXPECT_EQ(m.body_names[m.flex_nodebodyid[1]], "b");
+  EXPECT_NE(m.body_names[m.flex_nodebodyid[0]], "b");
 }
 
 // A model follows MuJoCo 3.12 (Model::release) when it uses what only 3.12 defines: a

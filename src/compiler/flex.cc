@@ -42,7 +42,13 @@ void CheckFlexSpec(const mjcf::FlexSpec& f, bool interpolated) {
   if (interpolated && f.internal) ThrowAt(at, "trilinear interpolation cannot do internal collisions");
 }
 
-// A flex made of cells: its lattice from its cellcount and order, and as many nodes.
+// The cells of cellcount c (which may be anything written), in 64 bits.
+int64_t CellProduct(const std::array<int, 3>& c) {
+  return static_cast<int64_t>(c[0]) * c[1] * c[2];
+}
+
+// A flex with an interpolation order (dof; MuJoCo 3.12): its lattice from its cellcount
+// and order, and as many nodes.
 void CheckLattice(const mjcf::FlexSpec& f, FlexState* flex) {
   const std::array<int, 3>& c = f.cellcount;
   if (c[0] == 0 || c[1] == 0 || c[2] == 0) {
@@ -53,17 +59,17 @@ void CheckLattice(const mjcf::FlexSpec& f, FlexState* flex) {
   g.cells = c;
   g.order = flex->order;
   g.shell = f.elastic2d != mjcf::kElastic2DNone;
-  // (a lattice has fewer cells along an axis than nodes: counted only then, in 64 bits)
+  // The lattice's nodes (saturated: cellcount may be anything written).
+  constexpr int64_t kMost = std::numeric_limits<int64_t>::max();
   int64_t expected = 1;
-  bool too_many = c[0] > flex->nnode || c[1] > flex->nnode || c[2] > flex->nnode;
-  for (int k = 0; k < 3 && !too_many; k++) expected *= static_cast<int64_t>(c[k]) * g.order + 1;
-  if (too_many) {
-    ThrowAt(f.src, "number of nodes (" + std::to_string(flex->nnode) +
-                       ") does not match cellcount and dof: cellcount asks for more");
+  for (int k = 0; k < 3; k++) {
+    int64_t along = static_cast<int64_t>(c[k]) * g.order + 1;
+    expected = expected > kMost / along ? kMost : expected * along;
   }
   if (flex->nnode != expected) {
+    std::string count = expected == kMost ? "at least 2^63" : std::to_string(expected);
     ThrowAt(f.src, "number of nodes (" + std::to_string(flex->nnode) +
-                       ") does not match cellcount and dof expected (" + std::to_string(expected) + ")");
+                       ") does not match cellcount and dof expected (" + count + ")");
   }
 }
 
@@ -96,7 +102,8 @@ void CountVertices(const mjcf::FlexSpec& f, FlexState* flex) {
   }
   // (MuJoCo's engine holds at most mjMAXFLEXNODES = 27 nodes per cell: order 2)
   if (flex->order > 2) ThrowAt(f.src, "a flex interpolates from at most 27 nodes (order 2)");
-  if (flex->cells) CheckLattice(f, flex);
+  // (an order written as dof, MuJoCo 3.12's, asks for the lattice's nodes even of one cell)
+  if (flex->cells || f.order > 0) CheckLattice(f, flex);
   for (int v : f.elem) {
     if (v < 0 || v >= flex->nvert) ThrowAt(f.src, "elem vertex id out of range");
   }
@@ -237,8 +244,9 @@ void MakeCellElasticity(const mjcf::FlexSpec& f, bool strain, FlexState* flex) {
     ThrowAt(f.src, "Poisson ratio must be in [0, 0.5)");
   }
   if (f.young > 0 || strain) {
-    FlexCellStiffness(flex->lattice, flex->cell_empty, flex->nodelocal, f.young, f.poisson,
-                      f.thickness, strain, &flex->stiffness);
+    std::string error = FlexCellStiffness(flex->lattice, flex->cell_empty, flex->nodelocal,
+                                          f.young, f.poisson, f.thickness, strain, &flex->stiffness);
+    if (!error.empty()) ThrowAt(f.src, error);
   }
   bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
   if (flex->lattice.shell && bending && f.thickness > 0 && f.young > 0) {
@@ -443,9 +451,8 @@ FlexState CompileFlex(const mjcf::FlexSpec& f, bool strain, const CompileState& 
   flex.spec = &f;
   flex.interpolated = !f.nodebody.empty();
   CheckFlexSpec(f, flex.interpolated);
-  const std::array<int, 3>& c = f.cellcount;
-  flex.cells = flex.interpolated &&
-               (c[0] * c[1] * c[2] != 1 || f.elastic2d != mjcf::kElastic2DNone || strain);
+  flex.cells = flex.interpolated && (CellProduct(f.cellcount) != 1 ||
+                                     f.elastic2d != mjcf::kElastic2DNone || strain);
   if (flex.cells && f.elastic2d != mjcf::kElastic2DNone) {
     if (f.thickness <= 0) ThrowAt(f.src, "2d elasticity requires positive thickness");
     if (f.poisson < 0 || f.poisson >= 0.5) ThrowAt(f.src, "Poisson ratio must be in [0, 0.5)");

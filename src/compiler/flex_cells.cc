@@ -93,13 +93,8 @@ std::vector<bool> OutsideCells(const std::array<int, 3>& cells, const std::vecto
 
 // The positions of element fe's nodes (a cell's or a face's), and a face's normal axis.
 int ElementNodes(const FlexLattice& g, int fe, const std::vector<double>& nodes, double* pos) {
-  int ids[27], normal = -1;
-  if (g.shell) {
-    normal = FlexFaceNodes(g, fe, ids);
-  } else {
-    FlexCellNodes(g, fe / (g.cells[1] * g.cells[2]), (fe / g.cells[2]) % g.cells[1],
-                  fe % g.cells[2], ids);
-  }
+  int ids[27];
+  int normal = FlexElementNodes(g, fe, ids);
   for (int n = 0; n < g.NodesPerElement(); n++) math::Copy3(pos + 3 * n, nodes.data() + 3 * ids[n]);
   return normal;
 }
@@ -146,9 +141,10 @@ void JacobiEigen(std::vector<double>* mat, std::vector<double>* vec, int n) {
 }
 
 // The stiff eigenmodes of k (n x n, stored negated): out[0] their count, then each as
-// sqrt(lambda) v, for the physical eigenvalues lambda above 1e-8 of the largest.
+// sqrt(lambda) v, for the physical eigenvalues lambda above 1e-8 of the largest (never
+// NaN ones, and at most `most`, so that they fit in k's n x n block with their count).
 // Returns the count.
-int StiffModes(const std::vector<double>& k, int n, double* out) {
+int StiffModes(const std::vector<double>& k, int n, int most, double* out) {
   std::vector<double> mat = k, vec;
   JacobiEigen(&mat, &vec, n);
   double largest = 0;
@@ -157,7 +153,7 @@ int StiffModes(const std::vector<double>& k, int n, double* out) {
   int count = 0;
   for (int i = 0; i < n; i++) {
     double lambda = -mat[i * n + i];
-    if (lambda <= threshold) continue;
+    if (!(lambda > threshold) || count == most) continue;
     double scale = std::sqrt(lambda);
     double* w = out + 1 + count * n;
     for (int j = 0; j < n; j++) w[j] = scale * vec[j * n + i];
@@ -403,9 +399,9 @@ std::string UnrotatedFlexNodes(const FlexLattice& g, const std::vector<bool>& ce
   return "";
 }
 
-void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty,
-                       const std::vector<double>& nodes, double young, double poisson,
-                       double thickness, bool strain, std::vector<double>* stiffness) {
+std::string FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty,
+                              const std::vector<double>& nodes, double young, double poisson,
+                              double thickness, bool strain, std::vector<double>* stiffness) {
   int npe = g.NodesPerElement(), ndof = 3 * npe, nelem = g.ElementCount();
   size_t size = static_cast<size_t>(ndof) * ndof;
   stiffness->assign(size * nelem, 0.0);
@@ -417,8 +413,15 @@ void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty
 
     // The element's stiffness: a face's membrane, or a cell's volume.
     if (g.shell) {
-      FlexFaceStiffness(e, nu, thickness, g.order, normal, pos.data(), &k);
+      if (!FlexFaceStiffness(e, nu, thickness, g.order, normal, pos.data(), &k)) {
+        return "degenerate 2D element with zero extent (face element " + std::to_string(fe) + ")";
+      }
     } else {
+      // (its extents, first node to last, divide: MuJoCo gets NaN from a flat cell)
+      const double* last = pos.data() + 3 * (npe - 1);
+      if (last[0] == pos[0] || last[1] == pos[1] || last[2] == pos[2]) {
+        return "degenerate 3D element with zero extent (cell " + std::to_string(fe) + ")";
+      }
       k.assign(size, 0.0);
       FlexInterpolatedStiffness(e, nu, g.order, pos, &k);
     }
@@ -429,7 +432,9 @@ void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty
     }
 
     // Strain: the stiff modes, and a face's warp against its plate bending.
-    int count = StiffModes(k, ndof, out);
+    // (room in the element's ndof x ndof block: the count, ndof - 1 modes, or one fewer
+    // with a face's warp mode)
+    int count = StiffModes(k, ndof, g.shell ? ndof - 2 : ndof - 1, out);
     if (!g.shell) continue;
     double warp = WarpStiffness(pos.data(), npe, normal, e, nu, thickness);
     if (warp <= 0) continue;
@@ -439,6 +444,7 @@ void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty
     for (int j = 0; j < ndof; j++) mode[j] *= scale;
     out[0] = count + 1;
   }
+  return "";
 }
 
 void FlexShellBending(const FlexLattice& g, const std::vector<double>& nodes, double young,

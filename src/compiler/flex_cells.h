@@ -32,8 +32,8 @@ std::string UnrotatedFlexNodes(const FlexLattice& g, const std::vector<bool>& ce
 // flex_stiffness of a flex with cells from its nodes' unrotated positions: one matrix
 // per element, zero for an empty cell; with `strain`, each holds the element's stiff
 // eigenmodes instead (computed at Young's modulus 10 and Poisson's ratio 0.3; a shell's
-// face also gets its warp mode).
-void FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty,
+// face also gets its warp mode). Returns "" or the error (a shell's flat face).
+std::string FlexCellStiffness(const FlexLattice& g, const std::vector<bool>& cell_empty,
                        const std::vector<double>& nodes, double young, double poisson,
                        double thickness, bool strain, std::vector<double>* stiffness);
 

@@ -366,18 +366,19 @@ void FlexInterpolatedStiffness(double young, double poisson, int order,
   }
 }
 
-void FlexFaceStiffness(double young, double poisson, double thickness, int order,
+bool FlexFaceStiffness(double young, double poisson, double thickness, int order,
                        int normal_axis, const double* pos, std::vector<double>* stiffness) {
   int nbasis = order + 1, npe = nbasis * nbasis, ndof = 3 * npe;
+  int axis0 = (normal_axis + 1) % 3, axis1 = (normal_axis + 2) % 3;
+  double d0 = pos[3 * (npe - 1) + axis0] - pos[axis0];
+  double d1 = pos[3 * (npe - 1) + axis1] - pos[axis1];
+  if (d0 == 0 || d1 == 0) return false;
   stiffness->assign(static_cast<size_t>(ndof) * ndof, 0.0);
   double* k = stiffness->data();
-  int axis0 = (normal_axis + 1) % 3, axis1 = (normal_axis + 2) % 3;
 
   // Quadrature on the unit square; the face's extents along its axes map onto it.
   double points[3], weights[3];
   QuadraturePoints(points, weights, nbasis);
-  double d0 = pos[3 * (npe - 1) + axis0] - pos[axis0];
-  double d1 = pos[3 * (npe - 1) + axis1] - pos[axis1];
   double det = d0 * d1, inv0 = 1.0 / d0, inv1 = 1.0 / d1;
   double lambda = young * poisson / (1.0 - poisson * poisson);  // plane stress
   double mu = young / (2.0 * (1.0 + poisson));
@@ -416,6 +417,7 @@ void FlexFaceStiffness(double young, double poisson, double thickness, int order
       }
     }
   }
+  return true;
 }
 
 }  // namespace simlab::compiler

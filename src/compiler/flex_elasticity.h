@@ -62,8 +62,9 @@ void FlexInterpolatedStiffness(double young, double poisson, int order,
 // ComputeLinearStiffness2D): the dense (3 npe x 3 npe) matrix, stored negated as
 // FlexInterpolatedStiffness stores it, of its npe = (order + 1)^2 nodes at `pos` (world,
 // 3 each, its first in-plane axis (normal + 1) % 3 slowest) in plane stress with the
-// given thickness; only in-plane displacements couple. *stiffness is replaced.
-void FlexFaceStiffness(double young, double poisson, double thickness, int order,
+// given thickness; only in-plane displacements couple. *stiffness is replaced. Returns
+// false (stiffness unset) when the face is flat along an in-plane axis.
+bool FlexFaceStiffness(double young, double poisson, double thickness, int order,
                        int normal_axis, const double* pos, std::vector<double>* stiffness);
 
 }  // namespace simlab::compiler

@@ -13,7 +13,6 @@
 // normal's derivative (the projection of r off the normal, crossed with the tangents).
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "engine/engine.h"
 #include "engine/flex_cells.h"
@@ -62,13 +61,7 @@ void ApplyNodeForces(const Model& m, Data& d, int f, const double* xpos, const d
 void GatherElement(const FlexLattice& g, int fe, const double* xpos, const double* vel,
                    const double* xpos0, int* ids, double* xe, double* ve, double* x0e,
                    double quat[4]) {
-  int normal = -1;
-  if (g.shell) {
-    normal = FlexFaceNodes(g, fe, ids);
-  } else {
-    int cy = g.cells[1], cz = g.cells[2];
-    FlexCellNodes(g, fe / (cy * cz), (fe / cz) % cy, fe % cz, ids);
-  }
+  int normal = FlexElementNodes(g, fe, ids);
   for (int n = 0; n < g.NodesPerElement(); n++) {
     math::Copy3(xe + 3 * n, xpos + 3 * ids[n]);
     if (ve) math::Copy3(ve + 3 * n, vel + 3 * ids[n]);
@@ -209,21 +202,24 @@ void ShellBendingForces(const Model& m, Data& d, int f, const double* xpos, doub
   int nedge = static_cast<int>(bending[0]);
   int npe = g.NodesPerFace(), nface = g.FaceCount();
 
-  // Every face's nodes and corotated frame, once.
+  // Every face's nodes and corotated frame, once (their node ids are looked up again per
+  // edge, which is cheap and keeps the step free of allocations).
   StackFrame frame(d);
   double* face_xpos = frame.Alloc(3 * static_cast<size_t>(npe) * nface);
   double* face_quat = frame.Alloc(4 * static_cast<size_t>(nface));
-  std::vector<int> face_ids(static_cast<size_t>(npe) * nface);
+  int ida[9], idb[9];
   for (int fe = 0; fe < nface; fe++) {
-    GatherElement(g, fe, xpos, nullptr, nullptr, &face_ids[npe * fe], face_xpos + 3 * npe * fe,
-                  nullptr, nullptr, face_quat + 4 * fe);
+    GatherElement(g, fe, xpos, nullptr, nullptr, ida, face_xpos + 3 * npe * fe, nullptr, nullptr,
+                  face_quat + 4 * fe);
   }
   for (int e = 0; e < nedge; e++) {
     const double* edge = bending + 1 + e * kFlexShellBendSize;
     if (edge[6] == 0) continue;
     int a = static_cast<int>(edge[0]), b = static_cast<int>(edge[1]);
-    BendEdge(g.order, edge, face_xpos + 3 * npe * a, face_xpos + 3 * npe * b, &face_ids[npe * a],
-             &face_ids[npe * b], face_quat + 4 * a, face_quat + 4 * b, frc);
+    FlexFaceNodes(g, a, ida);
+    FlexFaceNodes(g, b, idb);
+    BendEdge(g.order, edge, face_xpos + 3 * npe * a, face_xpos + 3 * npe * b, ida, idb,
+             face_quat + 4 * a, face_quat + 4 * b, frc);
   }
 }
 
@@ -233,6 +229,10 @@ void FlexCellElasticForces(const Model& m, Data& d, int f, bool spring, bool dam
   int nnode = m.flex_nodenum[f];
   int adr = m.flex_stiffnessadr[f];
   int bendadr = m.flex_bendingadr[f];
+  // (MuJoCo 3.12 asks its first element's first number: the count of modes with strain
+  // equality, else K(0, 0) of cell 0, zero when that cell is empty, and always zero for
+  // a shell, whose face 0 lies across x so that its dof 0 is out of plane: a shell
+  // without strain equality gets no membrane force, here as in 3.12)
   bool stretch = adr >= 0 && m.flex_stiffness[adr] != 0 &&
                  m.flex_edgeequality[f] != kFlexEdgeStrain;
   bool bend = m.flex_interp[f] < 0 && bendadr >= 0 && m.flex_bending[bendadr] != 0;

@@ -84,6 +84,13 @@ int FlexFaceNodes(const FlexLattice& g, int fe, int* ids) {
   return normal;
 }
 
+int FlexElementNodes(const FlexLattice& g, int fe, int* ids) {
+  if (g.shell) return FlexFaceNodes(g, fe, ids);
+  int cy = g.cells[1], cz = g.cells[2];
+  FlexCellNodes(g, fe / (cy * cz), (fe / cz) % cy, fe % cz, ids);
+  return -1;
+}
+
 void FlexCellLookup(const double coord[3], const int cells[3], int order, double local[3],
                     int* ids) {
   int cell[3];

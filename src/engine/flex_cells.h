@@ -64,6 +64,11 @@ void FlexCellNodes(const FlexLattice& g, int ci, int cj, int ck, int* ids);
 // ((normal + 1) % 3) slowest; returns the side's normal axis.
 int FlexFaceNodes(const FlexLattice& g, int fe, int* ids);
 
+// The lattice ids of element fe's nodes: a cell's (fe = (ci cy + cj) cz + ck, its nodes
+// as FlexCellNodes) or a shell's face's (as FlexFaceNodes); returns a face's normal axis,
+// -1 for a cell.
+int FlexElementNodes(const FlexLattice& g, int fe, int* ids);
+
 // The cell holding parametric point coord (in [0, 1]^3 of the box), the point's place in
 // that cell (local, clipped to [0, 1]) and, if ids is not null, the cell's node ids
 // (MuJoCo's mju_cellLookup).

@@ -12,7 +12,7 @@ namespace simlab {
 
 namespace {
 
-// The most nodes of an element (a quadratic cell) and dofs of its modes.
+// The most nodes of an element (a quadratic cell).
 constexpr int kMaxElementNodes = 27;
 
 // One element of an interpolated flex: a cell (eq_data the cell's x, y, z indices) or a
@@ -38,14 +38,9 @@ bool ElementOf(const Model& m, int eq, StrainElement* el) {
   const FlexLattice& g = el->lattice;
   const double* data = &m.eq_data[static_cast<size_t>(kNEqData) * eq];
   el->nnode = g.NodesPerElement();
-  if (g.shell) {
-    el->index = static_cast<int>(data[0]);
-    el->normal = FlexFaceNodes(g, el->index, el->node);
-    return true;
-  }
   int cell[3] = {static_cast<int>(data[0]), static_cast<int>(data[1]), static_cast<int>(data[2])};
-  el->index = (cell[0] * g.cells[1] + cell[1]) * g.cells[2] + cell[2];
-  FlexCellNodes(g, cell[0], cell[1], cell[2], el->node);
+  el->index = g.shell ? cell[0] : (cell[0] * g.cells[1] + cell[1]) * g.cells[2] + cell[2];
+  el->normal = FlexElementNodes(g, el->index, el->node);
   return true;
 }
 
@@ -108,7 +103,7 @@ double FlexStrainInvWeight(const Model& m, int eq) {
   return sum / el.nnode;
 }
 
-void FlexStrainRows(const Model& m, Data& d, int eq, const FlexStrainRowSink& row) {
+void FlexStrainRows(const Model& m, Data& d, int eq, FlexStrainRowSink row) {
   StrainElement el;
   if (!ElementOf(m, eq, &el)) return;
   const double* modes = ElementModes(m, el);

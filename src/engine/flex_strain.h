@@ -16,7 +16,7 @@
 #ifndef SIMLAB_ENGINE_FLEX_STRAIN_H_
 #define SIMLAB_ENGINE_FLEX_STRAIN_H_
 
-#include <functional>
+#include <type_traits>
 
 #include "simlab/data.h"
 #include "simlab/model.h"
@@ -27,11 +27,31 @@ namespace simlab {
 // element's node bodies.
 double FlexStrainInvWeight(const Model& m, int eq);
 
+// What takes each row: any callable row(jac, dofs, n, pos), referred to (not copied, so
+// handing a lambda to FlexStrainRows takes nothing from the heap; it must outlive the
+// sink, as a lambda written in the call does).
+class FlexStrainRowSink {
+ public:
+  template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, FlexStrainRowSink>>>
+  FlexStrainRowSink(F&& row)  // NOLINT: implicit, as std::function's
+      : row_(const_cast<void*>(static_cast<const void*>(&row))),
+        call_(&Call<std::remove_reference_t<F>>) {}
+  void operator()(const double* jac, const int* dofs, int n, double pos) const {
+    call_(row_, jac, dofs, n, pos);
+  }
+
+ private:
+  template <class F>
+  static void Call(void* row, const double* jac, const int* dofs, int n, double pos) {
+    (*static_cast<F*>(row))(jac, dofs, n, pos);
+  }
+  void* row_;
+  void (*call_)(void*, const double*, const int*, int, double);
+};
+
 // Calls row(jac, dofs, n, pos) for each of eq's modes in turn: the Jacobian on the n
 // dofs (ascending) that move the element's nodes, and the residual.
-using FlexStrainRowSink =
-    std::function<void(const double* jac, const int* dofs, int n, double pos)>;
-void FlexStrainRows(const Model& m, Data& d, int eq, const FlexStrainRowSink& row);
+void FlexStrainRows(const Model& m, Data& d, int eq, FlexStrainRowSink row);
 
 // The efc rows MuJoCo's cfrc_ext pass (mj_rnePostConstraint) steps over for eq: a count
 // left from MuJoCo 3.5.1's strain rows (2 + 3 (order+1)^3 per cell for order 1, 6 (order+1)^3

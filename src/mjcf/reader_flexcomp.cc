@@ -1,7 +1,8 @@
 // MJCF reader: a <flexcomp> expanded as MuJoCo's parser expands it (mjCFlexcomp::Make):
 // the shape's points, pinned points and the flex's rigidity, the bodies with slider
-// joints that carry the points that move (or the nodes that interpolate them), the flex
-// itself, and the edge or vertex equality it asks for.
+// joints that carry the points that move (or the nodes that interpolate them: one cell's,
+// or with MuJoCo 3.12's cells a lattice of them), the flex itself, and the edge or vertex
+// equality it asks for, or the strain equalities of its elements.
 #include <algorithm>
 #include <string>
 
@@ -181,16 +182,32 @@ void PinPoints(const XmlElement& e, FlexcompSpec* fc, int npoint, int nnode, boo
     for (int k = a; k <= b; k++) pinned[k] = true;
   }
   // Grid coordinates: the grid's counts, or the node lattice of an interpolated shape.
+  // Either pins the point at its place in a grid of `count` points, which for a shape
+  // that is not a grid can lie past its points and nodes (MuJoCo writes past its array
+  // there; simlab refuses the pin).
   std::array<int, 3> limit = fc->count;
   if (fc->type != kFcompGrid && IsInterpolated(fc->dof)) {
     limit.fill(fc->dof == kFcompDofTrilinear ? 2 : 3);
   }
+  auto pin_grid_point = [&](const int* at, const char* what) {
+    // (the place grows along the axes; past the array it stops growing, in 64 bits)
+    int64_t id = 0;
+    for (int k = 0; k < dim && id < static_cast<int64_t>(pinned.size()); k++) {
+      id = id * fc->count[k] + at[k];
+    }
+    if (id >= static_cast<int64_t>(pinned.size())) {
+      std::string place = std::to_string(at[0]);
+      for (int k = 1; k < dim; k++) place.append(" ").append(std::to_string(at[k]));
+      e.Fail(std::string(what) + " out of range: grid point (" + place + ") of count lies past " +
+             "the flexcomp's " + std::to_string(pinned.size()) + " points and nodes");
+    }
+    pinned[id] = true;
+  };
   for (size_t i = 0; i < fc->pingrid.size(); i += dim) {
     for (int k = 0; k < dim; k++) {
       if (fc->pingrid[i + k] < 0 || fc->pingrid[i + k] >= limit[k]) e.Fail("pingrid out of range");
     }
-    const int* g = fc->pingrid.data() + i;
-    pinned[dim == 2 ? GridId(fc->count, g[0], g[1]) : GridId(fc->count, g[0], g[1], g[2])] = true;
+    pin_grid_point(fc->pingrid.data() + i, "pingrid");
   }
   for (size_t i = 0; i < fc->pingridrange.size(); i += 2 * dim) {
     const int* r = fc->pingridrange.data() + i;
@@ -199,11 +216,10 @@ void PinPoints(const XmlElement& e, FlexcompSpec* fc, int npoint, int nnode, boo
     }
     for (int ix = r[0]; ix <= r[dim]; ix++) {
       for (int iy = r[1]; iy <= r[dim + 1]; iy++) {
-        if (dim == 2) {
-          pinned[GridId(fc->count, ix, iy)] = true;
-          continue;
+        for (int iz = dim == 2 ? 0 : r[2]; iz <= (dim == 2 ? 0 : r[5]); iz++) {
+          int at[3] = {ix, iy, iz};
+          pin_grid_point(at, "pingridrange");
         }
-        for (int iz = r[2]; iz <= r[5]; iz++) pinned[GridId(fc->count, ix, iy, iz)] = true;
       }
     }
   }
