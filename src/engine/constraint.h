@@ -163,8 +163,9 @@ void ConstraintUpdate(const RowSet& rows, const double* jar, int* state, double*
 // (MuJoCo's mju_cholFactor, mju_cholSolve, mju_cholUpdate and the QCQP helpers.)
 
 // In-place dense Cholesky L L^T of the lower triangle (row-major n x n); pivots below
-// `mindiag` are raised to it. Returns the rank.
-int CholFactor(double* mat, int n, double mindiag);
+// `mindiag` are raised to it, and (MuJoCo 3.12, clear_deficient) their columns below
+// cleared. Returns the rank.
+int CholFactor(double* mat, int n, double mindiag, bool clear_deficient = false);
 // res = (L L^T)^-1 vec.
 void CholSolve(const double* mat, int n, const double* vec, double* res);
 // L L^T +/- x x^T, in place (x is overwritten); returns the rank.

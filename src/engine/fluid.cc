@@ -30,6 +30,7 @@
 
 #include "engine/constraint.h"
 #include "engine/engine.h"
+#include "engine/free_body_implicit.h"
 #include "engine/stack.h"
 #include "math/math.h"
 
@@ -531,8 +532,10 @@ void EllipsoidDerivative(const Model& m, Data& d, int body) {
     AddBlock(b, dmat, 0, 0);
     AddedMassDerivative(lvel, rho, c, b);
 
-    // implicitfast needs a symmetric qDeriv.
-    if (m.opt.integrator == kIntegratorImplicitFast) Symmetrize6(b);
+    // implicitfast needs a symmetric qDeriv, but for a free body MuJoCo 3.12 solves on its
+    // own (SolvesFreeBodiesApart).
+    bool own = SolvesFreeBodiesApart(m) && IsStandaloneFreeBody(m, body);
+    if (m.opt.integrator == kIntegratorImplicitFast && !own) Symmetrize6(b);
     AddJacTBJac(d, chain, 0, b, 6);
   }
 }

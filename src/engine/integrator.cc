@@ -15,6 +15,7 @@
 #include "engine/constraint.h"
 #include "engine/engine.h"
 #include "engine/flex_implicit.h"
+#include "engine/free_body_implicit.h"
 #include "engine/sleep.h"
 #include "engine/stack.h"
 #include "engine/timer.h"
@@ -248,10 +249,16 @@ void SolveImplicitMatrix(const Model& m, const Data& d, const double* qfrc, doub
 
 // qH = M - h qDeriv restricted to M's sparsity. MuJoCo's M stores no off-diagonal
 // entries in the rows of simple bodies' dofs, so their qDeriv couplings (fluid drag on a
-// free body, say) are dropped there.
+// free body, say) are dropped there. A free body that MuJoCo 3.12 solves on its own keeps
+// M's rows (SolveFreeBodies).
 void BuildFastMatrix(const Model& m, Data& d) {
   double h = m.opt.timestep;
+  bool apart = SolvesFreeBodiesApart(m);
   for (int i = 0; i < m.nv; i++) {
+    if (apart && IsStandaloneFreeBody(m, m.dof_bodyid[i])) {
+      std::copy_n(&d.M[m.M_rowadr[i]], m.M_rownnz[i], &d.qH[m.M_rowadr[i]]);
+      continue;
+    }
     bool simple = m.body_simple[m.dof_bodyid[i]] != 0;
     // Row i of M is the beginning of row i of D.
     const double* deriv = &d.qDeriv[m.D_rowadr[i]];
@@ -304,6 +311,7 @@ void ImplicitIntegrate(const Model& m, Data& d) {
     FactorSparse(m, d.qH.data(), d.qHDiagInv.data());
     std::copy(qfrc, qfrc + m.nv, qacc);
     SolveSparse(m, d.qH.data(), d.qHDiagInv.data(), qacc);
+    if (SolvesFreeBodiesApart(m)) SolveFreeBodies(m, d, qfrc, qacc);
   }
   SolveFlexImplicitSystem(m, d, flex, qfrc, qacc);
   Advance(m, d, d.act_dot.data(), qacc, nullptr);

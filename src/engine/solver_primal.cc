@@ -166,15 +166,20 @@ void ConstraintUpdate(const RowSet& rows, const double* jar, int* state, double*
 
 // ---------------------------------------------------------------- small dense algebra
 
-int CholFactor(double* mat, int n, double mindiag) {
+int CholFactor(double* mat, int n, double mindiag, bool clear_deficient) {
   int rank = n;
   for (int j = 0; j < n; j++) {
     double diag = mat[j * (n + 1)] - Dot(mat + j * n, mat + j * n, j);
-    if (diag < mindiag) {
+    bool deficient = diag < mindiag;
+    if (deficient) {
       diag = mindiag;
       rank--;
     }
     mat[j * (n + 1)] = std::sqrt(diag);
+    if (deficient && clear_deficient) {
+      for (int i = j + 1; i < n; i++) mat[i * n + j] = 0;
+      continue;
+    }
     double inv = 1 / mat[j * (n + 1)];
     for (int i = j + 1; i < n; i++) {
       mat[i * n + j] = (mat[i * n + j] - Dot(mat + i * n, mat + j * n, j)) * inv;
@@ -465,7 +470,7 @@ int ConeUpdateVectors(const Primal& s, int i, double* ltj) {
   int width = s.sparse_factor() ? s.rows.rownnz[i] : p.nv;
   double local[36];
   std::copy(con.H, con.H + dim * dim, local);
-  CholFactor(local, dim, kMinVal);
+  CholFactor(local, dim, kMinVal, s.newer);
   // Column c of C^T J: sum over rows r >= c of C(r, c) J_r.
   std::fill(ltj, ltj + dim * width, 0.0);
   for (int r = 0; r < dim; r++) {
@@ -505,8 +510,9 @@ void AddConeHessians(Primal& s) {
 }
 
 // Row r of H = J^T D J + M (columns 0..r) added into `dense`: the quadratic rows of J in
-// ascending order, then M. Each product is rounded as MuJoCo's mju_sqrMatTDSparse rounds
-// it: J(e, r) (D(e) J(e, c)) left of the diagonal, (J(e, r) J(e, r)) D(e) on it.
+// ascending order, then M. Each product is rounded as MuJoCo rounds it: 3.5.1's
+// mju_sqrMatTDSparse J(e, r) (D(e) J(e, c)) left of the diagonal, (J(e, r) J(e, r)) D(e)
+// on it; 3.12's numeric phase (D(e) J(e, r)) J(e, c) throughout (s.newer).
 void AddHessianRow(const Primal& s, int r, double* dense) {
   const ConstraintProblem& p = s.p;
   const SparseRows& jt = s.jt;
@@ -514,6 +520,16 @@ void AddHessianRow(const Primal& s, int r, double* dense) {
     int e = jt.colind[k];
     if (p.state[e] != kStateQuadratic) continue;
     double jr = jt.values[k], d = p.D[e];
+    if (s.newer) {
+      double scale = d * jr;
+      if (scale == 0) continue;
+      for (int q = s.rows.rowadr[e]; q < s.rows.rowadr[e] + s.rows.rownnz[e]; q++) {
+        int c = s.rows.colind[q];
+        if (c > r) break;
+        dense[c] += scale * s.rows.values[q];
+      }
+      continue;
+    }
     for (int q = s.rows.rowadr[e]; q < s.rows.rowadr[e] + s.rows.rownnz[e]; q++) {
       int c = s.rows.colind[q];
       if (c >= r) break;
@@ -557,7 +573,7 @@ void FactorHessian(Primal& s) {
                    [&s](int r, double* dense) { AddHessianRow(s, r, dense); });
   } else {
     AssembleDenseHessian(s);
-    CholFactor(s.hessian, s.p.nv, kMinVal);
+    CholFactor(s.hessian, s.p.nv, kMinVal, s.newer);
   }
   if (s.ncone) AddConeHessians(s);
 }

@@ -43,23 +43,26 @@ MODELS=(
   "$FLEX/hollow_vs_solid.xml 200 40 1e-9"
   "$OUT/models/hollow_vs_solid_nocontact.xml 200 50 1e-9"
   # dof="2d": a fin-ray gripper's fingers of vertex bodies with two slide joints each
-  # (edge equality and damping) under smooth controls (ctrl/gripper_2d.csv, by hand),
-  # up to step 80 (MuJoCo 3.12 solves the cylinder's floor contact differently from 3.5.1
-  # from step 82, and the fingers touch it at step 94), and without contacts
-  "$FLEX/gripper_2d.xml 80 10 1e-9 $OUT/ctrl/gripper_2d.csv"
+  # (edge equality and damping) under smooth controls (ctrl/gripper_2d.csv, by hand): the
+  # free cylinder lands at step 81 (3.12's implicitfast solves a free body on its own), the
+  # fingers grasp it from step 94 (elliptic cones, sparse Newton), up to step 176 (the two
+  # fingers' triangles then touch, and 3.12's rewritten convex collider gives another
+  # normal), and without contacts
+  "$FLEX/gripper_2d.xml 176 16 1e-9 $OUT/ctrl/gripper_2d.csv"
   "$OUT/models/gripper_2d_nocontact.xml 200 10 1e-9 $OUT/ctrl/gripper_2d.csv"
   # strain equality: trilinear boxes pinned at one end (a flexstrain per cell, a row per
-  # stiff mode), up to their first contact (step 155, 4 pairs thinned to 50 contacts
-  # each), converged past it (the solvers part again from step 164), without contacts, the same with
-  # quadratic boxes (75 modes a cell, a sparse Jacobian), and explicit <flexstrain>
-  # elements before a connect read by a force sensor (MuJoCo's cfrc_ext pass skips the
-  # connect; free-falling boxes whose strain forces are the solver's noise: 1e-7)
-  "$FLEX/strain.xml 156 10 1e-9"
-  "$OUT/models/strain_tight.xml 160 4 1e-5"
+  # stiff mode) and a free box landing on them from step 155 (4 pairs thinned to 50
+  # contacts each), without contacts, the same with quadratic boxes (75 modes a cell, a
+  # sparse Jacobian), explicit <flexstrain> elements before a connect read by a force
+  # sensor (MuJoCo's cfrc_ext pass skips the connect; free-falling boxes whose strain
+  # forces are the solver's noise: 1e-7), and on pinned boxes of both orders (rank-deficient
+  # cells: 3.12's Cholesky clears a deficient pivot's column)
+  "$FLEX/strain.xml 200 10 1e-9"
   "$OUT/models/strain_nocontact.xml 400 20 1e-9"
   "$OUT/models/strain_quadratic_nocontact.xml 300 20 1e-9"
   "$OUT/models/strain_sensor.xml 100 10 1e-7"
   "$OUT/models/strain_explicit_pinned.xml 300 30 1e-9"
+  "$OUT/models/strain_explicit_pinned_quadratic.xml 300 30 1e-9"
   # bending with static pins (3.12 only), forces in the vertex bodies' tilted frames
   "$OUT/models/pinned_bend.xml 300 30 1e-9"
   # sleeping flexes (MuJoCo 3.12's sleep tests): a three-vertex cable held by its edge
