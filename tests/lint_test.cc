@@ -59,6 +59,7 @@ const Case kCases[] = {
     {"massless", "nearly-massless", -1, 8, LintSeverity::kWarning, {"0.0001 kg", "0.5 kg"}},
     {"joint_clamp", "joint-clamps-force", -1, 13, LintSeverity::kWarning, {"1570", "[-2, 2]"}, 1, "weak_servo_ok"},
     {"sleep_ignored", "sleep-ignored", -1, 5, LintSeverity::kWarning, {"sleep=\"init\"", "not enabled"}},
+    {"newer_flex", "follows-mujoco-3.12", -1, 6, LintSeverity::kNote, {"only MuJoCo 3.12 defines"}},
 };
 
 TEST(Lint, EachTrapIsCaughtWithItsNumbersAndLine) {

@@ -5,7 +5,8 @@
 // position servo commanding 0 at the start, an Euler-integrated filter faster than the
 // timestep, keyframe controls outside ctrlrange, gear != 1 and what actuator_force then
 // means) and what experienced MuJoCo users check (ranges switched off by limited="false",
-// keyframes outside the joint ranges).
+// keyframes outside the joint ranges), and a note when the model follows MuJoCo 3.12's rules
+// rather than 3.5.1's (Model::release).
 //
 //   simlab::LintReport report = simlab::LintFile("robot.xml", /*key=*/0);
 //   for (const simlab::LintFinding& f : report.findings) ...  // f.file, f.line, f.numbers

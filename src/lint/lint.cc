@@ -587,6 +587,32 @@ void CheckUnusedClasses(const mjcf::ModelSpec& spec, std::vector<LintFinding>* o
   }
 }
 
+// A model that follows MuJoCo 3.12 (Model::release): where it is, what that changes, and
+// what to compare it with.
+void CheckFollowsNewerMuJoCo(const Model& m, const mjcf::ModelSpec& spec,
+                             std::vector<LintFinding>* out) {
+  if (m.release != Release::k3_12) return;
+  // (the construct the reader found, else the first bending flex: pinned to a static body)
+  bool construct = !spec.newer_construct.tag.empty();
+  mjcf::Source at = spec.newer_construct;
+  for (const mjcf::FlexSpec& f : spec.flexes) {
+    bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
+    if (!construct && bending && f.dim == 2) {
+      at = f.src;
+      break;
+    }
+  }
+  std::string why = construct ? "<" + at.tag + "> uses what only MuJoCo 3.12 defines"
+                              : "a bending flex pinned to a static body (MuJoCo 3.5.1 refuses it)";
+  out->push_back({"follows-mujoco-3.12", LintSeverity::kNote,
+                  "<" + at.tag + (at.name.empty() ? "" : " \"" + at.name + "\"") + ">", at.file,
+                  at.line, why,
+                  "MuJoCo 3.5.1 cannot run this model, so simlab follows MuJoCo 3.12 where the "
+                  "two differ: flex contacts thinned to 50 per collision pair, 3.12's solver "
+                  "iteration and rounding, implicitfast's own solve of free bodies.",
+                  "compare it with MuJoCo 3.12 or newer, not 3.5.1.", "", -1});
+}
+
 // A hinge range that reads like radians (within 2 pi, not in whole degrees) while the
 // compiler reads degrees (the default): range="-1.57 1.57" is then +-1.57 degrees.
 void VisitHingeRanges(const mjcf::BodySpec& body, std::vector<LintFinding>* out) {
@@ -668,6 +694,7 @@ LintReport LintFile(const std::string& path, int key) {
   CheckRangesSwitchedOff(loaded.spec, &report.findings);
   CheckRangesInDegrees(loaded.spec, &report.findings);
   CheckUnusedClasses(loaded.spec, &report.findings);
+  CheckFollowsNewerMuJoCo(m, loaded.spec, &report.findings);
   CheckGear(subject);
   return report;
 }
