@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <array>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -234,6 +235,11 @@ int LongestBoxSide(const double aamm[6]);
 // layout needs the equalities (which flexes keep their edges) and the bodies' welds;
 // the constants (sparsity, rest lengths, inverse weights) need the model at qpos0.
 void CompileFlexes(const mjcf::ModelSpec& spec, CompileState* state);
+// The first flex bending its triangles with a vertex pinned to a static (jointless) body,
+// which MuJoCo 3.5.1 refuses and 3.12 accepts (such a model follows 3.12), or null;
+// joints(name) is the named body's joint count (-1: no such body).
+const mjcf::FlexSpec* FlexBendingOnStaticPin(const mjcf::ModelSpec& spec,
+                                             const std::function<int(const std::string&)>& joints);
 // A flex's active elements (all, or a 3D flex's first activelayers layers) with their
 // boxes at qpos0 (centre, half sizes grown by the radius): the leaves of its tree
 // (bvh_flex.cc) and what flex_size spans.

@@ -507,18 +507,26 @@ FlexState CompileFlex(const mjcf::FlexSpec& f, bool strain, const CompileState& 
 // (the reader found it), or one 3.5.1 refuses and 3.12 accepts: a bending flex's vertex
 // pinned to a static body.
 Release ModelRelease(const mjcf::ModelSpec& spec, const CompileState& state, const NameIndex& bodies) {
-  if (!spec.newer_construct.tag.empty()) return Release::k3_12;
-  for (const mjcf::FlexSpec& f : spec.flexes) {
-    if (!BendsVertices(f)) continue;
-    for (const std::string& name : f.vertbody) {
-      int id = bodies.Find(name);
-      if (id >= 0 && state.bodies[id].joint_num == 0) return Release::k3_12;
-    }
-  }
-  return Release::k3_5_1;
+  auto joints = [&](const std::string& name) {
+    int id = bodies.Find(name);
+    return id < 0 ? -1 : state.bodies[id].joint_num;
+  };
+  bool newer = !spec.newer_construct.tag.empty() || FlexBendingOnStaticPin(spec, joints);
+  return newer ? Release::k3_12 : Release::k3_5_1;
 }
 
 }  // namespace
+
+const mjcf::FlexSpec* FlexBendingOnStaticPin(const mjcf::ModelSpec& spec,
+                                             const std::function<int(const std::string&)>& joints) {
+  for (const mjcf::FlexSpec& f : spec.flexes) {
+    if (!BendsVertices(f)) continue;
+    for (const std::string& name : f.vertbody) {
+      if (joints(name) == 0) return &f;
+    }
+  }
+  return nullptr;
+}
 
 void CompileFlexes(const mjcf::ModelSpec& spec, CompileState* state) {
   NameIndex bodies = BodyNames(*state);

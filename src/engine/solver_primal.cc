@@ -672,36 +672,43 @@ void AddQuadratic(double total[3], const double* q) {
   total[2] += q[2];
 }
 
-// The cost of an elliptic contact along the line (rows i.., prepared in q[0..8]): in its
-// zone at alpha, added to the totals (quadratic zones) or to cost/deriv (the cone).
-void EvalCone(const Primal& s, int i, double alpha, double total[3], double* cost,
-              double deriv[2]) {
-  const double* q = &s.quad[3 * i];
-  double mu = s.p.contact[s.p.id[i]].mu;
-  double N = q[3] + alpha * q[4];
-  double Tsqr = q[5] + alpha * (2 * q[6] + alpha * q[7]);
+// An elliptic contact's zone for normal N and squared tangent norm Tsqr (T its root):
+// free (top), quadratic in every row (bottom), or on the cone (middle).
+enum ConeZoneKind { kZoneTop = 1, kZoneBottom = 2, kZoneMiddle = 3 };
+ConeZoneKind ConeZone(double N, double Tsqr, double mu, double* T) {
+  *T = 0;
+  if (Tsqr <= 0) return N < 0 ? kZoneBottom : kZoneTop;
+  *T = std::sqrt(Tsqr);
+  if (N >= mu * *T) return kZoneTop;
+  return mu * N + *T <= 0 ? kZoneBottom : kZoneMiddle;
+}
 
-  // No tangential part: bottom zone when pulling, else free.
-  if (Tsqr <= 0) {
-    if (N < 0) AddQuadratic(total, q);
-    return;
-  }
-  double T = std::sqrt(Tsqr);
-  if (N >= mu * T) return;  // top zone
-  if (mu * N + T <= 0) {    // bottom zone
-    AddQuadratic(total, q);
-    return;
-  }
-
-  // Middle zone: 0.5 Dm (N - mu T)^2 with N, T and their alpha-derivatives.
+// The derivatives along the line of a middle-zone contact's cost 0.5 Dm (N - mu T)^2
+// (q prepared by PrepareCone; N, T at alpha), added to deriv.
+void AddConeMiddleDerivatives(const double* q, double alpha, double mu, double N, double T,
+                              double deriv[2]) {
   double Dm = q[8];
   double N1 = q[4];
   double T1 = (q[6] + alpha * q[7]) / T;
   double T2 = q[7] / T - (q[6] + alpha * q[7]) * T1 / (T * T);
   double gap = N - mu * T, gap1 = N1 - mu * T1;
-  *cost += 0.5 * Dm * gap * gap;
   deriv[0] += Dm * gap * gap1;
   deriv[1] += Dm * (gap1 * gap1 + gap * (-mu * T2));
+}
+
+// The cost of an elliptic contact along the line (rows i.., prepared in q[0..8]): in its
+// zone at alpha, added to the totals (bottom zone) or to cost/deriv (middle zone).
+void EvalCone(const Primal& s, int i, double alpha, double total[3], double* cost,
+              double deriv[2]) {
+  const double* q = &s.quad[3 * i];
+  double mu = s.p.contact[s.p.id[i]].mu;
+  double N = q[3] + alpha * q[4], T;
+  ConeZoneKind zone = ConeZone(N, q[5] + alpha * (2 * q[6] + alpha * q[7]), mu, &T);
+  if (zone == kZoneBottom) AddQuadratic(total, q);
+  if (zone != kZoneMiddle) return;
+  double gap = N - mu * T;
+  *cost += 0.5 * q[8] * gap * gap;
+  AddConeMiddleDerivatives(q, alpha, mu, N, T, deriv);
 }
 
 // A line point's cost and derivatives: the rows' quadratic total at alpha plus what the
@@ -738,63 +745,45 @@ double FrictionCostChange(double start, double x, double f, double bound, double
   return FrictionCost(x, f, bound, D) - FrictionCost(start, f, bound, D);
 }
 
-// An elliptic contact's zone for normal N and squared tangent norm Tsqr (T its root):
-// 1 top (free), 2 bottom (quadratic), 3 middle (the cone).
-int ConeZone(double N, double Tsqr, double mu, double* T) {
-  *T = 0;
-  if (Tsqr <= 0) return N < 0 ? 2 : 1;
-  *T = std::sqrt(Tsqr);
-  if (N >= mu * *T) return 1;
-  return mu * N + *T <= 0 ? 2 : 3;
-}
-
 // An elliptic contact's cost at alpha less its cost at 0 (q prepared by PrepareCone, Dm
-// its cone mass), per the pair of zones; within the cone in rationalized form.
-double ConeCostChange(const double* q, double alpha, double mu, double Dm) {
-  double U0 = q[3], V0 = q[4], UU = q[5], UV = q[6], VV = q[7];
-  double T0, T;
-  int from = ConeZone(U0, UU, mu, &T0);
-  double N = U0 + alpha * V0;
-  int to = ConeZone(N, UU + alpha * (2 * UV + alpha * VV), mu, &T);
+// its cone mass; at alpha its zone `to`, normal N and tangent norm T), per the pair of
+// zones; within the cone in rationalized form.
+double ConeCostChange(const double* q, double alpha, double mu, ConeZoneKind to, double N,
+                      double T) {
+  double U0 = q[3], V0 = q[4], UU = q[5], UV = q[6], VV = q[7], Dm = q[8];
+  double T0;
+  ConeZoneKind from = ConeZone(U0, UU, mu, &T0);
   double bottom = alpha * alpha * q[2] + alpha * q[1];  // the quadratic's change
-  if (from == 1 && to == 1) return 0;
-  if (from == 2 && to == 2) return bottom;
-  if (from == 3 && to == 3) {
+  if (from == kZoneTop && to == kZoneTop) return 0;
+  if (from == kZoneBottom && to == kZoneBottom) return bottom;
+  if (from == kZoneMiddle && to == kZoneMiddle) {
     double T_change = alpha * (2 * UV + alpha * VV) / (T + T0);
     double r_change = alpha * V0 - mu * T_change;
     return 0.5 * Dm * r_change * (2 * (U0 - mu * T0) + r_change);
   }
-  if (from == 3 && to == 2) {
+  if (from == kZoneMiddle && to == kZoneBottom) {
     double edge0 = mu * U0 + T0;
     return alpha * (alpha * q[2] + q[1]) + 0.5 * Dm * edge0 * edge0;
   }
-  if (from == 2 && to == 3) {
+  if (from == kZoneBottom && to == kZoneMiddle) {
     double edge = mu * N + T;
     return alpha * (alpha * q[2] + q[1]) - 0.5 * Dm * edge * edge;
   }
-  if (from == 1 && to == 2) return bottom + q[0];
-  if (from == 1 && to == 3) return 0.5 * Dm * (N - mu * T) * (N - mu * T);
-  if (from == 3 && to == 1) return -0.5 * Dm * (U0 - mu * T0) * (U0 - mu * T0);
-  if (from == 2 && to == 1) return -q[0];
+  if (from == kZoneTop && to == kZoneBottom) return bottom + q[0];
+  if (from == kZoneTop && to == kZoneMiddle) return 0.5 * Dm * (N - mu * T) * (N - mu * T);
+  if (from == kZoneMiddle && to == kZoneTop) return -0.5 * Dm * (U0 - mu * T0) * (U0 - mu * T0);
+  if (from == kZoneBottom && to == kZoneTop) return -q[0];
   return 0;
 }
 
-// An elliptic contact's derivatives along the line at alpha (its zone there).
-void ConeDerivatives(const Primal& s, int i, double alpha, double deriv[2]) {
-  const double* q = &s.quad[3 * i];
-  double mu = s.p.contact[s.p.id[i]].mu;
-  double N = q[3] + alpha * q[4], T;
-  int zone = ConeZone(N, q[5] + alpha * (2 * q[6] + alpha * q[7]), mu, &T);
-  if (zone == 2) {
+// An elliptic contact's derivatives along the line at alpha (its zone there, N and T).
+void AddConeDerivatives(const double* q, double alpha, double mu, ConeZoneKind zone, double N,
+                        double T, double deriv[2]) {
+  if (zone == kZoneBottom) {
     deriv[0] += 2 * alpha * q[2] + q[1];
     deriv[1] += 2 * q[2];
-  } else if (zone == 3) {
-    double Dm = q[8];
-    double N1 = q[4];
-    double T1 = (q[6] + alpha * q[7]) / T;
-    double T2 = q[7] / T - (q[6] + alpha * q[7]) * T1 / (T * T);
-    deriv[0] += Dm * (N - mu * T) * (N1 - mu * T1);
-    deriv[1] += Dm * ((N1 - mu * T1) * (N1 - mu * T1) + (N - mu * T) * (-mu * T2));
+  } else if (zone == kZoneMiddle) {
+    AddConeMiddleDerivatives(q, alpha, mu, N, T, deriv);
   }
 }
 
@@ -823,8 +812,10 @@ void EvalLineFromStart(Primal& s, LinePoint* point) {
       }
     } else if (p.type[r] == kCnstrContactElliptic) {
       const Contact& con = p.contact[p.id[r]];
-      cost += ConeCostChange(q, alpha, con.mu, q[8]);
-      ConeDerivatives(s, r, alpha, deriv);
+      double N = q[3] + alpha * q[4], T;
+      ConeZoneKind zone = ConeZone(N, q[5] + alpha * (2 * q[6] + alpha * q[7]), con.mu, &T);
+      cost += ConeCostChange(q, alpha, con.mu, zone, N, T);
+      AddConeDerivatives(q, alpha, con.mu, zone, N, T, deriv);
       r += con.dim - 1;
     } else {
       double start = s.jaref[r], x = start + alpha * s.jv[r];

@@ -592,15 +592,15 @@ void CheckUnusedClasses(const mjcf::ModelSpec& spec, std::vector<LintFinding>* o
 void CheckFollowsNewerMuJoCo(const Model& m, const mjcf::ModelSpec& spec,
                              std::vector<LintFinding>* out) {
   if (m.release != Release::k3_12) return;
-  // (the construct the reader found, else the first bending flex: pinned to a static body)
+  // (the construct the reader found, else the bending flex pinned to a static body)
   bool construct = !spec.newer_construct.tag.empty();
   mjcf::Source at = spec.newer_construct;
-  for (const mjcf::FlexSpec& f : spec.flexes) {
-    bool bending = f.elastic2d == mjcf::kElastic2DBend || f.elastic2d == mjcf::kElastic2DBoth;
-    if (!construct && bending && f.dim == 2) {
-      at = f.src;
-      break;
-    }
+  if (!construct) {
+    const mjcf::FlexSpec* pinned = compiler::FlexBendingOnStaticPin(spec, [&m](const std::string& name) {
+      int id = m.NameToId(kObjBody, name);
+      return id < 0 ? -1 : m.body_jntnum[id];
+    });
+    if (pinned) at = pinned->src;
   }
   std::string why = construct ? "<" + at.tag + "> uses what only MuJoCo 3.12 defines"
                               : "a bending flex pinned to a static body (MuJoCo 3.5.1 refuses it)";
