@@ -379,6 +379,7 @@ int QueryContacts(const Model& m, ccd::ConvexShape* s1, ccd::ConvexShape* s2, Co
   config.tolerance = m.opt.ccd_tolerance;
   config.max_contacts = max_contacts;
   config.dist_cutoff = 0;
+  config.newer = m.release == Release::k3_12;
   ccd::CcdStatus status;
   double dist = ccd::Collide(config, &status, s1, s2);
   if (!(dist < 0)) return 0;

@@ -362,27 +362,52 @@ void GjkApart(CcdStatus* status, int k) {
   status->nsimplex = 0;
   status->nx = 0;
   status->dist = kHuge;
+  status->separated = true;
+}
+
+// Has GJK reached its answer before the next support point? 3.5.1 stops when x is at
+// the origin (leaving |x|^2 as the distance, as MuJoCo 3.5.1 does); 3.12 (newer) when
+// |x| is within tolerance of it (kMinVal for two polytopes) or stopped shrinking. Sets
+// x_norm to |x| for the support point.
+bool GjkAtRest(bool newer, double min_norm, const double* x, double* x_norm,
+               double x_norm_prev) {
+  if (newer) return *x_norm < min_norm || std::abs(x_norm_prev - *x_norm) < kMinVal;
+  *x_norm = Dot3(x, x);
+  if (*x_norm < kMinVal2) return true;
+  *x_norm = std::sqrt(*x_norm);
+  return false;
+}
+
+// 3.12 ends GJK by one more support point along x: beyond the origin, the shapes are
+// apart. (With x at the origin the answer is "not apart" without asking.)
+void GjkFinalSeparation(CcdStatus* status, ConvexShape* s1, ConvexShape* s2,
+                        const double* x, double x_norm) {
+  if (!(x_norm > 0)) return;
+  CcdVertex probe;
+  SupportTowardsOrigin(&probe, s1, s2, x, x_norm);
+  if (Dot3(x, probe.vert) > 0) status->separated = true;
 }
 
 // GJK from the start points status->x1, x2: the distance (or 0 if overlapping) in
 // status->dist, witness points in x1, x2, and the final simplex.
 void Gjk(CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
   const CcdConfig& config = status->config;
+  bool newer = config.newer;
   bool want_dist = config.dist_cutoff > 0;
   bool try_walk = !want_dist;  // contact only: decide overlap by the tetrahedron walk
+  bool discrete = BothDiscrete(s1, s2);
   CcdVertex* simplex = status->simplex;
   int n = 0, k = 0;
   double x[3], lambda[4] = {1, 0, 0, 0};
-  double cutoff2 = config.dist_cutoff * config.dist_cutoff;
-  double epsilon = BothDiscrete(s1, s2) ? 0 : 0.5 * config.tolerance * config.tolerance;
-  double x_norm = 0;
+  double epsilon = discrete ? 0 : 0.5 * config.tolerance * config.tolerance;
+  double min_norm = discrete ? kMinVal : config.tolerance;  // 3.12's rest test
   Sub3(x, status->x1, status->x2);
+  double x_norm = Norm3(x), x_norm_prev = 0;
+  status->separated = false;
 
   for (; k < config.max_iterations; k++) {
     // support vertex towards the origin
-    x_norm = Dot3(x, x);
-    if (x_norm < kMinVal2) break;
-    x_norm = std::sqrt(x_norm);
+    if (GjkAtRest(newer, min_norm, x, &x_norm, x_norm_prev)) break;
     SupportTowardsOrigin(simplex + n, s1, s2, x, x_norm);
     const double* sk = simplex[n].vert;
 
@@ -390,16 +415,19 @@ void Gjk(CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
     double gap[3];
     Sub3(gap, x, sk);
     if (Dot3(x, gap) < epsilon) {
-      if (!k) n = 1;
+      if (!k && !newer) n = 1;
       break;
     }
 
-    // a separating plane: apart (or farther than the cutoff)
+    // a separating plane: apart (or farther than the cutoff). 3.12 compares the lower
+    // bound <x, s> / |x| with the cutoff; 3.5.1 its square
     double xs = Dot3(x, sk);
     if (!want_dist) {
       if (xs > 0) return GjkApart(status, k);
-    } else if (config.dist_cutoff < kHuge) {
-      if (xs > 0 && (xs * xs / Dot3(x, x)) >= cutoff2) return GjkApart(status, k);
+    } else if (config.dist_cutoff < kHuge && xs > 0) {
+      bool beyond = newer ? xs >= config.dist_cutoff * x_norm
+                          : xs * xs / Dot3(x, x) >= config.dist_cutoff * config.dist_cutoff;
+      if (beyond) return GjkApart(status, k);
     }
 
     // a full tetrahedron and only contact wanted: try the tetrahedron walk once
@@ -408,6 +436,7 @@ void Gjk(CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
       int walk = TetrahedronWalk(status, s1, s2);
       if (walk != -1) {
         status->nx = 0;
+        status->separated = walk == 0;
         status->dist = walk > 0 ? 0 : kHuge;
         return;
       }
@@ -425,27 +454,35 @@ void Gjk(CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
     }
     if (n < 1) return GjkApart(status, k);
 
+    // the next point: 3.5.1 stops when it equals x
     double next[3];
     Combine(next, lambda, n, simplex[0].vert, simplex[1].vert, simplex[2].vert,
             simplex[3].vert);
-    if (SamePoint(next, x)) break;
+    if (!newer && SamePoint(next, x)) break;
     math::Copy3(x, next);
+    if (newer) {
+      x_norm_prev = x_norm;
+      x_norm = Norm3(x);
+    }
 
     // the origin is inside a tetrahedron
     if (n == 4) {
-      x_norm = 0;
+      if (!newer) x_norm = 0;
       break;
     }
   }
 
-  Combine(status->x1, lambda, n, simplex[0].vert1, simplex[1].vert1, simplex[2].vert1,
-          simplex[3].vert1);
-  Combine(status->x2, lambda, n, simplex[0].vert2, simplex[1].vert2, simplex[2].vert2,
-          simplex[3].vert2);
+  if (n > 0 || !newer) {
+    Combine(status->x1, lambda, n, simplex[0].vert1, simplex[1].vert1, simplex[2].vert1,
+            simplex[3].vert1);
+    Combine(status->x2, lambda, n, simplex[0].vert2, simplex[1].vert2, simplex[2].vert2,
+            simplex[3].vert2);
+  }
+  if (newer) GjkFinalSeparation(status, s1, s2, x, x_norm);
   status->nx = 1;
   status->gjk_iterations = k;
   status->nsimplex = n;
-  status->dist = x_norm;
+  status->dist = newer && n == 4 && !status->separated ? 0 : x_norm;
 }
 
 // ---------------------------------------------------------------- EPA polytope
@@ -473,6 +510,10 @@ struct Polytope {
   std::vector<int> hor_edges;  // ... and which of their edges it is
   int nedges = 0;
   const double* w = nullptr;   // the new vertex the horizon is seen from
+
+  // 3.12 turns each face's normal away from the initial polytope's centre
+  bool newer = false;
+  double center[3] = {0, 0, 0};
 
   // Storage for `iterations` expansions (as MuJoCo: at least 170).
   void Reset(int iterations) {
@@ -517,6 +558,11 @@ double AddFace(Polytope* pt, int v1, int v2, int v3, int adj1, int adj2, int adj
   if (!ProjectOriginOnPlane(face.v, pt->verts[v3].vert, pt->verts[v2].vert,
                             pt->verts[v1].vert)) {
     return 0;
+  }
+  if (pt->newer) {
+    double outward[3];
+    Sub3(outward, pt->verts[v1].vert, pt->center);
+    if (Dot3(face.v, outward) < 0) Scale3(face.v, face.v, -1);
   }
   face.dist2 = Dot3(face.v, face.v);
   face.index = -1;
@@ -628,10 +674,21 @@ int AddFaces(Polytope* pt, const int tri[][3], const int adj[][3], int count) {
 
 int PolytopeFromTriangle(Polytope* pt, CcdStatus* status, ConvexShape* s1, ConvexShape* s2);
 
+// The initial polytope's centre (3.12): the mean of GJK's simplex, summed in order and
+// scaled by 1/count, as 3.12 rounds it.
+void SetCenter(Polytope* pt, const double* const* points, int count) {
+  double sum[3];
+  math::Copy3(sum, points[0]);
+  for (int i = 1; i < count; i++) math::Add3(sum, sum, points[i]);
+  Scale3(pt->center, sum, count == 2 ? 0.5 : count == 4 ? 0.25 : 1.0 / 3.0);
+}
+
 // Initial polytope from a segment: three support points around it at 120 degrees make
 // a double pyramid with the segment's ends as apexes.
 int PolytopeFromSegment(Polytope* pt, CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
   const double *v1 = status->simplex[0].vert, *v2 = status->simplex[1].vert;
+  const double* ends[2] = {v1, v2};
+  SetCenter(pt, ends, 2);
   double diff[3];
   Sub3(diff, v2, v1);
 
@@ -678,6 +735,8 @@ int PolytopeFromSegment(Polytope* pt, CcdStatus* status, ConvexShape* s1, Convex
 int PolytopeFromTriangle(Polytope* pt, CcdStatus* status, ConvexShape* s1, ConvexShape* s2) {
   const double *v1 = status->simplex[0].vert, *v2 = status->simplex[1].vert,
                *v3 = status->simplex[2].vert;
+  const double* corners[3] = {v1, v2, v3};
+  SetCenter(pt, corners, 3);
   double e1[3], e2[3], n[3], n_neg[3];
   Sub3(e1, v2, v1);
   Sub3(e2, v3, v1);
@@ -717,6 +776,9 @@ int PolytopeFromTetrahedron(Polytope* pt, CcdStatus* status, ConvexShape* s1,
   int i2 = AddVertex(pt, status->simplex[1]);
   int i3 = AddVertex(pt, status->simplex[2]);
   int i4 = AddVertex(pt, status->simplex[3]);
+  const double* corners[4] = {pt->verts[i1].vert, pt->verts[i2].vert, pt->verts[i3].vert,
+                              pt->verts[i4].vert};
+  SetCenter(pt, corners, 4);
 
   // a face through the origin restarts from that triangle
   const int tri[4][3] = {{i1, i2, i3}, {i1, i4, i2}, {i1, i3, i4}, {i4, i3, i2}};
@@ -835,9 +897,11 @@ Face* Epa(CcdStatus* status, Polytope* pt, ConvexShape* s1, ConvexShape* s2) {
   Face *face = nullptr, *previous = nullptr;
   bool discrete = BothDiscrete(s1, s2);
   double tolerance = discrete ? kMinVal : status->config.tolerance;
+  int kmax = status->config.max_iterations;
+  if (status->config.newer && kmax > 1000) kmax = 1000;
 
   int k = 0;
-  for (; k < status->config.max_iterations; k++) {
+  for (; k < kmax; k++) {
     previous = face;
 
     // the candidate face nearest the origin: a lower bound on the depth
@@ -864,7 +928,11 @@ Face* Epa(CcdStatus* status, Polytope* pt, ConvexShape* s1, ConvexShape* s2) {
       upper = upper_k;
       upper2 = upper * upper;
     }
-    if (upper - lower < tolerance) break;
+    if (upper - lower < tolerance) {
+      // 3.12: the support distance below the face's on the first step means no contact
+      if (status->config.newer && k == 0 && upper < lower - 1e-10) face = nullptr;
+      break;
+    }
     if (discrete && RepeatedVertex(pt, w)) break;
 
     // replace what w sees by faces to w
@@ -952,6 +1020,7 @@ void PenetrationDepth(const CcdConfig& config, CcdStatus* status, ConvexShape* s
                       ConvexShape* s2) {
   thread_local Polytope pt;
   pt.Reset(config.max_iterations);
+  pt.newer = config.newer;
   int ret;
   if (status->nsimplex == 2) {
     ret = PolytopeFromSegment(&pt, status, s1, s2);
@@ -993,8 +1062,9 @@ double Collide(const CcdConfig& config, CcdStatus* status, ConvexShape* s1, Conv
   Gjk(status, s1, s2);
   if (!config.max_contacts) return status->dist;
 
-  // overlapping: the penetration depth by EPA
-  if (status->dist <= config.tolerance && status->nsimplex > 1) {
+  // overlapping: the penetration depth by EPA (3.12: unless GJK proved them apart)
+  bool apart = config.newer && status->separated;
+  if (status->dist <= config.tolerance && status->nsimplex > 1 && !apart) {
     status->dist = 0;
     PenetrationDepth(config, status, s1, s2);
   }

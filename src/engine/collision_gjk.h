@@ -57,6 +57,7 @@ struct CcdConfig {
   double tolerance = 1e-6;
   int max_contacts = 1;      // 0: only decide overlap, no penetration depth
   double dist_cutoff = 0;    // report distances of separated shapes up to this
+  bool newer = false;        // MuJoCo 3.12's GJK and EPA (a model that follows 3.12)
 };
 
 // Are a and b the same point up to kMinVal per coordinate?
@@ -89,6 +90,7 @@ struct CcdStatus {
   int epa_status = -1;             // kEpaNoContact, kEpaSuccess or a failure reason
   CcdVertex simplex[4];
   int nsimplex = 0;
+  bool separated = false;          // 3.12: GJK proved the shapes apart
 };
 
 // EPA outcomes (MuJoCo's mjtEPAStatus).

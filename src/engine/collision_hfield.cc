@@ -180,6 +180,7 @@ bool PrismContact(const Model& m, const Prism& p, int g1, ConvexShape* shape,
   config.tolerance = m.opt.ccd_tolerance;
   config.max_contacts = 1;
   config.dist_cutoff = 0;
+  config.newer = m.release == Release::k3_12;
   ccd::CcdStatus status;
   double dist = ccd::Collide(config, &status, &prism, shape);
   if (!(dist < 0)) return false;

@@ -99,6 +99,7 @@ double ConvexDistance(const Model& m, const Data& d, int g1, int g2, double dist
   config.tolerance = m.opt.ccd_tolerance;
   config.max_contacts = 1;
   config.dist_cutoff = distmax;
+  config.newer = m.release == Release::k3_12;
   ccd::ConvexShape s1 = ccd::GeomShape(m, d, g1, 0);
   ccd::ConvexShape s2 = ccd::GeomShape(m, d, g2, 0);
   ccd::CcdStatus status;

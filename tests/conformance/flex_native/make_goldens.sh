@@ -11,9 +11,8 @@
 #   to record, the tolerance, and optionally a control file (CSV, from the root; none:
 #   zero controls). Writes goldens/<name>.jsonl and tests/conformance/flex_native_cases.txt.
 #   These models follow MuJoCo 3.12 (Model::release): flex contacts thinned per collision
-#   pair and the primal solvers' iteration as 3.12 has them. Where a model still parts from
-#   native 3.12 it is rolled out up to there, converged (models/<name>_tight.xml), and
-#   without contacts (models/<name>_nocontact.xml) over the whole run.
+#   pair, the primal solvers' iteration and the convex collider (GJK, EPA) as 3.12 has
+#   them; models/<name>_nocontact.xml are the same models without contacts.
 # Requirements: bash, python3, and the native build.
 set -euo pipefail
 
@@ -45,10 +44,10 @@ MODELS=(
   # dof="2d": a fin-ray gripper's fingers of vertex bodies with two slide joints each
   # (edge equality and damping) under smooth controls (ctrl/gripper_2d.csv, by hand): the
   # free cylinder lands at step 81 (3.12's implicitfast solves a free body on its own), the
-  # fingers grasp it from step 94 (elliptic cones, sparse Newton), up to step 176 (the two
-  # fingers' triangles then touch, and 3.12's rewritten convex collider gives another
-  # normal), and without contacts
-  "$FLEX/gripper_2d.xml 176 16 1e-9 $OUT/ctrl/gripper_2d.csv"
+  # fingers grasp it from step 94 (elliptic cones, sparse Newton), the two fingers'
+  # triangles touch from step 177 (3.12's GJK and EPA: stops at the tolerance, faces turned
+  # outward), and without contacts
+  "$FLEX/gripper_2d.xml 300 15 1e-9 $OUT/ctrl/gripper_2d.csv"
   "$OUT/models/gripper_2d_nocontact.xml 200 10 1e-9 $OUT/ctrl/gripper_2d.csv"
   # strain equality: trilinear boxes pinned at one end (a flexstrain per cell, a row per
   # stiff mode) and a free box landing on them from step 155 (4 pairs thinned to 50
