@@ -374,6 +374,20 @@ async function testSdf() {
   });
 }
 
+// Drags the mouse dx pixels across the middle of the scene (left button: orbit); returns
+// how many degrees the free camera's azimuth turned.
+async function dragOrbit(page, dx) {
+  const at = await page.evaluate(() => {
+    const box = window.lab.scene.renderer.domElement.getBoundingClientRect();
+    return { x: box.left + box.width / 2, y: box.top + box.height / 2, az: window.lab.scene.view.azimuth };
+  });
+  await page.mouse.move(at.x, at.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 8; k++) await page.mouse.move(at.x + dx * k / 8, at.y);
+  await page.mouse.up();
+  return await page.evaluate(() => window.lab.scene.view.azimuth) - at.az;
+}
+
 // Flexes (MuJoCo's flag.xml, a cloth flapping from one pinned corner, and softbox.xml, a
 // soft box of radial sliders): each flex is drawn from flexvert_xpos, its drawn vertices
 // are the engine's (finite), and the cloth deforms as it moves (its drawn shape is no
@@ -392,6 +406,12 @@ async function testFlexes() {
         return { count: items.length, n: position.length / 3, off, finite: position.every(Number.isFinite),
                  zspread: Math.max(...z) - Math.min(...z) };
       });
+      // The wind (5 5 0) streams the flag along x = y: a user drags the view round to face
+      // it (112 pixels left, 45 degrees of azimuth) before the picture.
+      if (name === 'flag') {
+        const turned = await dragOrbit(page, -112);
+        check(Math.abs(turned - 45) < 1, `flag: a drag turned the free camera by ${turned.toFixed(1)} degrees`);
+      }
       await page.screenshot({ path: path.join(options.shots, `view_flex_${name}.png`) });
       check(drawn.count === 1 && drawn.n > 0 && drawn.finite,
             `${name}: the flex is drawn, ${drawn.n} vertices, all finite`);
