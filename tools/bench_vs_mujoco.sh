@@ -20,9 +20,13 @@
 # beside it.
 #
 # The step counts make each run about a second. Workloads agree step for step except
-# where MuJoCo 3.12 changed its colliders: box-box is a new SAT collider (the gantry's
-# cube: 8 contacts per step against 3.5.1's 7) and mesh-mesh pairs differ slightly (the
-# cubes: 32.6 contacts per step against 32.0).
+# where MuJoCo 3.12 changed what it simulates and simlab follows 3.5.1 (the oracle's):
+# box-box is a new SAT collider (the gantry's cube: 8 contacts per step against 3.5.1's
+# 7), multiccd is on by default and mesh-mesh pairs differ (replicate-bowl: 72.3 against
+# 78.7), and flex contacts are thinned to 50 per collision pair (flex-flag: 30.2 against
+# 57.6). So the table gives both engines' contacts and constraint rows per step (from the
+# first round) and marks with * a row whose rows differ by more than 2%: its ratio
+# compares different work.
 #
 # Both engines time their pipeline stages by default (testspeed installs its profiler
 # clock, mjcb_time; `simlab bench` sets Data::timer_clock): some 28 clock reads a step,
@@ -110,24 +114,45 @@ rounds = int(rounds)
 ncpu = os.cpu_count() or 1
 models = [line.split("|") for line in """$models""".splitlines()]
 
-def cpu_seconds(cmd, cwd, pin):
-    """CPU seconds of one command (None when it fails)."""
+workload = {}  # (engine, model) -> (contacts, rows) per step, from the first long run
+
+def per_step(output, label):
+    """The number after label in a bench or testspeed report (None if absent)."""
+    for line in output.splitlines():
+        if line.strip().startswith(label):
+            return float(line.split(":")[1].split()[0])
+    return None
+
+def cpu_seconds(cmd, cwd, pin, key=None):
+    """CPU seconds of one command (None when it fails); records its workload under key."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     done = subprocess.run(["taskset", "-c", str(pin)] + cmd, cwd=cwd, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode != 0 or "Steps per second" not in done.stdout:
         return None
+    if key and key not in workload:
+        out = done.stdout
+        workload[key] = (per_step(out, "Contacts per step") or per_step(out, "Contacts / step"),
+                         per_step(out, "Constraints per step") or per_step(out, "Constraints / step"))
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 def speed(engine, path, n, pin):
     """Steps per second of N - N0 steps from two runs (None when either fails)."""
     n0 = n // 10
-    long = cpu_seconds(engines[engine](path, n), os.path.dirname(path), pin)
+    long = cpu_seconds(engines[engine](path, n), os.path.dirname(path), pin, (engine, path))
     short = cpu_seconds(engines[engine](path, n0), os.path.dirname(path), pin)
     if long is None or short is None or long <= short:
         return None
     return (n - n0) / (long - short)
+
+def workload_columns(path):
+    """Contacts and rows per step of both engines, * when the rows differ by over 2%."""
+    (c1, r1), (c2, r2) = (workload.get((e, path), (None, None)) for e in ("simlab", "mujoco"))
+    if None in (c1, r1, c2, r2):
+        return f"{'-':>13s} {'-':>13s}  "
+    differs = abs(r1 - r2) > 0.02 * max(r1, r2, 1)
+    return f"{c1:6.1f}/{c2:<6.1f} {r1:6.0f}/{r2:<6.0f} {'*' if differs else ' '}"
 
 engines = {
     "simlab": lambda f, n: [simlab, "bench", f, "--steps", str(n)]
@@ -141,7 +166,7 @@ def fmt(x, w, digits=0):
     return f"{x:{w}.{digits}f}" if x else f"{'-':>{w}s}"
 
 print(f"{'model':20s} {'simlab':>9s} {'MuJoCo 3.12':>12s} {'ratio':>6s} {'(median)':>9s}"
-      + (f"   {'2.2.2':>9s} {'ratio':>6s}" if old else ""))
+      + f"  {'contacts':>13s} {'rows':>13s}  " + (f"   {'2.2.2':>9s} {'ratio':>6s}" if old else ""))
 for name, path, steps in models:
     if only and name != only:
         continue
@@ -158,9 +183,11 @@ for name, path, steps in models:
         return (best["simlab"] / best[e] if best["simlab"] and best[e] else None,
                 statistics.median(rs) if rs else None)
     ratio, median = ratios("mujoco")
-    line = f"{name:20s} {fmt(best['simlab'], 9)} {fmt(best['mujoco'], 12)} {fmt(ratio, 6, 2)} {fmt(median, 9, 2)}"
+    line = (f"{name:20s} {fmt(best['simlab'], 9)} {fmt(best['mujoco'], 12)} {fmt(ratio, 6, 2)} "
+            f"{fmt(median, 9, 2)}  {workload_columns(path)}")
     if old:
         r2, _ = ratios("2.2.2")
         line += f"   {fmt(best['2.2.2'], 9)} {fmt(r2, 6, 2)}"
     print(line, flush=True)
+print("\ncontacts, rows: per step, simlab/MuJoCo 3.12; * the rows differ by over 2% (different work)")
 PY
