@@ -22,18 +22,6 @@ bool IsDirect(int type) { return type == kFcompDirect || type == kFcompMesh || t
 bool IsInterpolated(int dof) { return dof == kFcompDofTrilinear || dof == kFcompDofQuadratic; }
 int InterpolationOrder(int dof) { return dof == kFcompDofTrilinear ? 1 : dof == kFcompDofQuadratic ? 2 : 0; }
 
-// The edge equality that keeps an interpolated flex's strain (MuJoCo 3.12's "strain").
-constexpr int kFcompEqualityStrain = 3;
-
-// Does this flexcomp follow MuJoCo 3.12's cells (an interpolated flex with more than one
-// cell, a shell: 2D elasticity, or strain equality)? Others expand as MuJoCo 3.5.1 does.
-bool UsesCells(const FlexcompSpec& fc) {
-  if (!IsInterpolated(fc.dof)) return false;
-  const std::array<int, 3>& c = fc.cellcount;
-  bool many = c[0] >= 0 && c[0] * c[1] * c[2] > 1;
-  return many || fc.flex.elastic2d != kElastic2DNone || fc.equality == kFcompEqualityStrain;
-}
-
 // The lattice of an interpolated flexcomp's nodes (one cell unless cellcount says).
 FlexLattice NodeLattice(const FlexcompSpec& fc) {
   FlexLattice g;
@@ -537,8 +525,9 @@ void Reader::MakeFlexcomp(const XmlElement& e, FlexcompSpec* fc, BodySpec* body,
     }
   }
   // (a model that follows MuJoCo 3.12 lays out every interpolated flexcomp's nodes as 3.12
-  // does: masses shared by the nodes that move)
-  bool cell_nodes = IsInterpolated(fc->dof) && (UsesCells(*fc) || !spec_->newer_construct.tag.empty());
+  // does, masses shared by the nodes that move; a flexcomp with cells, a shell or strain
+  // equality always makes the model follow 3.12: Reader::FindNewerConstruct)
+  bool cell_nodes = IsInterpolated(fc->dof) && !spec_->newer_construct.tag.empty();
   int nnode = 0;
   if (IsInterpolated(fc->dof)) {
     FlexLattice g = NodeLattice(*fc);
