@@ -118,14 +118,17 @@ void SolveSparse(const Model& m, const double* ld, const double* diag_inv, doubl
 void MulSymLayout(int nv, const int* rownnz, const int* rowadr, const int* colind,
                   const double* mat, const double* vec, double* res) {
   // Diagonal first, then the off-diagonals from the nearest ancestor out (MuJoCo's order).
-  for (int i = 0; i < nv; i++) res[i] = 0;
+  // Row i's own sum is held in a register: the rows before it only add to their ancestors
+  // (columns below theirs), so nothing else touches res[i] until row i is done, and every
+  // res[c] with c < i is already started when row i adds to it.
   for (int i = 0; i < nv; i++) {
     int adr = rowadr[i], end = adr + rownnz[i] - 1;
-    res[i] = mat[end] * vec[i];
+    double vi = vec[i], sum = mat[end] * vi;
     for (int k = end - 1; k >= adr; k--) {
-      res[i] += mat[k] * vec[colind[k]];
-      res[colind[k]] += mat[k] * vec[i];
+      sum += mat[k] * vec[colind[k]];
+      res[colind[k]] += mat[k] * vi;
     }
+    res[i] = sum;
   }
 }
 

@@ -542,6 +542,48 @@ void AddHessianRow(const Primal& s, int r, double* dense) {
   }
 }
 
+// The quadratic rows from r on that hold the same columns as r (a contact's rows), at
+// most kHessianGroup of them.
+constexpr int kHessianGroup = 4;
+int QuadraticRowGroup(const Primal& s, int r) {
+  int g = 1;
+  while (g < kHessianGroup && r + g < s.p.nefc && s.p.state[r + g] == kStateQuadratic &&
+         RepeatsRowBefore(s.rows, r + g)) {
+    g++;
+  }
+  return g;
+}
+
+// Adds the G rows' J^T D J into the lower triangle h: each entry takes the rows' products
+// in row order, as one row at a time would (the same sums), but is loaded once.
+template <int G>
+void AddHessianGroup(const Primal& s, int r, double* h) {
+  const ConstraintProblem& p = s.p;
+  int nv = p.nv, nnz = s.rows.rownnz[r];
+  const int* cols = s.rows.colind + s.rows.rowadr[r];
+  const double* vals[G];
+  for (int q = 0; q < G; q++) vals[q] = s.rows.values + s.rows.rowadr[r + q];
+  for (int a = 0; a < nnz; a++) {
+    double scaled[G];
+    for (int q = 0; q < G; q++) scaled[q] = vals[q][a] * p.D[r + q];
+    double* row = h + static_cast<size_t>(cols[a]) * nv;
+    for (int b = 0; b <= a; b++) {
+      double sum = row[cols[b]];
+      for (int q = 0; q < G; q++) sum += scaled[q] * vals[q][b];
+      row[cols[b]] = sum;
+    }
+  }
+}
+
+void AddHessianGroup(const Primal& s, int r, int g, double* h) {
+  switch (g) {
+    case 4: return AddHessianGroup<4>(s, r, h);
+    case 3: return AddHessianGroup<3>(s, r, h);
+    case 2: return AddHessianGroup<2>(s, r, h);
+    default: return AddHessianGroup<1>(s, r, h);
+  }
+}
+
 // H = M + J^T D J over the rows in the quadratic state, dense (lower triangle).
 void AssembleDenseHessian(Primal& s) {
   ConstraintProblem& p = s.p;
@@ -551,12 +593,9 @@ void AssembleDenseHessian(Primal& s) {
   // (only the rows' nonzeros: the zeros would add exact zeros to the same sums)
   for (int r = 0; r < p.nefc; r++) {
     if (p.state[r] != kStateQuadratic) continue;
-    const double* vals = s.rows.values + s.rows.rowadr[r];
-    const int* cols = s.rows.colind + s.rows.rowadr[r];
-    for (int a = 0; a < s.rows.rownnz[r]; a++) {
-      double scaled = vals[a] * p.D[r];
-      for (int b = 0; b <= a; b++) h[cols[a] * nv + cols[b]] += scaled * vals[b];
-    }
+    int g = QuadraticRowGroup(s, r);
+    AddHessianGroup(s, r, g, h);
+    r += g - 1;
   }
   for (int i = 0; i < nv; i++) {
     for (int k = p.M_rowadr[i]; k < p.M_rowadr[i] + p.M_rownnz[i]; k++) {
