@@ -186,6 +186,29 @@ bool SpheresApart(const Model& m, const Data& d, int g1, int g2, double margin) 
   return m.geom_type[g2] == kGeomPlane && r1 > 0 && PlaneGeomDist(d, g2, g1) > margin + r1;
 }
 
+// Is either box infinite in every direction (then the boxes are never apart)? Records
+// which are infinite in some direction (planes: the other box's faces are not tested).
+bool AnyBoxEverywhere(const double* const aabb[2], bool infinite[2]) {
+  for (int i = 0; i < 2; i++) {
+    const double* half = aabb[i] + 3;
+    if (half[0] >= kMaxVal && half[1] >= kMaxVal && half[2] >= kMaxVal) return true;
+    infinite[i] = half[0] >= kMaxVal || half[1] >= kMaxVal || half[2] >= kMaxVal;
+  }
+  return false;
+}
+
+// Are the boxes apart along one face normal, given how each box's axes project on it
+// (along[i]) and where each box's centre projects (proj[i])?
+bool ApartAlong(const double* const aabb[2], const double along[2][3], const double proj[2],
+                double margin) {
+  double radius[2];
+  for (int i = 0; i < 2; i++) {
+    radius[i] = std::abs(aabb[i][3] * along[i][0]) + std::abs(aabb[i][4] * along[i][1]) +
+                std::abs(aabb[i][5] * along[i][2]);
+  }
+  return radius[0] + radius[1] + margin < std::abs(proj[1] - proj[0]);
+}
+
 // True when two oriented boxes (aabb: centre and half sizes in a frame at pos with
 // axes mat) are farther than margin apart along one of their six face normals (MuJoCo's
 // mj_collideOBB, with its arithmetic: a box infinite in every direction is never apart,
@@ -200,12 +223,7 @@ bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* m
   const double* mat[2] = {mat1, mat2};
   const double* pos[2] = {pos1, pos2};
   bool infinite[2];
-  for (int i = 0; i < 2; i++) {
-    const double* half = aabb[i] + 3;
-    bool everywhere = half[0] >= kMaxVal && half[1] >= kMaxVal && half[2] >= kMaxVal;
-    if (everywhere) return false;
-    infinite[i] = half[0] >= kMaxVal || half[1] >= kMaxVal || half[2] >= kMaxVal;
-  }
+  if (AnyBoxEverywhere(aabb, infinite)) return false;
   // Box centres in the world, and each box's axes (columns of its frame).
   double centre[2][3], axis[2][3][3];
   for (int i = 0; i < 2; i++) {
@@ -220,18 +238,69 @@ bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* m
     if (infinite[1 - j]) continue;
     for (int k = 0; k < 3; k++) {
       const double* normal = axis[j][k];
-      double proj[2], radius[2];
+      double along[2][3], proj[2];
       for (int i = 0; i < 2; i++) {
-        double along[3] = {math::Dot3(axis[i][0], normal), math::Dot3(axis[i][1], normal),
-                           math::Dot3(axis[i][2], normal)};
+        for (int l = 0; l < 3; l++) along[i][l] = math::Dot3(axis[i][l], normal);
         const double* c = aabb[i];
         proj[i] = projection == Projection::kFromOrigins
-                      ? c[0] * along[0] + c[1] * along[1] + c[2] * along[2] + math::Dot3(pos[i], normal)
+                      ? c[0] * along[i][0] + c[1] * along[i][1] + c[2] * along[i][2] +
+                            math::Dot3(pos[i], normal)
                       : math::Dot3(centre[i], normal);
-        radius[i] = std::abs(aabb[i][3] * along[0]) + std::abs(aabb[i][4] * along[1]) +
-                    std::abs(aabb[i][5] * along[2]);
       }
-      if (radius[0] + radius[1] + margin < std::abs(proj[1] - proj[0])) return true;
+      if (ApartAlong(aabb, along, proj, margin)) return true;
+    }
+  }
+  return false;
+}
+
+// What every node pair of two bodies' trees shares (MuJoCo's product and offset, taken
+// once per body pair): how axis l of body i's frame projects on axis k of body j's, and
+// body i's origin on it.
+struct FramePair {
+  double product[2][2][3][3];  // [i][j][k][l]
+  double offset[2][2][3];      // [i][j][k]
+};
+
+FramePair MakeFramePair(const double* pos1, const double* mat1, const double* pos2,
+                        const double* mat2) {
+  const double* pos[2] = {pos1, pos2};
+  const double* mat[2] = {mat1, mat2};
+  double axis[2][3][3];
+  for (int i = 0; i < 2; i++) {
+    for (int j = 0; j < 3; j++) {
+      for (int k = 0; k < 3; k++) axis[i][j][k] = mat[i][3 * k + j];
+    }
+  }
+  FramePair f;
+  for (int i = 0; i < 2; i++) {
+    for (int j = 0; j < 2; j++) {
+      for (int k = 0; k < 3; k++) {
+        for (int l = 0; l < 3; l++) f.product[i][j][k][l] = math::Dot3(axis[i][l], axis[j][k]);
+        f.offset[i][j][k] = math::Dot3(pos[i], axis[j][k]);
+      }
+    }
+  }
+  return f;
+}
+
+// OrientedBoxesApart from the origins (kFromOrigins) for two boxes in the frames of f:
+// the same numbers, with the products looked up.
+bool BoxesApartInFrames(const double* aabb1, const double* aabb2, const FramePair& f,
+                        double margin) {
+  const double* aabb[2] = {aabb1, aabb2};
+  bool infinite[2];
+  if (AnyBoxEverywhere(aabb, infinite)) return false;
+  for (int j = 0; j < 2; j++) {
+    if (infinite[1 - j]) continue;
+    for (int k = 0; k < 3; k++) {
+      double along[2][3], proj[2];
+      for (int i = 0; i < 2; i++) {
+        const double* product = f.product[i][j][k];
+        const double* c = aabb[i];
+        for (int l = 0; l < 3; l++) along[i][l] = product[l];
+        proj[i] = c[0] * product[0] + c[1] * product[1] + c[2] * product[2] + f.offset[i][j][k];
+      }
+      if (ApartAlong(aabb, along, proj, margin)) return true;
     }
   }
   return false;
@@ -558,10 +627,11 @@ int LeafGeom(const Model& m, int b, int node) {
 }
 
 // Do the boxes of node n1 of body b1's tree and node n2 of b2's overlap (within margin)?
-bool NodesOverlap(const Model& m, const Data& d, int b1, int n1, int b2, int n2, double margin) {
-  return !OrientedBoxesApart(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)], &d.xipos[3 * b1],
-                             &d.ximat[9 * b1], &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)],
-                             &d.xipos[3 * b2], &d.ximat[9 * b2], margin, Projection::kFromOrigins);
+// (frames: the two bodies' inertial frames)
+bool NodesOverlap(const Model& m, const FramePair& frames, int b1, int n1, int b2, int n2,
+                  double margin) {
+  return !BoxesApartInFrames(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)],
+                             &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)], frames, margin);
 }
 
 // The surface area of node n of body b's box, over 8 (from its half sizes).
@@ -620,6 +690,8 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
   int* stack = ints.IntsToWrite(2 * static_cast<size_t>(m.body_bvhnum[b1] + m.body_bvhnum[b2]));
   int nstack = 1;
   stack[0] = stack[1] = 0;
+  FramePair frames;
+  bool have_frames = false;  // (made at the first inner node, as MuJoCo's initialize)
   while (nstack) {
     nstack--;
     int n1 = stack[2 * nstack], n2 = stack[2 * nstack + 1];
@@ -632,7 +704,11 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
       }
       continue;
     }
-    if (!NodesOverlap(m, d, b1, n1, b2, n2, margin)) continue;
+    if (!have_frames) {
+      frames = MakeFramePair(&d.xipos[3 * b1], &d.ximat[9 * b1], &d.xipos[3 * b2], &d.ximat[9 * b2]);
+      have_frames = true;
+    }
+    if (!NodesOverlap(m, frames, b1, n1, b2, n2, margin)) continue;
     // Open node 1 or node 2: push its children.
     bool open1 = leaf2 >= 0 || (leaf1 < 0 && NodeArea(m, b1, n1) > NodeArea(m, b2, n2));
     int opened = open1 ? m.body_bvhadr[b1] + n1 : m.body_bvhadr[b2] + n2;
