@@ -608,8 +608,9 @@ void CheckFollowsNewerMuJoCo(const Model& m, const mjcf::ModelSpec& spec,
                   "<" + at.tag + (at.name.empty() ? "" : " \"" + at.name + "\"") + ">", at.file,
                   at.line, why,
                   "MuJoCo 3.5.1 cannot run this model, so simlab follows MuJoCo 3.12 where the "
-                  "two differ: flex contacts thinned to 50 per collision pair, 3.12's solver "
-                  "iteration and rounding, implicitfast's own solve of free bodies.",
+                  "two differ: flex contacts thinned to 50 per collision pair, 3.12's convex "
+                  "collider (GJK, EPA), 3.12's solver iteration and rounding, implicitfast's "
+                  "own solve of free bodies.",
                   "compare it with MuJoCo 3.12 or newer, not 3.5.1.", "", -1});
 }
 
