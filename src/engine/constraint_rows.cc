@@ -517,10 +517,11 @@ void ContactRows(const Model& m, Data& d) {
     }
   }
   if (m.nv == 0) return;
+  // (each contact writes the parts of these it reads: ContactJacobian)
   StackFrame frame(d);
-  double* jac = frame.Alloc(6 * static_cast<size_t>(m.nv));
-  double* edges = frame.Alloc(2 * static_cast<size_t>(m.nv));
-  double* scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
+  double* jac = frame.AllocToWrite(6 * static_cast<size_t>(m.nv));
+  double* edges = frame.AllocToWrite(2 * static_cast<size_t>(m.nv));
+  double* scratch = frame.AllocToWrite(12 * static_cast<size_t>(m.nv));
   SolverFrame ints(d.solver_scratch);
   int* index = ints.Ints(m.nv);
   bool sparse = SparseJacobian(m);
@@ -850,8 +851,8 @@ void PassiveContactForces(const Model& m, Data& d) {
     Contact& c = d.contact[i];
     if (c.exclude != 4) continue;
     if (!jac) {
-      jac = frame.Alloc(6 * static_cast<size_t>(m.nv));
-      scratch = frame.Alloc(12 * static_cast<size_t>(m.nv));
+      jac = frame.AllocToWrite(6 * static_cast<size_t>(m.nv));
+      scratch = frame.AllocToWrite(12 * static_cast<size_t>(m.nv));
       index = ints.Ints(m.nv);
     }
     c.efc_address = -1;

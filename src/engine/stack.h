@@ -2,6 +2,7 @@
 //
 //   StackFrame frame(d);
 //   double* tmp = frame.Alloc(6 * m.nbody);   // valid until `frame` goes out of scope
+//   double* out = frame.AllocToWrite(m.nv);   // the same, not cleared
 #ifndef SIMLAB_ENGINE_STACK_H_
 #define SIMLAB_ENGINE_STACK_H_
 
@@ -29,6 +30,14 @@ class StackFrame {
   // the heap (outer frames' pointers stay valid) and records the peak, to which the
   // stack grows before the next public call (GrowStack).
   double* Alloc(size_t n) {
+    double* p = AllocToWrite(n);
+    for (size_t k = 0; k < n; k++) p[k] = 0;
+    return p;
+  }
+
+  // n doubles to be written before they are read (not cleared: their values are left
+  // from earlier frames).
+  double* AllocToWrite(size_t n) {
     double* p;
     if (d_.stack_top + n <= d_.stack.size()) {
       p = d_.stack.data() + d_.stack_top;
@@ -40,7 +49,6 @@ class StackFrame {
       d_.stack_overflow += n;
       d_.stack_peak = std::max(d_.stack_peak, d_.stack.size() + d_.stack_overflow);
     }
-    for (size_t k = 0; k < n; k++) p[k] = 0;
     return p;
   }
 
