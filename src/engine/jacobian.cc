@@ -76,6 +76,7 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
 }
 
 int MergedDofChains(const Model& m, const int* bodies, int nbodies, int* dofs) {
+  if (nbodies == 2) return MergedDofChain(m, bodies[0], bodies[1], dofs);
   // Every chain walked up together (descending dof indices): the highest cursor's dof is
   // taken once and every cursor on it moves to its parent, so shared ancestors come once;
   // then the list is turned ascending.
@@ -95,10 +96,17 @@ int MergedDofChains(const Model& m, const int* bodies, int nbodies, int* dofs) {
   return n;
 }
 
-// Two bodies' chains: the merge of two.
+// Two bodies' chains (a contact's, most often): the same walk with two cursors.
 int MergedDofChain(const Model& m, int b0, int b1, int* dofs) {
-  const int bodies[2] = {b0, b1};
-  return MergedDofChains(m, bodies, 2, dofs);
+  int c0 = LastDof(m, b0), c1 = LastDof(m, b1), n = 0;
+  while (c0 >= 0 || c1 >= 0) {
+    int next = std::max(c0, c1);
+    dofs[n++] = next;
+    if (c0 == next) c0 = m.dof_parentid[next];
+    if (c1 == next) c1 = m.dof_parentid[next];
+  }
+  std::reverse(dofs, dofs + n);
+  return n;
 }
 
 void JacobianSite(const Model& m, const Data& d, double* jacp, double* jacr, int site) {
