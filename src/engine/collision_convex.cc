@@ -374,12 +374,7 @@ int MorePlaneMeshContacts(const Model& m, const ConvexShape& s, Contact* con,
 
 int QueryContacts(const Model& m, ccd::ConvexShape* s1, ccd::ConvexShape* s2, Contact* con,
                   int max_contacts, double margin) {
-  ccd::CcdConfig config;
-  config.max_iterations = m.opt.ccd_iterations;
-  config.tolerance = m.opt.ccd_tolerance;
-  config.max_contacts = max_contacts;
-  config.dist_cutoff = 0;
-  config.newer = m.release == Release::k3_12;
+  ccd::CcdConfig config = ccd::ModelConfig(m, max_contacts, 0);
   ccd::CcdStatus status;
   double dist = ccd::Collide(config, &status, s1, s2);
   if (!(dist < 0)) return 0;
@@ -408,6 +403,16 @@ void ccd::SegmentSupport(double res[3], ConvexShape* s, const double dir[3]) {
   res[0] = s->mat[2] * half + s->pos[0];
   res[1] = s->mat[5] * half + s->pos[1];
   res[2] = s->mat[8] * half + s->pos[2];
+}
+
+ccd::CcdConfig ccd::ModelConfig(const Model& m, int max_contacts, double dist_cutoff) {
+  CcdConfig config;
+  config.max_iterations = m.opt.ccd_iterations;
+  config.tolerance = m.opt.ccd_tolerance;
+  config.max_contacts = max_contacts;
+  config.dist_cutoff = dist_cutoff;
+  config.newer = m.release == Release::k3_12;
+  return config;
 }
 
 ConvexShape ccd::GeomShape(const Model& m, const Data& d, int g, double margin) {

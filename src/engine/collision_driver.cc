@@ -211,14 +211,13 @@ bool ApartAlong(const double* const aabb[2], const double along[2][3], const dou
 
 // True when two oriented boxes (aabb: centre and half sizes in a frame at pos with
 // axes mat) are farther than margin apart along one of their six face normals (MuJoCo's
-// mj_collideOBB, with its arithmetic: a box infinite in every direction is never apart,
-// and the faces of a box are not tested against one infinite in some direction).
-// The centres' projections come from the centres (geoms), or, as MuJoCo computes them
-// for tree nodes, from the frame origins' projections and the axes' products.
-enum class Projection { kFromCentres, kFromOrigins };
+// mj_collideOBB without its shared products, with its arithmetic: a box infinite in every
+// direction is never apart, and the faces of a box are not tested against one infinite in
+// some direction). The centres' projections come from the centres (geoms); tree walks
+// take them from the frames' shared products (TreeFrames).
 bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* mat1,
                         const double* aabb2, const double* pos2, const double* mat2,
-                        double margin, Projection projection) {
+                        double margin) {
   const double* aabb[2] = {aabb1, aabb2};
   const double* mat[2] = {mat1, mat2};
   const double* pos[2] = {pos1, pos2};
@@ -241,64 +240,7 @@ bool OrientedBoxesApart(const double* aabb1, const double* pos1, const double* m
       double along[2][3], proj[2];
       for (int i = 0; i < 2; i++) {
         for (int l = 0; l < 3; l++) along[i][l] = math::Dot3(axis[i][l], normal);
-        const double* c = aabb[i];
-        proj[i] = projection == Projection::kFromOrigins
-                      ? c[0] * along[i][0] + c[1] * along[i][1] + c[2] * along[i][2] +
-                            math::Dot3(pos[i], normal)
-                      : math::Dot3(centre[i], normal);
-      }
-      if (ApartAlong(aabb, along, proj, margin)) return true;
-    }
-  }
-  return false;
-}
-
-// What every node pair of two bodies' trees shares (MuJoCo's product and offset, taken
-// once per body pair): how axis l of body i's frame projects on axis k of body j's, and
-// body i's origin on it.
-struct FramePair {
-  double product[2][2][3][3];  // [i][j][k][l]
-  double offset[2][2][3];      // [i][j][k]
-};
-
-FramePair MakeFramePair(const double* pos1, const double* mat1, const double* pos2,
-                        const double* mat2) {
-  const double* pos[2] = {pos1, pos2};
-  const double* mat[2] = {mat1, mat2};
-  double axis[2][3][3];
-  for (int i = 0; i < 2; i++) {
-    for (int j = 0; j < 3; j++) {
-      for (int k = 0; k < 3; k++) axis[i][j][k] = mat[i][3 * k + j];
-    }
-  }
-  FramePair f;
-  for (int i = 0; i < 2; i++) {
-    for (int j = 0; j < 2; j++) {
-      for (int k = 0; k < 3; k++) {
-        for (int l = 0; l < 3; l++) f.product[i][j][k][l] = math::Dot3(axis[i][l], axis[j][k]);
-        f.offset[i][j][k] = math::Dot3(pos[i], axis[j][k]);
-      }
-    }
-  }
-  return f;
-}
-
-// OrientedBoxesApart from the origins (kFromOrigins) for two boxes in the frames of f:
-// the same numbers, with the products looked up.
-bool BoxesApartInFrames(const double* aabb1, const double* aabb2, const FramePair& f,
-                        double margin) {
-  const double* aabb[2] = {aabb1, aabb2};
-  bool infinite[2];
-  if (AnyBoxEverywhere(aabb, infinite)) return false;
-  for (int j = 0; j < 2; j++) {
-    if (infinite[1 - j]) continue;
-    for (int k = 0; k < 3; k++) {
-      double along[2][3], proj[2];
-      for (int i = 0; i < 2; i++) {
-        const double* product = f.product[i][j][k];
-        const double* c = aabb[i];
-        for (int l = 0; l < 3; l++) along[i][l] = product[l];
-        proj[i] = c[0] * product[0] + c[1] * product[1] + c[2] * product[2] + f.offset[i][j][k];
+        proj[i] = math::Dot3(centre[i], normal);
       }
       if (ApartAlong(aabb, along, proj, margin)) return true;
     }
@@ -310,7 +252,7 @@ bool BoxesApartInFrames(const double* aabb1, const double* aabb2, const FramePai
 bool BoxesApart(const Model& m, const Data& d, int g1, int g2, double margin) {
   return OrientedBoxesApart(&m.geom_aabb[6 * g1], &d.geom_xpos[3 * g1], &d.geom_xmat[9 * g1],
                             &m.geom_aabb[6 * g2], &d.geom_xpos[3 * g2], &d.geom_xmat[9 * g2],
-                            margin, Projection::kFromCentres);
+                            margin);
 }
 
 // Is the point outside box (pos, mat, size) inflated by `ratio` (1), inside the box
@@ -628,10 +570,10 @@ int LeafGeom(const Model& m, int b, int node) {
 
 // Do the boxes of node n1 of body b1's tree and node n2 of b2's overlap (within margin)?
 // (frames: the two bodies' inertial frames)
-bool NodesOverlap(const Model& m, const FramePair& frames, int b1, int n1, int b2, int n2,
+bool NodesOverlap(const Model& m, TreeFrames& frames, int b1, int n1, int b2, int n2,
                   double margin) {
-  return !BoxesApartInFrames(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)],
-                             &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)], frames, margin);
+  return !frames.Apart(&m.bvh_aabb[6 * (m.body_bvhadr[b1] + n1)],
+                       &m.bvh_aabb[6 * (m.body_bvhadr[b2] + n2)], margin);
 }
 
 // The surface area of node n of body b's box, over 8 (from its half sizes).
@@ -690,8 +632,7 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
   int* stack = ints.IntsToWrite(2 * static_cast<size_t>(m.body_bvhnum[b1] + m.body_bvhnum[b2]));
   int nstack = 1;
   stack[0] = stack[1] = 0;
-  FramePair frames;
-  bool have_frames = false;  // (made at the first inner node, as MuJoCo's initialize)
+  TreeFrames frames(&d.xipos[3 * b1], &d.ximat[9 * b1], &d.xipos[3 * b2], &d.ximat[9 * b2]);
   while (nstack) {
     nstack--;
     int n1 = stack[2 * nstack], n2 = stack[2 * nstack + 1];
@@ -703,10 +644,6 @@ void CollideTrees(const Model& m, Data& d, int b1, int b2, int start, int end) {
         CollideUnlessPaired(m, d, leaf1, leaf2, start, end);
       }
       continue;
-    }
-    if (!have_frames) {
-      frames = MakeFramePair(&d.xipos[3 * b1], &d.ximat[9 * b1], &d.xipos[3 * b2], &d.ximat[9 * b2]);
-      have_frames = true;
     }
     if (!NodesOverlap(m, frames, b1, n1, b2, n2, margin)) continue;
     // Open node 1 or node 2: push its children.
@@ -814,15 +751,59 @@ bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin) {
   return false;
 }
 
+// (the world's axes and origin give MuJoCo's numbers for a missing frame exactly)
+constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+constexpr double kOrigin[3] = {0, 0, 0};
+
 bool BoxesApartOriented(const double* aabb1, const double* pos1, const double* mat1,
                         const double* aabb2, const double* pos2, const double* mat2,
-                        double margin, bool from_origins) {
-  // (the world's axes and origin give MuJoCo's numbers for a missing frame exactly)
-  static constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  static constexpr double kOrigin[3] = {0, 0, 0};
+                        double margin) {
   return OrientedBoxesApart(aabb1, pos1 ? pos1 : kOrigin, mat1 ? mat1 : kIdentity, aabb2,
-                            pos2 ? pos2 : kOrigin, mat2 ? mat2 : kIdentity, margin,
-                            from_origins ? Projection::kFromOrigins : Projection::kFromCentres);
+                            pos2 ? pos2 : kOrigin, mat2 ? mat2 : kIdentity, margin);
+}
+
+TreeFrames::TreeFrames(const double* pos1, const double* mat1, const double* pos2,
+                       const double* mat2)
+    : pos_{pos1 ? pos1 : kOrigin, pos2 ? pos2 : kOrigin},
+      mat_{mat1 ? mat1 : kIdentity, mat2 ? mat2 : kIdentity} {}
+
+void TreeFrames::Make() {
+  double axis[2][3][3];
+  for (int i = 0; i < 2; i++) {
+    for (int j = 0; j < 3; j++) {
+      for (int k = 0; k < 3; k++) axis[i][j][k] = mat_[i][3 * k + j];
+    }
+  }
+  for (int i = 0; i < 2; i++) {
+    for (int j = 0; j < 2; j++) {
+      for (int k = 0; k < 3; k++) {
+        for (int l = 0; l < 3; l++) product_[i][j][k][l] = math::Dot3(axis[i][l], axis[j][k]);
+        offset_[i][j][k] = math::Dot3(pos_[i], axis[j][k]);
+      }
+    }
+  }
+  made_ = true;
+}
+
+bool TreeFrames::Apart(const double* aabb1, const double* aabb2, double margin) {
+  const double* aabb[2] = {aabb1, aabb2};
+  bool infinite[2];
+  if (AnyBoxEverywhere(aabb, infinite)) return false;
+  if (!made_) Make();
+  for (int j = 0; j < 2; j++) {
+    if (infinite[1 - j]) continue;
+    for (int k = 0; k < 3; k++) {
+      double along[2][3], proj[2];
+      for (int i = 0; i < 2; i++) {
+        const double* product = product_[i][j][k];
+        const double* c = aabb[i];
+        for (int l = 0; l < 3; l++) along[i][l] = product[l];
+        proj[i] = c[0] * product[0] + c[1] * product[1] + c[2] * product[2] + offset_[i][j][k];
+      }
+      if (ApartAlong(aabb, along, proj, margin)) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace simlab

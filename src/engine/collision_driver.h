@@ -42,11 +42,32 @@ uint64_t SweepKey(double x, int tie);
 // True when two boxes (centre, half sizes; world axes) are farther apart than margin on
 // some axis (MuJoCo's filterBox).
 bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin);
-// True when oriented boxes are apart (mj_collideOBB; see collision_driver.cc). A null
-// mat is the world's axes, a null pos the origin.
+// True when oriented boxes (centre and half sizes in a frame) are apart (mj_collideOBB
+// from the boxes' centres; see collision_driver.cc). A null mat is the world's axes, a
+// null pos the origin.
 bool BoxesApartOriented(const double* aabb1, const double* pos1, const double* mat1,
                         const double* aabb2, const double* pos2, const double* mat2,
-                        double margin, bool from_origins);
+                        double margin);
+
+// The box test of a walk over two trees whose nodes sit in two fixed frames (a body's
+// inertial frame; null for a flex's, the world's): how each frame's axes and origin
+// project on the other's axes, made once at the walk's first test and shared by every
+// node pair (MuJoCo's product and offset in mj_collideOBB, with its arithmetic).
+class TreeFrames {
+ public:
+  TreeFrames(const double* pos1, const double* mat1, const double* pos2, const double* mat2);
+  // Are node boxes aabb1 (frame 1) and aabb2 (frame 2) farther than margin apart along
+  // one of their face normals?
+  bool Apart(const double* aabb1, const double* aabb2, double margin);
+
+ private:
+  void Make();
+  const double* pos_[2];
+  const double* mat_[2];
+  bool made_ = false;
+  double product_[2][2][3][3];  // [i][j][k][l]: axis l of frame i on axis k of frame j
+  double offset_[2][2][3];      // [i][j][k]: origin of frame i on axis k of frame j
+};
 
 // ---------------------------------------------------------------- flexes (collision_flex.cc)
 

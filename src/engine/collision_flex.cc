@@ -372,19 +372,19 @@ void BodyFlexLeaves(const Model& m, Data& d, const TreeSide& s1, int node1, cons
   const double* box = s2.Box(node2);
   if (SphereOutsideBox(s, m.geom_rbound[g] + margin, box)) return;
   if (BoxesApartOriented(&m.geom_aabb[6 * g], s, &d.geom_xmat[9 * g], box, nullptr, nullptr,
-                         margin, false)) {
+                         margin)) {
     return;
   }
   if (m.geom_type[g] != kGeomPlane) CollideGeomElem(m, d, g, f, e);
 }
 
-// Do two inner nodes (or an inner node and a leaf) overlap enough to open?
-bool NodesMeet(const Model& m, const Data& d, const TreeSide& s1, int node1, const TreeSide& s2,
-               int node2) {
+// Do two inner nodes (or an inner node and a leaf) overlap enough to open? (frames: a
+// body side's inertial frame and the flex's, the world's)
+bool NodesMeet(const Model& m, TreeFrames& frames, const TreeSide& s1, int node1,
+               const TreeSide& s2, int node2) {
   if (s1.body >= 0) {
     double margin = AssignMargin(m, m.body_margin[s1.body] + m.flex_margin[s2.flex]);
-    return !BoxesApartOriented(s1.Box(node1), &d.xipos[3 * s1.body], &d.ximat[9 * s1.body],
-                               s2.Box(node2), nullptr, nullptr, margin, true);
+    return !frames.Apart(s1.Box(node1), s2.Box(node2), margin);
   }
   double margin = AssignMargin(m, m.flex_margin[s1.flex] + m.flex_margin[s2.flex]);
   return !AxisBoxesApart(s1.Box(node1), s2.Box(node2), margin);
@@ -419,6 +419,8 @@ void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
     stack[2 * nstack + 1] = n2;
     nstack++;
   };
+  TreeFrames frames(s1.body >= 0 ? &d.xipos[3 * s1.body] : nullptr,
+                    s1.body >= 0 ? &d.ximat[9 * s1.body] : nullptr, nullptr, nullptr);
   while (nstack) {
     nstack--;
     int node1 = stack[2 * nstack], node2 = stack[2 * nstack + 1];
@@ -433,7 +435,7 @@ void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
       }
       continue;
     }
-    if (!NodesMeet(m, d, s1, node1, s2, node2)) continue;
+    if (!NodesMeet(m, frames, s1, node1, s2, node2)) continue;
     bool open1 = !leaf1 && (leaf2 || OpeningArea(s1.Box(node1)) > OpeningArea(s2.Box(node2)));
     const int* child = open1 ? s1.Child(m, node1) : s2.Child(m, node2);
     for (int i = 0; i < 2; i++) {

@@ -674,9 +674,10 @@ int AddFaces(Polytope* pt, const int tri[][3], const int adj[][3], int count) {
 
 int PolytopeFromTriangle(Polytope* pt, CcdStatus* status, ConvexShape* s1, ConvexShape* s2);
 
-// The initial polytope's centre (3.12): the mean of GJK's simplex, summed in order and
-// scaled by 1/count, as 3.12 rounds it.
+// The initial polytope's centre (3.12 only; AddFace's outward test): the mean of GJK's
+// simplex, summed in order and scaled by 1/count, as 3.12 rounds it.
 void SetCenter(Polytope* pt, const double* const* points, int count) {
+  if (!pt->newer) return;
   double sum[3];
   math::Copy3(sum, points[0]);
   for (int i = 1; i < count; i++) math::Add3(sum, sum, points[i]);

@@ -108,6 +108,10 @@ enum EpaStatus : int {
   kEpaP4MissingOrigin,
 };
 
+// A query's limits from the model's options (ccd_iterations, ccd_tolerance) and the MuJoCo
+// release it follows (collision_convex.cc).
+CcdConfig ModelConfig(const Model& m, int max_contacts, double dist_cutoff);
+
 // The distance between two shapes: positive when apart (a huge value beyond the cutoff),
 // negative when penetrating, with witness points in status (MuJoCo's mjc_ccd).
 double Collide(const CcdConfig& config, CcdStatus* status, ConvexShape* s1, ConvexShape* s2);

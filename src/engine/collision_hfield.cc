@@ -175,12 +175,7 @@ bool PrismContact(const Model& m, const Prism& p, int g1, ConvexShape* shape,
                   const double* pos1, const double* mat1, Contact* con) {
   ConvexShape prism = PrismShape(p, g1);
   PrismCentre(p, prism.pos);
-  ccd::CcdConfig config;
-  config.max_iterations = m.opt.ccd_iterations;
-  config.tolerance = m.opt.ccd_tolerance;
-  config.max_contacts = 1;
-  config.dist_cutoff = 0;
-  config.newer = m.release == Release::k3_12;
+  ccd::CcdConfig config = ccd::ModelConfig(m, 1, 0);
   ccd::CcdStatus status;
   double dist = ccd::Collide(config, &status, &prism, shape);
   if (!(dist < 0)) return false;

@@ -94,12 +94,7 @@ namespace {
 // Distance by the native convex collider, which reports witness points directly.
 double ConvexDistance(const Model& m, const Data& d, int g1, int g2, double distmax,
                       double fromto[6]) {
-  ccd::CcdConfig config;
-  config.max_iterations = m.opt.ccd_iterations;
-  config.tolerance = m.opt.ccd_tolerance;
-  config.max_contacts = 1;
-  config.dist_cutoff = distmax;
-  config.newer = m.release == Release::k3_12;
+  ccd::CcdConfig config = ccd::ModelConfig(m, 1, distmax);
   ccd::ConvexShape s1 = ccd::GeomShape(m, d, g1, 0);
   ccd::ConvexShape s2 = ccd::GeomShape(m, d, g2, 0);
   ccd::CcdStatus status;

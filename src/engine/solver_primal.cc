@@ -711,6 +711,13 @@ void AddQuadratic(double total[3], const double* q) {
   total[2] += q[2];
 }
 
+// Where a friction row's x = J a - aref lies against its bound: -1 below -bound (the cost
+// linear, falling), 0 within (quadratic), 1 above (linear, rising; NaN too).
+int FrictionZone(double x, double bound) {
+  if (-bound < x && x < bound) return 0;
+  return x <= -bound ? -1 : 1;
+}
+
 // An elliptic contact's zone for normal N and squared tangent norm Tsqr (T its root):
 // free (top), quadratic in every row (bottom), or on the cone (middle).
 enum ConeZoneKind { kZoneTop = 1, kZoneBottom = 2, kZoneMiddle = 3 };
@@ -769,15 +776,15 @@ void FinishLinePoint(Primal& s, double alpha, const double total[3], double cost
 
 // A friction row's Huber cost at x: quadratic 0.5 D x^2 inside the bound, linear outside.
 double FrictionCost(double x, double f, double bound, double D) {
-  if (-bound < x && x < bound) return 0.5 * D * x * x;
-  return x <= -bound ? f * (-0.5 * bound - x) : f * (-0.5 * bound + x);
+  int zone = FrictionZone(x, bound);
+  if (zone == 0) return 0.5 * D * x * x;
+  return zone < 0 ? f * (-0.5 * bound - x) : f * (-0.5 * bound + x);
 }
 
 // A friction row's cost at x less its cost at start: within one zone, in a form without
 // cancellation; across zones, the two costs subtracted.
 double FrictionCostChange(double start, double x, double f, double bound, double D) {
-  auto zone = [bound](double y) { return -bound < y && y < bound ? 0 : (y <= -bound ? -1 : 1); };
-  int from = zone(start), to = zone(x);
+  int from = FrictionZone(start, bound), to = FrictionZone(x, bound);
   if (from == 0 && to == 0) return 0.5 * D * (x - start) * (x + start);
   if (from == -1 && to == -1) return f * (start - x);
   if (from == 1 && to == 1) return f * (x - start);
@@ -843,11 +850,12 @@ void EvalLineFromStart(Primal& s, LinePoint* point) {
       double start = s.jaref[r], dir = s.jv[r], x = start + alpha * dir;
       double f = p.frictionloss[r], D = p.D[r], bound = p.R[r] * f;
       cost += FrictionCostChange(start, x, f, bound, D);
-      if (-bound < x && x < bound) {
+      int zone = FrictionZone(x, bound);
+      if (zone == 0) {
         deriv[0] += D * x * dir;
         deriv[1] += D * dir * dir;
       } else {
-        deriv[0] += x <= -bound ? -f * dir : f * dir;
+        deriv[0] += zone < 0 ? -f * dir : f * dir;
       }
     } else if (p.type[r] == kCnstrContactElliptic) {
       const Contact& con = p.contact[p.id[r]];
@@ -888,9 +896,10 @@ void EvalLine(Primal& s, LinePoint* point) {
     } else if (r < p.ne + p.nf) {
       // Friction: quadratic inside the bound, linear outside.
       double f = p.frictionloss[r], bound = p.R[r] * f;
-      if (-bound < x && x < bound) {
+      int zone = FrictionZone(x, bound);
+      if (zone == 0) {
         AddQuadratic(total, &s.quad[3 * r]);
-      } else if (x <= -bound) {
+      } else if (zone < 0) {
         double q[3] = {f * (-0.5 * bound - s.jaref[r]), -f * s.jv[r], 0};
         AddQuadratic(total, q);
       } else {
