@@ -84,7 +84,9 @@ void MakeInertia(const Model& m, Data& d) {
   // qM: the same numbers in MuJoCo's legacy layout (diagonal first, then ancestors).
   for (int i = 0; i < m.nv; i++) {
     int n = m.M_rownnz[i];
-    for (int k = 0; k < n; k++) d.qM[m.dof_Madr[i] + k] = d.M[m.M_rowadr[i] + n - 1 - k];
+    double* to = &d.qM[m.dof_Madr[i]];
+    const double* from = &d.M[m.M_rowadr[i] + n - 1];
+    for (int k = 0; k < n; k++) to[k] = from[-k];
   }
 }
 
@@ -97,12 +99,20 @@ void FactorSparse(const Model& m, double* mat, double* diag_inv) {
     double inv_d = 1 / mat[end];
     if (diag_inv) diag_inv[k] = inv_d;
 
-    // Update the rows of k's ancestors: row i -= row k * L(k,i) / D(k).
+    // Update the rows of k's ancestors: row i -= row k * L(k,i) / D(k). (Row i's columns
+    // are the first of row k's; the rows never overlap. Two entries at a time: short rows.)
+    const double* row_k = mat + start;
     for (int adr = end - 1; adr >= start; adr--) {
       int i = m.M_colind[adr];
       double scale = -mat[adr] * inv_d;
       double* row_i = mat + m.M_rowadr[i];
-      for (int t = 0; t < m.M_rownnz[i]; t++) row_i[t] += mat[start + t] * scale;
+      int n = m.M_rownnz[i], t = 0;
+      for (; t + 1 < n; t += 2) {
+        double a = row_i[t] + row_k[t] * scale, b = row_i[t + 1] + row_k[t + 1] * scale;
+        row_i[t] = a;
+        row_i[t + 1] = b;
+      }
+      if (t < n) row_i[t] += row_k[t] * scale;
     }
 
     // Row k becomes L(k, ancestors) = M(k, ancestors) / D(k).
