@@ -47,7 +47,7 @@ while [ $# -gt 0 ]; do
     --only) only=$2; shift 2 ;;
     --cpu) cpu=$2; shift 2 ;;
     --no-profiler) profiler=0; shift ;;
-    *) build=$1; shift ;;
+    *) build=$(cd "$1" && pwd); shift ;;  # (absolute: the runs start in each model's folder)
   esac
 done
 native=${MUJOCO_NATIVE:-/work/mujoco-native}

@@ -6,22 +6,26 @@
 # rebuilds it with the profile. Results are bit-identical to the normal build (the profile
 # changes code layout, inlining and branch order, never the arithmetic).
 #
-#   tools/build_pgo.sh [BUILD_DIR]     (default build-pgo; about 15 minutes on 2 cores)
+#   tools/build_pgo.sh [BUILD_DIR]     (default build-pgo; about 10 minutes on 2 cores)
 #   then: BUILD_DIR/simlab ..., or tools/bench_vs_mujoco.sh BUILD_DIR
 #
 # The two builds share BUILD_DIR: g++ finds each object's profile by the object's path.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-dir=$(mkdir -p "${1:-build-pgo}" && cd "${1:-build-pgo}" && pwd)
+here=$(cd "$(dirname "$0")/.." && pwd)
+dir=$(mkdir -p "${1:-$here/build-pgo}" && cd "${1:-$here/build-pgo}" && pwd)
+cd "$here"
 profile=$dir/pgo-profile
 jobs=${JOBS:-2}
 
+# A Release build of the command line in $dir with the given profile flags.
+build_with() {
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$1" >/dev/null
+  cmake --build "$dir" -j"$jobs" --target simlab
+}
+
 # 1. Instrumented build.
 rm -rf "$profile"
-cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_CXX_FLAGS="-fprofile-generate -fprofile-update=single -fprofile-dir=$profile" \
-      >/dev/null
-cmake --build "$dir" -j"$jobs" --target simlab
+build_with "-fprofile-generate -fprofile-update=single -fprofile-dir=$profile"
 
 # 2. Training: every model the repository simulates (a model that fails to load or runs
 #    past its time is skipped; its counts are simply not in the profile).
@@ -35,8 +39,5 @@ done
 echo "trained on $trained models"
 
 # 3. The build with the profile.
-cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_CXX_FLAGS="-fprofile-use -fprofile-partial-training -fprofile-dir=$profile -Wno-missing-profile" \
-      >/dev/null
-cmake --build "$dir" -j"$jobs" --target simlab
+build_with "-fprofile-use -fprofile-partial-training -fprofile-dir=$profile -Wno-missing-profile"
 echo "profile-guided simlab: $dir/simlab"
