@@ -42,6 +42,7 @@ struct Rollout {
   double cpu_seconds = 0;
   double contacts = 0;  // summed over the steps
   double rows = 0;
+  double iterations = 0;  // solver iterations, averaged over a step's islands, summed
 };
 
 // Steps one rollout through the control rows, timing it in thread CPU time (and its
@@ -55,6 +56,8 @@ void Simulate(const Model& m, const std::vector<double>& ctrl, int steps, bool p
     Step(m, r->d);
     r->contacts += r->d.ncon;
     r->rows += r->d.nefc;
+    // (as testspeed: a step's iterations over its islands, averaged; Data sums them)
+    r->iterations += static_cast<double>(r->d.solver_niter) / std::max(1, r->d.nisland);
   }
   r->cpu_seconds = ThreadCpuSeconds() - start;
 }
@@ -137,6 +140,10 @@ void PrintReport(std::ostream& out, const Model& m, const BenchOptions& o,
   Line(out, " Realtime factor      : %.2f x", steps * m.opt.timestep / first.cpu_seconds);
   Line(out, " Time per step        : %.2f us", 1e6 * first.cpu_seconds / steps);
   out << "\n";
+  const char* iters_line = m.opt.solver == kSolverPGS  ? " PGS iters / step     : %.2f"
+                           : m.opt.solver == kSolverCG ? " CG iters / step      : %.2f"
+                                                       : " Newton iters / step  : %.2f";
+  Line(out, iters_line, first.iterations / steps);
   Line(out, " Contacts per step    : %.2f", first.contacts / steps);
   Line(out, " Constraints per step : %.2f", first.rows / steps);
   Line(out, " Degrees of freedom   : %.0f", m.nv);

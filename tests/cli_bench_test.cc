@@ -65,7 +65,7 @@ TEST(Bench, ControlNoiseIsTestspeedsProcess) {
   EXPECT_DOUBLE_EQ(keyed[3], r * keyed[1] + (1 - r) * -4 + scale * (2 * Halton(1, 3) - 1));
 }
 
-// The report's contacts and rows per step are the rollout's, from keyframe "test".
+// The report's solver iterations, contacts and rows per step are the rollout's, from keyframe "test".
 TEST(Bench, ReportsTheRolloutsCounts) {
   const std::string model = Source("tests/conformance/contact/models/humanoid.xml");
   BenchOptions options;
@@ -80,13 +80,16 @@ TEST(Bench, ReportsTheRolloutsCounts) {
   int key = m.NameToId(kObjKey, "test");
   if (key >= 0) ResetDataKeyframe(m, d, key);
   std::vector<double> ctrl = ControlNoise(m, 300, NoiseOptions{}, key);
-  double contacts = 0, rows = 0;
+  double contacts = 0, rows = 0, iterations = 0;
   for (int s = 0; s < 300; s++) {
     std::copy_n(ctrl.begin() + s * m.nu, m.nu, d.ctrl.begin());
     Step(m, d);
     contacts += d.ncon;
     rows += d.nefc;
+    iterations += static_cast<double>(d.solver_niter) / std::max(1, d.nisland);
   }
+  EXPECT_GT(iterations, 0);
+  EXPECT_NEAR(Value(report, "Newton iters / step"), iterations / 300, 0.005);
   EXPECT_NEAR(Value(report, "Contacts per step"), contacts / 300, 0.005);
   EXPECT_NEAR(Value(report, "Constraints per step"), rows / 300, 0.005);
   EXPECT_EQ(Value(report, "Degrees of freedom"), m.nv);

@@ -24,9 +24,12 @@
 # box-box is a new SAT collider (the gantry's cube: 8 contacts per step against 3.5.1's
 # 7), multiccd is on by default and mesh-mesh pairs differ (replicate-bowl: 72.3 against
 # 78.7), and flex contacts are thinned to 50 per collision pair (flex-flag: 30.2 against
-# 57.6). So the table gives both engines' contacts and constraint rows per step (from the
-# first round) and marks with * a row whose rows differ by more than 2%: its ratio
-# compares different work.
+# 57.6), and the primal solvers stop earlier: a warm start whose duality gap is already
+# below the tolerance skips the Hessian and the iterations, and CG uses Hager-Zhang's
+# direction (replicate-bowl: 1.07 Newton iterations per step against 0.28). So the table
+# gives both engines' contacts, constraint rows and solver iterations per step (from the
+# first round) and marks with * a row whose rows differ by more than 2% or whose
+# iterations differ by more than 5%: its ratio compares different work.
 #
 # Both engines time their pipeline stages by default (testspeed installs its profiler
 # clock, mjcb_time; `simlab bench` sets Data::timer_clock): some 28 clock reads a step,
@@ -114,12 +117,19 @@ rounds = int(rounds)
 ncpu = os.cpu_count() or 1
 models = [line.split("|") for line in """$models""".splitlines()]
 
-workload = {}  # (engine, model) -> (contacts, rows) per step, from the first long run
+workload = {}  # (engine, model) -> (contacts, rows, iterations) per step, first long run
 
 def per_step(output, label):
     """The number after label in a bench or testspeed report (None if absent)."""
     for line in output.splitlines():
         if line.strip().startswith(label):
+            return float(line.split(":")[1].split()[0])
+    return None
+
+def iterations(output):
+    """Solver iterations per step ("Newton iters per step" or testspeed's "... / step")."""
+    for line in output.splitlines():
+        if " iters " in line:
             return float(line.split(":")[1].split()[0])
     return None
 
@@ -134,7 +144,8 @@ def cpu_seconds(cmd, cwd, pin, key=None):
     if key and key not in workload:
         out = done.stdout
         workload[key] = (per_step(out, "Contacts per step") or per_step(out, "Contacts / step"),
-                         per_step(out, "Constraints per step") or per_step(out, "Constraints / step"))
+                         per_step(out, "Constraints per step") or per_step(out, "Constraints / step"),
+                         iterations(out))
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 def speed(engine, path, n, pin):
@@ -147,12 +158,13 @@ def speed(engine, path, n, pin):
     return (n - n0) / (long - short)
 
 def workload_columns(path):
-    """Contacts and rows per step of both engines, * when the rows differ by over 2%."""
-    (c1, r1), (c2, r2) = (workload.get((e, path), (None, None)) for e in ("simlab", "mujoco"))
-    if None in (c1, r1, c2, r2):
-        return f"{'-':>13s} {'-':>13s}  "
-    differs = abs(r1 - r2) > 0.02 * max(r1, r2, 1)
-    return f"{c1:6.1f}/{c2:<6.1f} {r1:6.0f}/{r2:<6.0f} {'*' if differs else ' '}"
+    """Contacts, rows and solver iterations per step of both engines, * when the rows
+    differ by over 2% or the iterations by over 5%."""
+    (c1, r1, i1), (c2, r2, i2) = (workload.get((e, path), (None,) * 3) for e in ("simlab", "mujoco"))
+    if None in (c1, r1, c2, r2, i1, i2):
+        return f"{'-':>13s} {'-':>13s} {'-':>11s}  "
+    differs = abs(r1 - r2) > 0.02 * max(r1, r2, 1) or abs(i1 - i2) > 0.05 * max(i1, i2, 0.1)
+    return f"{c1:6.1f}/{c2:<6.1f} {r1:6.0f}/{r2:<6.0f} {i1:5.2f}/{i2:<5.2f} {'*' if differs else ' '}"
 
 engines = {
     "simlab": lambda f, n: [simlab, "bench", f, "--steps", str(n)]
@@ -166,7 +178,7 @@ def fmt(x, w, digits=0):
     return f"{x:{w}.{digits}f}" if x else f"{'-':>{w}s}"
 
 print(f"{'model':20s} {'simlab':>9s} {'MuJoCo 3.12':>12s} {'ratio':>6s} {'(median)':>9s}"
-      + f"  {'contacts':>13s} {'rows':>13s}  " + (f"   {'2.2.2':>9s} {'ratio':>6s}" if old else ""))
+      + f"  {'contacts':>13s} {'rows':>13s} {'iterations':>11s}  " + (f"   {'2.2.2':>9s} {'ratio':>6s}" if old else ""))
 for name, path, steps in models:
     if only and name != only:
         continue
@@ -189,5 +201,6 @@ for name, path, steps in models:
         r2, _ = ratios("2.2.2")
         line += f"   {fmt(best['2.2.2'], 9)} {fmt(r2, 6, 2)}"
     print(line, flush=True)
-print("\ncontacts, rows: per step, simlab/MuJoCo 3.12; * the rows differ by over 2% (different work)")
+print("\ncontacts, rows, solver iterations: per step, simlab/MuJoCo 3.12; * the rows differ by over 2%"
+      "\nor the iterations by over 5% (different work)")
 PY
