@@ -5,6 +5,9 @@ cd "$(dirname "$0")/.."
 bash tools/install_deps.sh
 # Everything is installed here, so the browser tests must run, not skip.
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSIMLAB_REQUIRE_BROWSER_TESTS=ON >/dev/null
+# The engine and the command line profile-guided (as tools/run.sh builds them; the suite
+# below checks that build), then everything else.
+bash tools/build_pgo.sh build
 cmake --build build -j2
 # The engine in WebAssembly (web/dist), which ctest compares with the native build.
 bash tools/build_wasm.sh
