@@ -741,16 +741,6 @@ uint64_t SweepKey(double x, int tie) {
   return (static_cast<uint64_t>(bits) << 32) | static_cast<uint32_t>(tie);
 }
 
-bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin) {
-  for (int k = 0; k < 3; k++) {
-    if (aabb1[k] + aabb1[k + 3] + margin < aabb2[k] - aabb2[k + 3]) return true;
-  }
-  for (int k = 0; k < 3; k++) {
-    if (aabb2[k] + aabb2[k + 3] + margin < aabb1[k] - aabb1[k + 3]) return true;
-  }
-  return false;
-}
-
 // (the world's axes and origin give MuJoCo's numbers for a missing frame exactly)
 constexpr double kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
 constexpr double kOrigin[3] = {0, 0, 0};

@@ -41,7 +41,16 @@ void SortContacts(Data& d, int first);
 uint64_t SweepKey(double x, int tie);
 // True when two boxes (centre, half sizes; world axes) are farther apart than margin on
 // some axis (MuJoCo's filterBox).
-bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin);
+// (inline: the flexes' element pairs call it thousands of times a step)
+inline bool AxisBoxesApart(const double* aabb1, const double* aabb2, double margin) {
+  for (int k = 0; k < 3; k++) {
+    if (aabb1[k] + aabb1[k + 3] + margin < aabb2[k] - aabb2[k + 3]) return true;
+  }
+  for (int k = 0; k < 3; k++) {
+    if (aabb2[k] + aabb2[k + 3] + margin < aabb1[k] - aabb1[k + 3]) return true;
+  }
+  return false;
+}
 // True when oriented boxes (centre and half sizes in a frame) are apart (mj_collideOBB
 // from the boxes' centres; see collision_driver.cc). A null mat is the world's axes, a
 // null pos the origin.

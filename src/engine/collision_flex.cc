@@ -215,10 +215,13 @@ void CollideElems(const Model& m, Data& d, int f1, int e1, int f2, int e2) {
   int dim1 = m.flex_dim[f1], dim2 = m.flex_dim[f2];
   const int* vert1 = ElementVertices(m, f1, e1);
   const int* vert2 = ElementVertices(m, f2, e2);
+  int bodies2[4];
+  for (int i2 = 0; i2 <= dim2; i2++) bodies2[i2] = VertexBody(m, f2, vert2[i2]);
   for (int i1 = 0; i1 <= dim1; i1++) {
     int b1 = VertexBody(m, f1, vert1[i1]);
+    if (b1 < 0) continue;
     for (int i2 = 0; i2 <= dim2; i2++) {
-      if (b1 >= 0 && b1 == VertexBody(m, f2, vert2[i2])) return;
+      if (b1 == bodies2[i2]) return;
     }
   }
   Contact* con = ContactRoom(d, kMaxContactPair);
@@ -454,8 +457,8 @@ void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
 // The active elements of flex f against each other by sweep and prune along the longest
 // side of the flex's box (mj_collideFlexSAP), in the order the sweep finds them.
 void CollideFlexSweep(const Model& m, Data& d, int f) {
-  SolverFrame ints(d.solver_scratch);
-  int* active = ints.IntsToWrite(std::max(m.flex_elemnum[f], 1));
+  SolverFrame scratch(d.solver_scratch);
+  int* active = scratch.IntsToWrite(std::max(m.flex_elemnum[f], 1));
   int n = 0;
   for (int e = 0; e < m.flex_elemnum[f]; e++) {
     if (ElementActive(m, f, e)) active[n++] = e;
@@ -466,11 +469,18 @@ void CollideFlexSweep(const Model& m, Data& d, int f) {
   int other[2] = {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2};
   long max_pairs = std::min(static_cast<long>(n) * (n - 1) / 2, 1000000L);
 
+  // Each element's bounds on the two other axes (lo, hi, lo, hi), side by side for the
+  // test against every open element.
+  double* bounds = scratch.RealsToWrite(4 * static_cast<size_t>(n));
   std::vector<uint64_t>& ends = d.broadphase.ends;
   std::vector<int>& open = d.broadphase.open;
   ends.clear();
   for (int i = 0; i < n; i++) {
     const double* box = ElementBox(m, d, f, active[i]);
+    for (int j = 0; j < 2; j++) {
+      bounds[4 * i + 2 * j] = box[other[j]] - box[other[j] + 3];
+      bounds[4 * i + 2 * j + 1] = box[other[j]] + box[other[j] + 3];
+    }
     ends.push_back(SweepKey(box[axis] - box[axis + 3], 2 * i));
     ends.push_back(SweepKey(box[axis] + box[axis + 3], 2 * i + 1));
   }
@@ -484,15 +494,10 @@ void CollideFlexSweep(const Model& m, Data& d, int f) {
       if (it != open.end()) open.erase(it);
       continue;
     }
-    const double* box2 = ElementBox(m, d, f, active[id]);
+    const double* b2 = &bounds[4 * id];
     for (size_t j = 0; j < open.size(); j++) {
-      const double* box1 = ElementBox(m, d, f, active[open[j]]);
-      bool apart = false;
-      for (int k : other) {
-        apart = apart || box1[k] - box1[k + 3] > box2[k] + box2[k + 3] ||
-                box2[k] - box2[k + 3] > box1[k] + box1[k + 3];
-      }
-      if (apart) continue;
+      const double* b1 = &bounds[4 * open[j]];
+      if (b1[0] > b2[1] || b2[0] > b1[1] || b1[2] > b2[3] || b2[2] > b1[3]) continue;
       CollideElems(m, d, f, active[open[j]], f, active[id]);
       if (++npairs >= max_pairs) return;
     }
