@@ -75,7 +75,7 @@ void MakeInertia(const Model& m, Data& d) {
     double f[6];
     MulInertVec(f, &d.crb[10 * m.dof_bodyid[i]], &d.cdof[6 * i]);
     for (int j = i; j >= 0; j = m.dof_parentid[j]) {
-      d.M[adr--] += Dot(&d.cdof[6 * j], f, 6);
+      d.M[adr--] += Dot6(&d.cdof[6 * j], f);
     }
   }
 

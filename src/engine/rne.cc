@@ -105,7 +105,7 @@ void Rne(const Model& m, Data& d, bool flg_acc, double* result) {
 
   // Project onto the dofs (summed in mju_dot's order).
   for (int v = 0; v < m.nv; v++) {
-    result[v] = Dot(&d.cdof[6 * v], cfrc + 6 * m.dof_bodyid[v], 6);
+    result[v] = Dot6(&d.cdof[6 * v], cfrc + 6 * m.dof_bodyid[v]);
   }
 }
 

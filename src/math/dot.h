@@ -26,6 +26,11 @@ inline double Dot(const double* a, const double* b, int n) {
   return s;
 }
 
+// a . b over 6 entries, in Dot's order (MuJoCo's mji_dot6), without its loop.
+inline double Dot6(const double* a, const double* b) {
+  return ((a[0] * b[0] + a[2] * b[2]) + (a[1] * b[1] + a[3] * b[3])) + (a[4] * b[4] + a[5] * b[5]);
+}
+
 // a . x[ind] over n entries of a; the remainder is added one entry at a time.
 inline double DotSparse(const double* a, const double* x, int n, const int* ind) {
   double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
