@@ -9,8 +9,8 @@
 # Results are bit-identical to a build without the profile (it changes code layout,
 # inlining and branch order, never the arithmetic); the conformance suite runs on it.
 #
-#   tools/build_pgo.sh [BUILD_DIR [TARGET...]]   (default: build simlab; about 8 minutes
-#                                                 on 2 cores from nothing)
+#   tools/build_pgo.sh [BUILD_DIR [TARGET...]]   (default: build simlab; about 12 minutes
+#                                                 on 2 cores from nothing, 6 when rerun)
 #
 # The profile stays BUILD_DIR's compile flag: later builds of BUILD_DIR (cmake --build)
 # keep using it, and g++ ignores it for a function whose source has changed since.
