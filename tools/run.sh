@@ -7,8 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install_deps.sh
 # The engine profile-guided: built once instrumented, trained on the repository's models,
-# built again with the counts (tools/build_pgo.sh; 5-10% faster, bit-identical results).
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# built again with the counts (tools/build_pgo.sh, which configures build/; 5-10% faster,
+# bit-identical results).
 bash tools/build_pgo.sh build simlab _simlab
 model=${1:-models/double_pendulum.xml}
 ./build/simlab rollout "$model" --steps 500 --every 50 --table
