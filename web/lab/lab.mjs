@@ -247,6 +247,9 @@ class Lab {
     // Pacing against the wall clock, at the chosen speed (see pacer.mjs; its `dropped` is
     // the wall time given up since mounting, `totalSteps` the steps taken).
     this.pacer = new Pacer({ timestep: this.timestep, step: (n) => this.sim.step(n) });
+    // A hidden tab gets no frames: the time it was away is not caught up on return.
+    this.onVisibility = () => { if (document.hidden) this.pacer.resync(); };
+    document.addEventListener('visibilitychange', this.onVisibility);
     // Reused every frame: the scene's state, the plots' sample rows.
     this.state = { model: null, contacts: null, contactLayout, geom_xpos: null, geom_xmat: null,
                    xanchor: null, xaxis: null, qfrc_actuator: null };
@@ -998,6 +1001,7 @@ class Lab {
     for (const observer of this.observers) observer.disconnect();
     for (const { plot } of this.plots) plot.dispose();
     if (this.onKey) document.removeEventListener('keydown', this.onKey);
+    document.removeEventListener('visibilitychange', this.onVisibility);
     this.scene.dispose();
     this.sim.delete();
   }

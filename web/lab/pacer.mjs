@@ -4,12 +4,14 @@
 // ... 1/64 = slow motion) or kBudgetShare of the mean frame interval (10 ms at 60 Hz; at
 // most kMaxBudgetMs when drawing itself is slow) is spent; time still owed then is
 // dropped, so a slow machine shows a real-time factor below the speed rather than
-// freezing. Wall-clock gaps longer than kMaxGap (a hidden tab) are skipped. A chunk is
-// about kChunkMs of stepping, from the measured cost of a step.
+// freezing. A wall-clock gap longer than kMaxGap between two frames (the page stalled) is
+// skipped, and so is the gap after resync() (the lab calls it when its tab was hidden):
+// slow frames of a busy machine (5 fps, some 400 ms apart) are still caught up. A chunk
+// is about kChunkMs of stepping, from the measured cost of a step.
 const kBudgetShare = 0.6;
 const kMaxBudgetMs = 50;
 const kChunkMs = 1;
-const kMaxGap = 0.25;
+const kMaxGap = 1;
 
 // The slow-motion speeds, as simulate offers them (its '-' and '=' keys step through them).
 export const kSpeeds = [1, 1 / 2, 1 / 4, 1 / 8, 1 / 16, 1 / 32, 1 / 64];
@@ -32,6 +34,7 @@ export class Pacer {
     this.msPerStep = 0.05;           // measured cost of one step, ms
     this.debt = 0;                   // simulated seconds owed to the clock
     this.lastFrame = null;           // the last frame's wall time, ms
+    this.skipGap = false;            // the next frame's gap is skipped (see resync)
     // In total since made: wall seconds given up (budget spent, hidden tab), steps taken,
     // and ms spent stepping since the last takeBusy().
     this.dropped = 0;
@@ -43,7 +46,8 @@ export class Pacer {
   // returns the number of steps taken.
   frame(frameTime, playing) {
     const wall = this.lastFrame === null ? 0 : (frameTime - this.lastFrame) / 1000;
-    const gap = Math.min(kMaxGap, wall);
+    const gap = this.skipGap ? 0 : Math.min(kMaxGap, wall);
+    this.skipGap = false;
     if (playing) this.dropped += wall - gap;
     if (gap > 0) this.frameInterval = 0.9 * this.frameInterval + 0.1 * 1000 * gap;
     this.lastFrame = frameTime;
@@ -75,6 +79,12 @@ export class Pacer {
     this.totalSteps += taken;
     this.busy += spent;
     return taken;
+  }
+
+  // The wall time until the next frame is not to be caught up (the page was hidden).
+  resync() {
+    this.skipGap = true;
+    this.debt = 0;
   }
 
   // Nothing owed (after a pause, a reset or a change of speed).

@@ -81,7 +81,12 @@ export function pictureStats([point = null, inset = false] = []) {
   const x = Math.round(scale * (rect.left + (p.x + 1) / 2 * rect.width));
   const y = Math.round(scale * (rect.top + (1 - p.y) / 2 * rect.height));
   const inside = Math.abs(p.x) <= 1 && Math.abs(p.y) <= 1 && p.z < 1;
-  return { ...stats, at: Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3)), x, y, inside };
+  // (and the 7 x 7 pixels round it, as [r, g, b] each, clipped to the picture)
+  const x0 = Math.max(0, x - 3), y0 = Math.max(0, y - 3);
+  const near = context.getImageData(x0, y0, Math.min(7, copy.width - x0), Math.min(7, copy.height - y0)).data;
+  const around = [];
+  for (let i = 0; i < near.length; i += 4) around.push([near[i], near[i + 1], near[i + 2]]);
+  return { ...stats, at: Array.from(context.getImageData(x, y, 1, 1).data.slice(0, 3)), around, x, y, inside };
 }
 
 // The page's uncaught errors and console errors, as they come.

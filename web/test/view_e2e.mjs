@@ -49,6 +49,14 @@ async function openViewer(model) {
   return { session, page, problems };
 }
 
+// Waits until the lab's simulation time is at least `seconds` past where it is now (at
+// most a minute of wall time): physics checks wait for simulated time, so a busy machine
+// drawing a few frames a second passes them as a fast one does.
+async function waitForSimTime(page, seconds) {
+  const start = await page.evaluate(() => window.lab.sim.time);
+  await page.waitForFunction((t) => window.lab.sim.time >= t, start + seconds, { timeout: 60000 });
+}
+
 // Opens `model` in the viewer, runs `checks(page)`, then checks that the page logged no
 // errors (named `name`) and closes it.
 async function inViewer(model, name, checks) {
@@ -262,12 +270,12 @@ async function checkPerturbation(page, body) {
   // (200 pixels up the screen: about half a metre at the mug's distance; the spring, 100 per
   // unit mass as MuJoCo's default, sags about 0.1 m under gravity)
   for (let k = 1; k <= 25; k++) await page.mouse.move(at.x, at.y - 8 * k);
-  await page.waitForTimeout(1000);
+  await waitForSimTime(page, 1);
   const [pulled, line] = [await height(), await page.evaluate(() => window.lab.scene.perturbLine.visible)];
   await page.screenshot({ path: path.join(options.shots, 'view_perturb.png') });
   await page.mouse.up();
   await page.keyboard.up('Control');
-  await page.waitForTimeout(1000);
+  await waitForSimTime(page, 1);
   const dropped = await height();
   check(pulled > at.z + 0.1 && line && dropped < pulled - 0.05,
         `a Ctrl+drag pulled it from z = ${at.z.toFixed(3)} to ${pulled.toFixed(3)} (line drawn: ${line}); ` +
@@ -339,9 +347,9 @@ async function testSkins() {
   await inViewer(path.join(repoRoot, 'tests/compiler_models/skins.xml'), 'skins', async (page) => {
     const sample = () => page.evaluate(() => window.lab.scene.skins.meshes.map(({ mesh }) =>
       Array.from(mesh.geometry.attributes.position.array)));
-    await page.waitForTimeout(300);
+    await waitForSimTime(page, 0.3);
     const before = await sample();
-    await page.waitForTimeout(1200);
+    await waitForSimTime(page, 1.2);
     const after = await sample();
     await page.screenshot({ path: path.join(options.shots, 'view_skins.png') });
     check(before.length === 3, `skins: ${before.length} skins drawn`);

@@ -79,6 +79,28 @@ const tests = {
     assert.ok(Math.abs(steps * 0.002 - 10) < 0.01, `${steps} steps in 10 s`);
     assert.ok(pacer.dropped < 1e-9);
   },
+  'slow frames of a busy machine are caught up; a stall or a hidden tab is not': () => {
+    let steps = 0;
+    const pacer = new Pacer({ timestep: 0.002, step: (n) => { steps += n; }, now: () => 0 });
+    // 5 fps with every third frame 400 ms late: 10 s of wall time, all of it simulated
+    let wall = 0;
+    for (let frame = 0; wall < 10000; frame++) {
+      wall += frame % 3 === 2 ? 400 : 200;
+      pacer.frame(wall, true);
+    }
+    assert.ok(Math.abs(steps * 0.002 - (wall - 200) / 1000) < 0.01, `${steps} steps in ${wall} ms`);
+    assert.ok(pacer.dropped < 1e-9);
+    // a 3 s stall drops all but a second of it; after resync (the tab was hidden) the
+    // next frame's gap is dropped entirely
+    const before = steps;
+    pacer.frame(wall + 3000, true);
+    assert.equal(steps - before, 500);
+    pacer.resync();
+    pacer.frame(wall + 8000, true);
+    assert.equal(steps - before, 500);
+    pacer.frame(wall + 8100, true);
+    assert.equal(steps - before, 550);
+  },
   'slow motion steps at the chosen fraction of real time': () => {
     for (const speed of kSpeeds) {
       let steps = 0;
