@@ -67,11 +67,16 @@ struct Contact {
 // Scratch of the collision stage's broad phase, kept between steps so that it does not
 // allocate: candidate body pairs as signatures (b1 << 16) + b2, the collidable bodies,
 // and the sweep's interval ends (value, body + 0x10000 for an end) and open intervals.
+// A flex's self-collision sweep keeps its sorted ends per flex (flex_ends[f]: the next
+// step starts from their order, nearly sorted already) and its open elements' bounds on
+// the two other axes beside their ids (open_bounds, 4 per open element).
 struct BroadPhaseScratch {
   std::vector<int> pairs;
   std::vector<int> bodies;
   std::vector<uint64_t> ends;
   std::vector<int> open;
+  std::vector<std::vector<uint64_t>> flex_ends;
+  std::vector<double> open_bounds;
 };
 
 // Arrays the constraint solvers take each step (engine/constraint.h, SolverFrame), kept

@@ -472,16 +472,21 @@ void BodyBox(const Model& m, const Data& d, int b, const double* frame, double* 
 // `boxes` at 6 per body): interval ends on the first axis in single precision, sorted
 // stably (ties keep min-then-max in body order); each opening interval meets the open
 // ones whose boxes also overlap on the other two axes. Calls add(b1, b2) per candidate.
+// `kept`: s.ends holds last sweep's ends of the same bodies, to sort from their order.
 template <typename Add>
-void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
+void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, bool kept, Add add) {
   // Each end as one key (SweepKey), 2 body + 1 for an upper end breaking ties, so that
   // ties keep the order the ends were added in (by body, its lower end first).
-  s.ends.clear();
-  for (int b : s.bodies) {
-    s.ends.push_back(SweepKey(boxes[6 * b], 2 * b));
-    s.ends.push_back(SweepKey(boxes[6 * b + 3], 2 * b + 1));
+  if (!kept) {
+    s.ends.clear();
+    for (int b : s.bodies) {
+      s.ends.push_back(2 * static_cast<uint64_t>(b));
+      s.ends.push_back(2 * static_cast<uint64_t>(b) + 1);
+    }
   }
-  std::sort(s.ends.begin(), s.ends.end());
+  ResortEnds(s.ends, [boxes](uint32_t tie) {
+    return SweepKey(boxes[6 * (tie >> 1) + ((tie & 1) ? 3 : 0)], static_cast<int>(tie));
+  });
   s.open.clear();
   for (uint64_t end : s.ends) {
     int id = static_cast<int>((end & 0xFFFFFFFFu) >> 1);
@@ -492,8 +497,8 @@ void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
     const double* x2 = boxes + 6 * id;
     for (int b1 : s.open) {
       const double* x1 = boxes + 6 * b1;
-      bool apart = false;
-      for (int k = 1; k < 3; k++) apart = apart || x1[k] > x2[k + 3] || x2[k] > x1[k + 3];
+      // (one branch for the four tests: which of them fails is not predictable)
+      bool apart = (x1[1] > x2[4]) | (x2[1] > x1[4]) | (x1[2] > x2[5]) | (x2[2] > x1[5]);
       if (!apart) add(b1, id);
     }
     s.open.push_back(id);
@@ -545,7 +550,15 @@ void BroadPhase(const Model& m, Data& d) {
         FlexBox(m, d, b - m.nbody, frame, &boxes[6 * b], &boxes[6 * b + 3]);
       }
     }
-    SweepAndPrune(d.broadphase, boxes, [&](int b1, int b2) {
+    // (the collidable bodies are the model's: last step's ends are theirs when they are
+    // as many and each is one of them)
+    std::vector<uint64_t>& ends = d.broadphase.ends;
+    bool kept = ends.size() == 2 * bodies.size() &&
+                std::all_of(ends.begin(), ends.end(), [&](uint64_t end) {
+                  int b = static_cast<int>(static_cast<uint32_t>(end) >> 1);
+                  return b > 0 && b < nbodyflex && CanCollide(m, b);
+                });
+    SweepAndPrune(d.broadphase, boxes, kept, [&](int b1, int b2) {
       // (the weld filter is for body pairs only; while trees sleep, a pair with a flex
       // is kept when either side moves awake)
       bool two_bodies = b1 < m.nbody && b2 < m.nbody;

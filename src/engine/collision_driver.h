@@ -3,7 +3,9 @@
 #ifndef SIMLAB_ENGINE_COLLISION_DRIVER_H_
 #define SIMLAB_ENGINE_COLLISION_DRIVER_H_
 
+#include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "engine/collision.h"
 
@@ -39,6 +41,27 @@ void SortContacts(Data& d, int first);
 // One interval end of a sweep and prune as an integer key that sorts as MuJoCo's sweeps
 // do: the value in single precision (a NaN as +inf), then `tie` (>= 0) among equals.
 uint64_t SweepKey(double x, int tie);
+// Sorts a sweep's interval ends, keys unique, given `ends` as the last sort left them
+// with the same ties and each key now key_of(its tie) (the tie is a key's low 32 bits): a
+// step moves little, so insertion sort finishes in about one pass; std::sort when the
+// order has moved far. Either way the order is the one unique sorted order.
+template <typename KeyOf>
+void ResortEnds(std::vector<uint64_t>& ends, KeyOf key_of) {
+  for (uint64_t& end : ends) end = key_of(static_cast<uint32_t>(end));
+  size_t n = ends.size(), moves = 0, limit = 8 * n + 64;
+  uint64_t* a = ends.data();
+  for (size_t i = 1; i < n; i++) {
+    uint64_t key = a[i];
+    size_t j = i;
+    for (; j > 0 && a[j - 1] > key; j--) a[j] = a[j - 1];
+    a[j] = key;
+    moves += i - j;
+    if (moves > limit) {
+      std::sort(a, a + n);
+      return;
+    }
+  }
+}
 // True when two boxes (centre, half sizes; world axes) are farther apart than margin on
 // some axis (MuJoCo's filterBox).
 // (inline: the flexes' element pairs call it thousands of times a step)

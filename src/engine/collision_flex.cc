@@ -454,6 +454,31 @@ void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
 
 // ---------------------------------------------------------------- sweep and prune
 
+// The interval ends of flex f's n active elements (active[i]) along `axis`, sorted:
+// key SweepKey(end, 2 i, + 1 for the upper end). Kept per flex between steps and resorted
+// from last step's order (ResortEnds); built anew when the count of elements changed.
+std::vector<uint64_t>& SortedElementEnds(const Model& m, Data& d, int f, const int* active,
+                                         int n, int axis) {
+  std::vector<std::vector<uint64_t>>& per_flex = d.broadphase.flex_ends;
+  if (per_flex.size() < static_cast<size_t>(m.nflex)) per_flex.resize(m.nflex);
+  std::vector<uint64_t>& ends = per_flex[f];
+  auto key_of = [&](uint32_t tie) {
+    const double* box = ElementBox(m, d, f, active[tie >> 1]);
+    double value = (tie & 1) ? box[axis] + box[axis + 3] : box[axis] - box[axis + 3];
+    return SweepKey(value, static_cast<int>(tie));
+  };
+  uint32_t count = 2 * static_cast<uint32_t>(n);
+  bool kept = ends.size() == count && std::all_of(ends.begin(), ends.end(), [count](uint64_t end) {
+    return static_cast<uint32_t>(end) < count;
+  });
+  if (!kept) {
+    ends.resize(count);
+    for (uint32_t t = 0; t < count; t++) ends[t] = t;
+  }
+  ResortEnds(ends, key_of);
+  return ends;
+}
+
 // The active elements of flex f against each other by sweep and prune along the longest
 // side of the flex's box (mj_collideFlexSAP), in the order the sweep finds them.
 void CollideFlexSweep(const Model& m, Data& d, int f) {
@@ -469,39 +494,44 @@ void CollideFlexSweep(const Model& m, Data& d, int f) {
   int other[2] = {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2};
   long max_pairs = std::min(static_cast<long>(n) * (n - 1) / 2, 1000000L);
 
-  // Each element's bounds on the two other axes (lo, hi, lo, hi), side by side for the
-  // test against every open element.
+  // Each element's bounds on the two other axes (lo, hi, lo, hi), for the test against
+  // every open element.
   double* bounds = scratch.RealsToWrite(4 * static_cast<size_t>(n));
-  std::vector<uint64_t>& ends = d.broadphase.ends;
-  std::vector<int>& open = d.broadphase.open;
-  ends.clear();
   for (int i = 0; i < n; i++) {
     const double* box = ElementBox(m, d, f, active[i]);
     for (int j = 0; j < 2; j++) {
       bounds[4 * i + 2 * j] = box[other[j]] - box[other[j] + 3];
       bounds[4 * i + 2 * j + 1] = box[other[j]] + box[other[j] + 3];
     }
-    ends.push_back(SweepKey(box[axis] - box[axis + 3], 2 * i));
-    ends.push_back(SweepKey(box[axis] + box[axis + 3], 2 * i + 1));
   }
-  std::sort(ends.begin(), ends.end());
+  std::vector<uint64_t>& ends = SortedElementEnds(m, d, f, active, n, axis);
+
+  // The sweep; an open element's bounds are kept beside its id.
+  std::vector<int>& open = d.broadphase.open;
+  std::vector<double>& open_bounds = d.broadphase.open_bounds;
   open.clear();
+  open_bounds.clear();
   long npairs = 0;
   for (uint64_t end : ends) {
     int id = static_cast<int>((end & 0xFFFFFFFFu) >> 1);
     if (end & 1) {
-      auto it = std::find(open.begin(), open.end(), id);
-      if (it != open.end()) open.erase(it);
+      size_t j = std::find(open.begin(), open.end(), id) - open.begin();
+      if (j == open.size()) continue;
+      open.erase(open.begin() + j);
+      open_bounds.erase(open_bounds.begin() + 4 * j, open_bounds.begin() + 4 * j + 4);
       continue;
     }
     const double* b2 = &bounds[4 * id];
     for (size_t j = 0; j < open.size(); j++) {
-      const double* b1 = &bounds[4 * open[j]];
-      if (b1[0] > b2[1] || b2[0] > b1[1] || b1[2] > b2[3] || b2[2] > b1[3]) continue;
+      const double* b1 = &open_bounds[4 * j];
+      // (one branch for the four tests: which of them fails is not predictable)
+      bool apart = (b1[0] > b2[1]) | (b2[0] > b1[1]) | (b1[2] > b2[3]) | (b2[2] > b1[3]);
+      if (apart) continue;
       CollideElems(m, d, f, active[open[j]], f, active[id]);
       if (++npairs >= max_pairs) return;
     }
     open.push_back(id);
+    open_bounds.insert(open_bounds.end(), b2, b2 + 4);
   }
 }
 
