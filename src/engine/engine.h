@@ -102,6 +102,13 @@ void Jacobian(const Model& m, const Data& d, double* jacp, double* jacr, const d
 // hold every dof that moves `body`, as MergedDofChain gives): 3 x n each.
 void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, double* jacp,
                     double* jacr, const double* point, int body);
+// One row on the columns `dofs` (as JacobianOnDofs's): the difference of the translation
+// Jacobians of point p2 on body b2 and p1 on b1 along the unit vector dir, components
+// where dir is 0 left out: row[k] = sum_r (jacp2[r][k] - jacp1[r][k]) dir[r], the same
+// numbers as from the two 3 x n Jacobians (a flex edge's length Jacobian).
+void JacobianDifferenceAlong(const Model& m, const Data& d, const int* dofs, int n,
+                             const double* p1, int b1, const double* p2, int b2,
+                             const double* dir, double* row);
 // The dofs that move body b0 or b1 (their chains to the root), ascending, into `dofs`
 // (room for nv); returns their count (MuJoCo mj_mergeChain).
 int MergedDofChain(const Model& m, int b0, int b1, int* dofs);

@@ -107,20 +107,9 @@ void FlexEdge(const Model& m, Data& d, int f, int e, bool jacobian) {
   d.flexedge_length[e] = math::Normalize3(dir);
   int n = m.flexedge_J_rownnz[e];
   if (!jacobian || n == 0) return;
-  SolverFrame frame(d.solver_scratch);
-  const int* dofs = &m.flexedge_J_colind[m.flexedge_J_rowadr[e]];
-  double* jac1 = frame.RealsToWrite(3 * static_cast<size_t>(n));
-  double* jac2 = frame.RealsToWrite(3 * static_cast<size_t>(n));
-  JacobianOnDofs(m, d, dofs, n, jac1, nullptr, pos1, m.flex_vertbodyid[v1]);
-  JacobianOnDofs(m, d, dofs, n, jac2, nullptr, pos2, m.flex_vertbodyid[v2]);
-  double* row = &d.flexedge_J[m.flexedge_J_rowadr[e]];
-  for (int k = 0; k < n; k++) {
-    double sum = 0;
-    for (int r = 0; r < 3; r++) {
-      if (dir[r] != 0) sum += (jac2[r * n + k] - jac1[r * n + k]) * dir[r];
-    }
-    row[k] = sum;
-  }
+  int adr = m.flexedge_J_rowadr[e];
+  JacobianDifferenceAlong(m, d, &m.flexedge_J_colind[adr], n, pos1, m.flex_vertbodyid[v1], pos2,
+                          m.flex_vertbodyid[v2], dir, &d.flexedge_J[adr]);
 }
 
 // r (3 x 2) = a (3 x 2) b (2 x 2).

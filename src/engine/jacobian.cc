@@ -75,6 +75,30 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
   }
 }
 
+void JacobianDifferenceAlong(const Model& m, const Data& d, const int* dofs, int n,
+                             const double* p1, int b1, const double* p2, int b2,
+                             const double* dir, double* row) {
+  double offset1[3], offset2[3];
+  math::Sub3(offset1, p1, &d.subtree_com[3 * m.body_rootid[b1]]);
+  math::Sub3(offset2, p2, &d.subtree_com[3 * m.body_rootid[b2]]);
+  // Both chains walked up with the columns, from the last: a column of a dof off a chain
+  // is that point's zero column.
+  int chain1 = LastDof(m, b1), chain2 = LastDof(m, b2);
+  for (int k = n - 1; k >= 0; k--) {
+    int dof = dofs[k];
+    while (chain1 > dof) chain1 = m.dof_parentid[chain1];
+    while (chain2 > dof) chain2 = m.dof_parentid[chain2];
+    double column1[3] = {0, 0, 0}, column2[3] = {0, 0, 0};
+    if (chain1 == dof) JacobianColumn(&d.cdof[6 * dof], offset1, column1, nullptr, 0, 1);
+    if (chain2 == dof) JacobianColumn(&d.cdof[6 * dof], offset2, column2, nullptr, 0, 1);
+    double sum = 0;
+    for (int r = 0; r < 3; r++) {
+      if (dir[r] != 0) sum += (column2[r] - column1[r]) * dir[r];
+    }
+    row[k] = sum;
+  }
+}
+
 int MergedDofChains(const Model& m, const int* bodies, int nbodies, int* dofs) {
   if (nbodies == 2) return MergedDofChain(m, bodies[0], bodies[1], dofs);
   // Every chain walked up together (descending dof indices): the highest cursor's dof is
