@@ -418,22 +418,14 @@ void WeightedContactJacobian(const Model& m, Data& d, const Contact& c, Columns 
 void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, double* jac,
                      double* scratch, const ContactSide* sides) {
   int n = cols.n;
-  double* jac1p = scratch;
-  double* jac2p = jac1p + 3 * n;
-  double* jac1r = jac2p + 3 * n;
-  double* jac2r = jac1r + 3 * n;
   if (ContactOnTwoBodies(m, c)) {
-    int b1 = sides[0].body[0], b2 = sides[1].body[0];
-    bool rotation = c.dim > 3;
-    JacobianOnDofs(m, d, cols.dof, n, jac1p, rotation ? jac1r : nullptr, c.pos, b1);
-    JacobianOnDofs(m, d, cols.dof, n, jac2p, rotation ? jac2r : nullptr, c.pos, b2);
-    for (int k = 0; k < 3 * n; k++) {
-      jac1p[k] = jac2p[k] - jac1p[k];
-      if (rotation) jac1r[k] = jac2r[k] - jac1r[k];
-    }
-  } else {
-    WeightedContactJacobian(m, d, c, cols, sides, scratch);
+    FrameJacobianDifference(m, d, cols.dof, n, c.pos, sides[0].body[0], sides[1].body[0],
+                            c.frame, c.dim, jac);
+    return;
   }
+  double* jac1p = scratch;
+  double* jac1r = jac1p + 6 * n;
+  WeightedContactJacobian(m, d, c, cols, sides, scratch);
   // Rotate the differences into the contact frame.
   int translation_rows = c.dim > 1 ? 3 : 1;
   for (int r = 0; r < c.dim; r++) {

@@ -109,6 +109,13 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
 void JacobianDifferenceAlong(const Model& m, const Data& d, const int* dofs, int n,
                              const double* p1, int b1, const double* p2, int b2,
                              const double* dir, double* row);
+// A contact's rows (dim x n, on the columns `dofs`) between bodies b1 and b2 at `point`:
+// the frame's axes (rows of `frame`) times the difference of the two bodies' Jacobians
+// there, J(b2) - J(b1): translation for the first row (dim 1) or three, rotation for
+// rows 3 on (the first axes again). Each entry summed from 0 over the three components.
+void FrameJacobianDifference(const Model& m, const Data& d, const int* dofs, int n,
+                             const double* point, int b1, int b2, const double* frame, int dim,
+                             double* rows);
 // The dofs that move body b0 or b1 (their chains to the root), ascending, into `dofs`
 // (room for nv); returns their count (MuJoCo mj_mergeChain).
 int MergedDofChain(const Model& m, int b0, int b1, int* dofs);

@@ -75,28 +75,69 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
   }
 }
 
+namespace {
+
+// Calls column(k, on1, on2) for k = n-1 down to 0: whether dofs[k] moves body b1 and b2
+// (both bodies' dof chains walked up with the columns; a dof off a chain has a zero
+// column in that body's Jacobians).
+template <typename Column>
+void ForChainColumns(const Model& m, const int* dofs, int n, int b1, int b2, Column column) {
+  int chain1 = LastDof(m, b1), chain2 = LastDof(m, b2);
+  for (int k = n - 1; k >= 0; k--) {
+    int dof = dofs[k];
+    while (chain1 > dof) chain1 = m.dof_parentid[chain1];
+    while (chain2 > dof) chain2 = m.dof_parentid[chain2];
+    column(k, chain1 == dof, chain2 == dof);
+  }
+}
+
+}  // namespace
+
 void JacobianDifferenceAlong(const Model& m, const Data& d, const int* dofs, int n,
                              const double* p1, int b1, const double* p2, int b2,
                              const double* dir, double* row) {
   double offset1[3], offset2[3];
   math::Sub3(offset1, p1, &d.subtree_com[3 * m.body_rootid[b1]]);
   math::Sub3(offset2, p2, &d.subtree_com[3 * m.body_rootid[b2]]);
-  // Both chains walked up with the columns, from the last: a column of a dof off a chain
-  // is that point's zero column.
-  int chain1 = LastDof(m, b1), chain2 = LastDof(m, b2);
-  for (int k = n - 1; k >= 0; k--) {
-    int dof = dofs[k];
-    while (chain1 > dof) chain1 = m.dof_parentid[chain1];
-    while (chain2 > dof) chain2 = m.dof_parentid[chain2];
+  ForChainColumns(m, dofs, n, b1, b2, [&](int k, bool on1, bool on2) {
+    const double* cdof = &d.cdof[6 * dofs[k]];
     double column1[3] = {0, 0, 0}, column2[3] = {0, 0, 0};
-    if (chain1 == dof) JacobianColumn(&d.cdof[6 * dof], offset1, column1, nullptr, 0, 1);
-    if (chain2 == dof) JacobianColumn(&d.cdof[6 * dof], offset2, column2, nullptr, 0, 1);
+    if (on1) JacobianColumn(cdof, offset1, column1, nullptr, 0, 1);
+    if (on2) JacobianColumn(cdof, offset2, column2, nullptr, 0, 1);
     double sum = 0;
     for (int r = 0; r < 3; r++) {
       if (dir[r] != 0) sum += (column2[r] - column1[r]) * dir[r];
     }
     row[k] = sum;
-  }
+  });
+}
+
+void FrameJacobianDifference(const Model& m, const Data& d, const int* dofs, int n,
+                             const double* point, int b1, int b2, const double* frame, int dim,
+                             double* rows) {
+  double offset1[3], offset2[3];
+  math::Sub3(offset1, point, &d.subtree_com[3 * m.body_rootid[b1]]);
+  math::Sub3(offset2, point, &d.subtree_com[3 * m.body_rootid[b2]]);
+  int translation_rows = dim > 1 ? 3 : 1;
+  bool rotation = dim > 3;
+  ForChainColumns(m, dofs, n, b1, b2, [&](int k, bool on1, bool on2) {
+    const double* cdof = &d.cdof[6 * dofs[k]];
+    double p1[3] = {0, 0, 0}, p2[3] = {0, 0, 0}, r1[3] = {0, 0, 0}, r2[3] = {0, 0, 0};
+    if (on1) JacobianColumn(cdof, offset1, p1, rotation ? r1 : nullptr, 0, 1);
+    if (on2) JacobianColumn(cdof, offset2, p2, rotation ? r2 : nullptr, 0, 1);
+    double dif_p[3], dif_r[3];
+    for (int r = 0; r < 3; r++) {
+      dif_p[r] = p2[r] - p1[r];
+      dif_r[r] = r2[r] - r1[r];
+    }
+    for (int i = 0; i < dim; i++) {
+      const double* axis = frame + 3 * (i < translation_rows ? i : i - 3);
+      const double* dif = i < translation_rows ? dif_p : dif_r;
+      double sum = 0;
+      for (int r = 0; r < 3; r++) sum += axis[r] * dif[r];
+      rows[i * n + k] = sum;
+    }
+  });
 }
 
 int MergedDofChains(const Model& m, const int* bodies, int nbodies, int* dofs) {
