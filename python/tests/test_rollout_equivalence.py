@@ -5,6 +5,7 @@ Cases: every case of the conformance lists (tests/conformance/*cases.txt: pendul
 actuators, tendons, contacts, sensors, solvers...), and the gantry lab's slow lift from
 keyframe 0 (tests/models/compose/gantry_lab_slow.csv, 3500 steps)."""
 import json
+import os
 import subprocess
 
 import numpy as np
@@ -34,6 +35,12 @@ def cases():
                         ctrl, key))
     out.append(("gantry_lab_slow", "models/gantry_gripper.xml", 3500, None,
                 "tests/models/compose/gantry_lab_slow.csv", 0))
+    # SIMLAB_TEST_SHARD=k/n: every n-th case from the k-th (ctest runs the shards side by
+    # side; see python_tests.cmake)
+    shard = os.environ.get("SIMLAB_TEST_SHARD")
+    if shard:
+        k, n = (int(x) for x in shard.split("/"))
+        out = out[k::n]
     return out
 
 
