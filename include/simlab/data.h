@@ -333,10 +333,11 @@ struct Data {
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData for
   // the model's integrator (StackDoubles). A stage that finds it short takes the rest
-  // from the heap (stack_overflow doubles, now) and the stack grows to the peak seen
-  // (stack_peak) before the next public call.
+  // from the heap (stack_blocks, stack_overflow doubles in all, now) and the stack grows
+  // to the peak seen (stack_peak) before the next public call.
   std::vector<double> stack;
   size_t stack_top = 0;
+  std::vector<std::vector<double>> stack_blocks;
   size_t stack_overflow = 0;
   size_t stack_peak = 0;
 };

@@ -68,6 +68,7 @@ void ResetData(const Model& m, Data& d) {
   size_t need = std::max(static_cast<size_t>(StackDoubles(m)), d.stack_peak);
   if (d.stack.size() < need) d.stack.assign(need, 0.0);
   d.stack_top = 0;
+  d.stack_blocks.clear();
   d.stack_overflow = 0;
   d.plugin_state = std::move(plugin_state);
   ResetPlugins(m, d);

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <memory>
 #include <vector>
 
 #include "simlab/data.h"
@@ -17,10 +16,11 @@ namespace simlab {
 
 class StackFrame {
  public:
-  explicit StackFrame(Data& d) : d_(d), saved_(d.stack_top) {}
+  explicit StackFrame(Data& d)
+      : d_(d), saved_(d.stack_top), saved_blocks_(d.stack_blocks.size()) {}
   ~StackFrame() {
     d_.stack_top = saved_;
-    d_.stack_overflow -= overflowed_;
+    if (d_.stack_blocks.size() > saved_blocks_) ReleaseBlocks();
   }
   StackFrame(const StackFrame&) = delete;
   StackFrame& operator=(const StackFrame&) = delete;
@@ -38,25 +38,31 @@ class StackFrame {
   // n doubles to be written before they are read (not cleared: their values are left
   // from earlier frames).
   double* AllocToWrite(size_t n) {
-    double* p;
-    if (d_.stack_top + n <= d_.stack.size()) {
-      p = d_.stack.data() + d_.stack_top;
-      d_.stack_top += n;
-    } else {
-      overflow_.push_back(std::make_unique<double[]>(n));
-      p = overflow_.back().get();
-      overflowed_ += n;
-      d_.stack_overflow += n;
-      d_.stack_peak = std::max(d_.stack_peak, d_.stack.size() + d_.stack_overflow);
-    }
+    if (d_.stack_top + n > d_.stack.size()) return AllocBlock(n);
+    double* p = d_.stack.data() + d_.stack_top;
+    d_.stack_top += n;
     return p;
   }
 
  private:
+  // The rare paths out of line, so that a frame's taking and ending stay a few
+  // instructions inline: a heap block when the stack is short, and its release.
+  [[gnu::noinline]] double* AllocBlock(size_t n) {
+    d_.stack_blocks.emplace_back(n);
+    d_.stack_overflow += n;
+    d_.stack_peak = std::max(d_.stack_peak, d_.stack.size() + d_.stack_overflow);
+    return d_.stack_blocks.back().data();
+  }
+  [[gnu::noinline]] void ReleaseBlocks() {
+    for (size_t i = saved_blocks_; i < d_.stack_blocks.size(); i++) {
+      d_.stack_overflow -= d_.stack_blocks[i].size();
+    }
+    d_.stack_blocks.resize(saved_blocks_);
+  }
+
   Data& d_;
   size_t saved_;
-  size_t overflowed_ = 0;
-  std::vector<std::unique_ptr<double[]>> overflow_;
+  size_t saved_blocks_;
 };
 
 // Grows the stack to the peak a stage needed; only between public calls (no frame
