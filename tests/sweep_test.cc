@@ -1,5 +1,5 @@
 // Sweep and prune keeps its sorted interval ends between steps and sorts the next step's
-// from their order (ResortEnds). The order is unique (keys are unique), so it is the one
+// from their order (SortEnds). The order is unique (keys are unique), so it is the one
 // std::sort gives from any start, and a step's contacts are the same whether the sweep
 // starts from last step's order or from nothing.
 #include <gtest/gtest.h>
@@ -25,11 +25,11 @@ std::vector<uint64_t> Keys(int n, std::mt19937& random) {
   return keys;
 }
 
-// ResortEnds from `start` (ties in some order) against std::sort of the same keys.
+// SortEnds from `start` (ties in some order) against std::sort of the same keys.
 void ExpectResortsAsSort(std::vector<uint64_t> start, const std::vector<uint64_t>& keys) {
   std::vector<uint64_t> sorted = keys;
   std::sort(sorted.begin(), sorted.end());
-  ResortEnds(start, [&](uint32_t tie) { return keys[tie]; });
+  SortEnds(start, keys.size(), [&](uint32_t tie) { return keys[tie]; });
   EXPECT_EQ(start, sorted);
 }
 
@@ -39,7 +39,9 @@ TEST(Sweep, ResortsToTheOneSortedOrderFromAnyStart) {
     std::vector<uint64_t> keys = Keys(n, random);
     std::vector<uint64_t> ties(n);
     for (int t = 0; t < n; t++) ties[t] = static_cast<uint64_t>(t);
-    // in tie order, reversed, shuffled (far off: the fallback), and nearly sorted
+    // from nothing kept, in tie order, reversed, shuffled (far off: the fallback), and
+    // nearly sorted
+    ExpectResortsAsSort({}, keys);
     ExpectResortsAsSort(ties, keys);
     std::reverse(ties.begin(), ties.end());
     ExpectResortsAsSort(ties, keys);

@@ -66,10 +66,10 @@ struct Contact {
 
 // Scratch of the collision stage's broad phase, kept between steps so that it does not
 // allocate: candidate body pairs as signatures (b1 << 16) + b2, the collidable bodies,
-// and the sweep's interval ends (value, body + 0x10000 for an end) and open intervals.
-// A flex's self-collision sweep keeps its sorted ends per flex (flex_ends[f]: the next
-// step starts from their order, nearly sorted already) and its open elements' bounds on
-// the two other axes beside their ids (open_bounds, 4 per open element).
+// and the sweep's sorted interval ends (SweepKey: value, then 2 i + 1 for interval i's
+// upper end) and open intervals. Each flex's self-collision sweep has its own ends
+// (flex_ends[f]); both start the next step's sort from this one's order. A flex's open
+// elements keep their bounds on the two other axes beside their ids (open_bounds, 4 each).
 struct BroadPhaseScratch {
   std::vector<int> pairs;
   std::vector<int> bodies;
@@ -333,12 +333,11 @@ struct Data {
 
   // Scratch memory for the stages (a stack: see engine/stack.h), sized by MakeData for
   // the model's integrator (StackDoubles). A stage that finds it short takes the rest
-  // from the heap (stack_blocks, stack_overflow doubles in all, now) and the stack grows
-  // to the peak seen (stack_peak) before the next public call.
+  // from the heap (stack_blocks, now) and the stack grows to the peak seen (stack_peak)
+  // before the next public call.
   std::vector<double> stack;
   size_t stack_top = 0;
   std::vector<std::vector<double>> stack_blocks;
-  size_t stack_overflow = 0;
   size_t stack_peak = 0;
 };
 

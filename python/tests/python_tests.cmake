@@ -10,22 +10,17 @@ if(TARGET _simlab)
   set(environment "PYTHONPATH=${CMAKE_BINARY_DIR}/python;SIMLAB_BUILD_DIR=${CMAKE_BINARY_DIR}")
   foreach(test_file ${SIMLAB_PYTHON_TESTS})
     get_filename_component(test_name ${test_file} NAME_WE)
-    set(shards "")
+    set(command ${SIMLAB_PYTHON_EXECUTABLE} -m pytest -p no:cacheprovider -q ${test_file})
     if(test_name STREQUAL "test_rollout_equivalence")
-      set(shards 0 1 2)
-    endif()
-    if(NOT shards)
-      add_test(NAME python_${test_name}
-               COMMAND ${SIMLAB_PYTHON_EXECUTABLE} -m pytest -p no:cacheprovider -q ${test_file}
-               WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+      foreach(shard 0 1 2)
+        add_test(NAME python_${test_name}_${shard}of3 COMMAND ${command}
+                 WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+        set_tests_properties(python_${test_name}_${shard}of3 PROPERTIES
+                             ENVIRONMENT "${environment};SIMLAB_TEST_SHARD=${shard}/3" TIMEOUT 600)
+      endforeach()
+    else()
+      add_test(NAME python_${test_name} COMMAND ${command} WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
       set_tests_properties(python_${test_name} PROPERTIES ENVIRONMENT "${environment}" TIMEOUT 600)
     endif()
-    foreach(shard ${shards})
-      add_test(NAME python_${test_name}_${shard}of3
-               COMMAND ${SIMLAB_PYTHON_EXECUTABLE} -m pytest -p no:cacheprovider -q ${test_file}
-               WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
-      set_tests_properties(python_${test_name}_${shard}of3 PROPERTIES
-                           ENVIRONMENT "${environment};SIMLAB_TEST_SHARD=${shard}/3" TIMEOUT 600)
-    endforeach()
   endforeach()
 endif()

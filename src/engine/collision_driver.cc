@@ -472,24 +472,18 @@ void BodyBox(const Model& m, const Data& d, int b, const double* frame, double* 
 // `boxes` at 6 per body): interval ends on the first axis in single precision, sorted
 // stably (ties keep min-then-max in body order); each opening interval meets the open
 // ones whose boxes also overlap on the other two axes. Calls add(b1, b2) per candidate.
-// `kept`: s.ends holds last sweep's ends of the same bodies, to sort from their order.
 template <typename Add>
-void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, bool kept, Add add) {
-  // Each end as one key (SweepKey), 2 body + 1 for an upper end breaking ties, so that
-  // ties keep the order the ends were added in (by body, its lower end first).
-  if (!kept) {
-    s.ends.clear();
-    for (int b : s.bodies) {
-      s.ends.push_back(2 * static_cast<uint64_t>(b));
-      s.ends.push_back(2 * static_cast<uint64_t>(b) + 1);
-    }
-  }
-  ResortEnds(s.ends, [boxes](uint32_t tie) {
-    return SweepKey(boxes[6 * (tie >> 1) + ((tie & 1) ? 3 : 0)], static_cast<int>(tie));
+void SweepAndPrune(BroadPhaseScratch& s, const double* boxes, Add add) {
+  // Interval i is body s.bodies[i] (ascending), so ties 2 i and 2 i + 1 keep the order
+  // the ends would be added in: by body, its lower end first. (The collidable bodies are
+  // the model's: last step's ends are the same intervals.)
+  SortEnds(s.ends, 2 * s.bodies.size(), [&](uint32_t tie) {
+    int b = s.bodies[tie >> 1];
+    return SweepKey(boxes[6 * b + ((tie & 1) ? 3 : 0)], static_cast<int>(tie));
   });
   s.open.clear();
   for (uint64_t end : s.ends) {
-    int id = static_cast<int>((end & 0xFFFFFFFFu) >> 1);
+    int id = s.bodies[(end & 0xFFFFFFFFu) >> 1];
     if (end & 1) {
       s.open.erase(std::find(s.open.begin(), s.open.end(), id));
       continue;
@@ -550,15 +544,7 @@ void BroadPhase(const Model& m, Data& d) {
         FlexBox(m, d, b - m.nbody, frame, &boxes[6 * b], &boxes[6 * b + 3]);
       }
     }
-    // (the collidable bodies are the model's: last step's ends are theirs when they are
-    // as many and each is one of them)
-    std::vector<uint64_t>& ends = d.broadphase.ends;
-    bool kept = ends.size() == 2 * bodies.size() &&
-                std::all_of(ends.begin(), ends.end(), [&](uint64_t end) {
-                  int b = static_cast<int>(static_cast<uint32_t>(end) >> 1);
-                  return b > 0 && b < nbodyflex && CanCollide(m, b);
-                });
-    SweepAndPrune(d.broadphase, boxes, kept, [&](int b1, int b2) {
+    SweepAndPrune(d.broadphase, boxes, [&](int b1, int b2) {
       // (the weld filter is for body pairs only; while trees sleep, a pair with a flex
       // is kept when either side moves awake)
       bool two_bodies = b1 < m.nbody && b2 < m.nbody;

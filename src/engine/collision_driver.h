@@ -41,23 +41,29 @@ void SortContacts(Data& d, int first);
 // One interval end of a sweep and prune as an integer key that sorts as MuJoCo's sweeps
 // do: the value in single precision (a NaN as +inf), then `tie` (>= 0) among equals.
 uint64_t SweepKey(double x, int tie);
-// Sorts a sweep's interval ends, keys unique, given `ends` as the last sort left them
-// with the same ties and each key now key_of(its tie) (the tie is a key's low 32 bits): a
-// step moves little, so insertion sort finishes in about one pass; std::sort when the
-// order has moved far. Either way the order is the one unique sorted order.
+// Sorts the interval ends of count / 2 intervals into `ends`: ties 0..count-1 (2 i for
+// interval i's lower end, + 1 for its upper), key key_of(tie) (a SweepKey; the tie is a
+// key's low 32 bits). `ends` keeps the last sort's order between steps: when it holds as
+// many ends, their keys are recomputed in that order and insertion-sorted (a step moves
+// little: about one pass), falling back to std::sort past 8 count + 64 moves; otherwise
+// it starts anew. Keys are unique, so the order is the one std::sort gives.
 template <typename KeyOf>
-void ResortEnds(std::vector<uint64_t>& ends, KeyOf key_of) {
+void SortEnds(std::vector<uint64_t>& ends, size_t count, KeyOf key_of) {
+  if (ends.size() != count) {
+    ends.resize(count);
+    for (size_t t = 0; t < count; t++) ends[t] = t;
+  }
   for (uint64_t& end : ends) end = key_of(static_cast<uint32_t>(end));
-  size_t n = ends.size(), moves = 0, limit = 8 * n + 64;
+  size_t moves = 0, limit = 8 * count + 64;
   uint64_t* a = ends.data();
-  for (size_t i = 1; i < n; i++) {
+  for (size_t i = 1; i < count; i++) {
     uint64_t key = a[i];
     size_t j = i;
     for (; j > 0 && a[j - 1] > key; j--) a[j] = a[j - 1];
     a[j] = key;
     moves += i - j;
     if (moves > limit) {
-      std::sort(a, a + n);
+      std::sort(a, a + count);
       return;
     }
   }

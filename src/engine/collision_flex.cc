@@ -454,28 +454,18 @@ void CollideTreesWithFlex(const Model& m, Data& d, int b1, int b2) {
 
 // ---------------------------------------------------------------- sweep and prune
 
-// The interval ends of flex f's n active elements (active[i]) along `axis`, sorted:
-// key SweepKey(end, 2 i, + 1 for the upper end). Kept per flex between steps and resorted
-// from last step's order (ResortEnds); built anew when the count of elements changed.
+// The interval ends of flex f's n active elements (active[i]) along `axis`, sorted
+// (SortEnds, from last step's order kept per flex).
 std::vector<uint64_t>& SortedElementEnds(const Model& m, Data& d, int f, const int* active,
                                          int n, int axis) {
   std::vector<std::vector<uint64_t>>& per_flex = d.broadphase.flex_ends;
   if (per_flex.size() < static_cast<size_t>(m.nflex)) per_flex.resize(m.nflex);
   std::vector<uint64_t>& ends = per_flex[f];
-  auto key_of = [&](uint32_t tie) {
+  SortEnds(ends, 2 * static_cast<size_t>(n), [&](uint32_t tie) {
     const double* box = ElementBox(m, d, f, active[tie >> 1]);
     double value = (tie & 1) ? box[axis] + box[axis + 3] : box[axis] - box[axis + 3];
     return SweepKey(value, static_cast<int>(tie));
-  };
-  uint32_t count = 2 * static_cast<uint32_t>(n);
-  bool kept = ends.size() == count && std::all_of(ends.begin(), ends.end(), [count](uint64_t end) {
-    return static_cast<uint32_t>(end) < count;
   });
-  if (!kept) {
-    ends.resize(count);
-    for (uint32_t t = 0; t < count; t++) ends[t] = t;
-  }
-  ResortEnds(ends, key_of);
   return ends;
 }
 

@@ -423,14 +423,13 @@ void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, do
                             c.frame, c.dim, jac);
     return;
   }
-  double* jac1p = scratch;
-  double* jac1r = jac1p + 6 * n;
+  // (WeightedContactJacobian's sums: translation at scratch, rotation 6 n on)
   WeightedContactJacobian(m, d, c, cols, sides, scratch);
   // Rotate the differences into the contact frame.
-  int translation_rows = c.dim > 1 ? 3 : 1;
   for (int r = 0; r < c.dim; r++) {
-    const double* axis = c.frame + 3 * (r < translation_rows ? r : r - 3);
-    const double* dif = r < translation_rows ? jac1p : jac1r;
+    bool rotation_row;
+    const double* axis = ContactRowAxis(c.frame, c.dim, r, &rotation_row);
+    const double* dif = rotation_row ? scratch + 6 * n : scratch;
     double* row = jac + r * n;
     for (int v = 0; v < n; v++) row[v] = 0;
     for (int k = 0; k < 3; k++) {

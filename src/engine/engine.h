@@ -105,7 +105,8 @@ void JacobianOnDofs(const Model& m, const Data& d, const int* dofs, int n, doubl
 // One row on the columns `dofs` (as JacobianOnDofs's): the difference of the translation
 // Jacobians of point p2 on body b2 and p1 on b1 along the unit vector dir, components
 // where dir is 0 left out: row[k] = sum_r (jacp2[r][k] - jacp1[r][k]) dir[r], the same
-// numbers as from the two 3 x n Jacobians (a flex edge's length Jacobian).
+// numbers as from the two 3 x n Jacobians (a flex edge's length Jacobian, a spatial
+// tendon segment's).
 void JacobianDifferenceAlong(const Model& m, const Data& d, const int* dofs, int n,
                              const double* p1, int b1, const double* p2, int b2,
                              const double* dir, double* row);
@@ -116,6 +117,13 @@ void JacobianDifferenceAlong(const Model& m, const Data& d, const int* dofs, int
 void FrameJacobianDifference(const Model& m, const Data& d, const int* dofs, int n,
                              const double* point, int b1, int b2, const double* frame, int dim,
                              double* rows);
+// Row i of a contact's dim rows: its axis in the contact frame (translation rows 0-2, or
+// row 0 alone for dim 1; rotation rows 3 on take the first axes again) and whether it
+// is a rotation row.
+inline const double* ContactRowAxis(const double* frame, int dim, int i, bool* rotation) {
+  *rotation = i >= (dim > 1 ? 3 : 1);
+  return frame + 3 * (*rotation ? i - 3 : i);
+}
 // The dofs that move body b0 or b1 (their chains to the root), ascending, into `dofs`
 // (room for nv); returns their count (MuJoCo mj_mergeChain).
 int MergedDofChain(const Model& m, int b0, int b1, int* dofs);

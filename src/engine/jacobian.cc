@@ -118,7 +118,6 @@ void FrameJacobianDifference(const Model& m, const Data& d, const int* dofs, int
   double offset1[3], offset2[3];
   math::Sub3(offset1, point, &d.subtree_com[3 * m.body_rootid[b1]]);
   math::Sub3(offset2, point, &d.subtree_com[3 * m.body_rootid[b2]]);
-  int translation_rows = dim > 1 ? 3 : 1;
   bool rotation = dim > 3;
   ForChainColumns(m, dofs, n, b1, b2, [&](int k, bool on1, bool on2) {
     const double* cdof = &d.cdof[6 * dofs[k]];
@@ -131,8 +130,9 @@ void FrameJacobianDifference(const Model& m, const Data& d, const int* dofs, int
       dif_r[r] = r2[r] - r1[r];
     }
     for (int i = 0; i < dim; i++) {
-      const double* axis = frame + 3 * (i < translation_rows ? i : i - 3);
-      const double* dif = i < translation_rows ? dif_p : dif_r;
+      bool rotation_row;
+      const double* axis = ContactRowAxis(frame, dim, i, &rotation_row);
+      const double* dif = rotation_row ? dif_r : dif_p;
       double sum = 0;
       for (int r = 0; r < 3; r++) sum += axis[r] * dif[r];
       rows[i * n + k] = sum;

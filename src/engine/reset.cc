@@ -69,7 +69,6 @@ void ResetData(const Model& m, Data& d) {
   if (d.stack.size() < need) d.stack.assign(need, 0.0);
   d.stack_top = 0;
   d.stack_blocks.clear();
-  d.stack_overflow = 0;
   d.plugin_state = std::move(plugin_state);
   ResetPlugins(m, d);
   // Every tree awake, or those marked sleep="init" asleep.

@@ -49,16 +49,12 @@ class StackFrame {
   // instructions inline: a heap block when the stack is short, and its release.
   [[gnu::noinline]] double* AllocBlock(size_t n) {
     d_.stack_blocks.emplace_back(n);
-    d_.stack_overflow += n;
-    d_.stack_peak = std::max(d_.stack_peak, d_.stack.size() + d_.stack_overflow);
+    size_t in_use = d_.stack.size();
+    for (const std::vector<double>& block : d_.stack_blocks) in_use += block.size();
+    d_.stack_peak = std::max(d_.stack_peak, in_use);
     return d_.stack_blocks.back().data();
   }
-  [[gnu::noinline]] void ReleaseBlocks() {
-    for (size_t i = saved_blocks_; i < d_.stack_blocks.size(); i++) {
-      d_.stack_overflow -= d_.stack_blocks[i].size();
-    }
-    d_.stack_blocks.resize(saved_blocks_);
-  }
+  [[gnu::noinline]] void ReleaseBlocks() { d_.stack_blocks.resize(saved_blocks_); }
 
   Data& d_;
   size_t saved_;

@@ -37,23 +37,18 @@ void AddPathPoint(Data& d, int tendon, int* count, const double* p, int obj) {
 }
 
 // jac (nv) += scale * (J_b - J_a)^T dir for points a on body_a and b on body_b, on the
-// dofs that move either body only (every other column of J_b - J_a is zero). Each column
-// sums its three rows in order, as the dense product does.
+// dofs that move either body only (every other column of J_b - J_a is zero); each
+// column sums its three rows in order, zero components of dir left out, as MuJoCo's
+// mju_mulMatTVec does.
 void AddSegmentJacobian(const Model& m, Data& d, const double* a, int body_a, const double* b,
                         int body_b, const double* dir, double scale, double* jac) {
   SolverFrame frame(d.solver_scratch);
   int* dofs = frame.IntsToWrite(m.nv);
   int n = MergedDofChain(m, body_a, body_b, dofs);
   if (n == 0) return;
-  double* jac_a = frame.RealsToWrite(3 * static_cast<size_t>(n));
-  double* jac_b = frame.RealsToWrite(3 * static_cast<size_t>(n));
-  JacobianOnDofs(m, d, dofs, n, jac_a, nullptr, a, body_a);
-  JacobianOnDofs(m, d, dofs, n, jac_b, nullptr, b, body_b);
-  for (int k = 0; k < n; k++) {
-    double proj = 0;
-    for (int r = 0; r < 3; r++) proj += (jac_b[r * n + k] - jac_a[r * n + k]) * dir[r];
-    jac[dofs[k]] += proj * scale;
-  }
+  double* row = frame.RealsToWrite(n);
+  JacobianDifferenceAlong(m, d, dofs, n, a, body_a, b, body_b, dir, row);
+  for (int k = 0; k < n; k++) jac[dofs[k]] += row[k] * scale;
 }
 
 void FixedTendon(const Model& m, Data& d, int i, double* jac) {

@@ -84,7 +84,7 @@ export class Pacer {
   // The wall time until the next frame is not to be caught up (the page was hidden).
   resync() {
     this.skipGap = true;
-    this.debt = 0;
+    this.clearDebt();
   }
 
   // Nothing owed (after a pause, a reset or a change of speed).
