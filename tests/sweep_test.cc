@@ -101,5 +101,26 @@ TEST(Sweep, ContactsDoNotDependOnTheOrderKeptFromTheLastStep) {
   EXPECT_GT(self_contacts, 1000);
 }
 
+// Fewer than two collidable bodies meet nothing in the sweep, which is then skipped: a
+// lone ball still meets the world's plane, and the bodies that cannot collide (inside
+// the ball) meet nothing.
+TEST(Sweep, ALoneCollidableBodyMeetsOnlyTheWorld) {
+  Model m = LoadXmlString(R"(
+    <mujoco>
+      <worldbody>
+        <geom type="plane" size="2 2 .1"/>
+        <body pos="0 0 .09"><freejoint/><geom type="sphere" size=".1"/></body>
+        <body pos="0 0 .1"><freejoint/><geom type="sphere" size=".2" contype="0" conaffinity="0"/></body>
+        <body pos=".05 0 .1"><freejoint/><geom type="box" size=".1 .1 .1" contype="0" conaffinity="0"/></body>
+      </worldbody>
+    </mujoco>)");
+  Data d = MakeData(m);
+  Forward(m, d);
+  EXPECT_EQ(d.broadphase.pairs, std::vector<int>{1});  // (world 0 << 16) + ball 1
+  EXPECT_EQ(d.broadphase.bodies, std::vector<int>{1});
+  ASSERT_EQ(d.ncon, 1);
+  EXPECT_EQ(d.contact[0].geom[1], 1);
+}
+
 }  // namespace
 }  // namespace simlab

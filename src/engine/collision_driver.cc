@@ -527,17 +527,19 @@ void BroadPhase(const Model& m, Data& d) {
     }
   }
   // Other bodies and flexes meet when their boxes overlap in the principal frame of the
-  // moving geoms and flex vertices (there is none when every one is the world's).
+  // moving geoms and flex vertices (there is none when every one is the world's). Fewer
+  // than two collidable ones meet nothing: the frame is not computed.
+  int nbodyflex = m.nbody + m.nflex;
+  std::vector<int>& bodies = d.broadphase.bodies;
+  bodies.clear();
+  for (int b = 1; b < nbodyflex; b++) {
+    if (CanCollide(m, b)) bodies.push_back(b);
+  }
   double frame[9];
-  if (PrincipalFrame(m, d, frame)) {
+  if (bodies.size() >= 2 && PrincipalFrame(m, d, frame)) {
     StackFrame scratch(d);
-    int nbodyflex = m.nbody + m.nflex;
     double* boxes = scratch.Alloc(6 * static_cast<size_t>(nbodyflex));
-    std::vector<int>& bodies = d.broadphase.bodies;
-    bodies.clear();
-    for (int b = 1; b < nbodyflex; b++) {
-      if (!CanCollide(m, b)) continue;
-      bodies.push_back(b);
+    for (int b : bodies) {
       if (b < m.nbody) {
         BodyBox(m, d, b, frame, &boxes[6 * b], &boxes[6 * b + 3]);
       } else {
