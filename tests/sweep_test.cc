@@ -101,9 +101,10 @@ TEST(Sweep, ContactsDoNotDependOnTheOrderKeptFromTheLastStep) {
   EXPECT_GT(self_contacts, 1000);
 }
 
-// Fewer than two collidable bodies meet nothing in the sweep, which is then skipped: a
-// lone ball still meets the world's plane, and the bodies that cannot collide (inside
-// the ball) meet nothing.
+// With fewer than two collidable bodies the sweep (and its frame) is skipped; the world's
+// pairs do not come from it: a lone ball still meets the world's plane, at MuJoCo's
+// sphere-plane contact (distance z - radius, normal up), and the bodies that cannot
+// collide (inside the ball) meet nothing.
 TEST(Sweep, ALoneCollidableBodyMeetsOnlyTheWorld) {
   Model m = LoadXmlString(R"(
     <mujoco>
@@ -120,6 +121,8 @@ TEST(Sweep, ALoneCollidableBodyMeetsOnlyTheWorld) {
   EXPECT_EQ(d.broadphase.bodies, std::vector<int>{1});
   ASSERT_EQ(d.ncon, 1);
   EXPECT_EQ(d.contact[0].geom[1], 1);
+  EXPECT_NEAR(d.contact[0].dist, 0.09 - 0.1, 1e-12);
+  EXPECT_EQ(d.contact[0].frame[2], 1.0);
 }
 
 }  // namespace

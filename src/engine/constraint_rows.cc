@@ -388,15 +388,15 @@ void LimitRows(const Model& m, Data& d) {
 // ---------------------------------------------------------------- contact rows
 
 // The Jacobian at the contact point of side 1's bodies minus side 0's, weighted (a flex
-// element's vertices), into jac1p, jac1r: the first body's Jacobian scaled, the others
-// added scaled, as MuJoCo's mj_jacSum.
+// element's vertices), into jac1p, jac1r (3 x n each; jac1r with rotation rows only): the
+// first body's Jacobian scaled, the others added scaled, as MuJoCo's mj_jacSum. `work`
+// holds 6 n.
 void WeightedContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols,
-                             const ContactSide* sides, double* scratch) {
+                             const ContactSide* sides, double* jac1p, double* jac1r,
+                             double* work) {
   int n = cols.n;
-  double* jac1p = scratch;
-  double* jac2p = jac1p + 3 * n;
-  double* jac1r = jac2p + 3 * n;
-  double* jac2r = jac1r + 3 * n;
+  double* jac2p = work;
+  double* jac2r = work + 3 * n;
   bool rotation = c.dim > 3, first = true;
   for (int k = 0; k < 2; k++) {
     for (int i = 0; i < sides[k].n; i++) {
@@ -423,13 +423,14 @@ void ContactJacobian(const Model& m, Data& d, const Contact& c, Columns cols, do
                             c.frame, c.dim, jac);
     return;
   }
-  // (WeightedContactJacobian's sums: translation at scratch, rotation 6 n on)
-  WeightedContactJacobian(m, d, c, cols, sides, scratch);
+  double* dif_p = scratch;
+  double* dif_r = scratch + 3 * n;
+  WeightedContactJacobian(m, d, c, cols, sides, dif_p, dif_r, scratch + 6 * n);
   // Rotate the differences into the contact frame.
   for (int r = 0; r < c.dim; r++) {
     bool rotation_row;
     const double* axis = ContactRowAxis(c.frame, c.dim, r, &rotation_row);
-    const double* dif = rotation_row ? scratch + 6 * n : scratch;
+    const double* dif = rotation_row ? dif_r : dif_p;
     double* row = jac + r * n;
     for (int v = 0; v < n; v++) row[v] = 0;
     for (int k = 0; k < 3; k++) {
